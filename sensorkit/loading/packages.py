@@ -1,0 +1,204 @@
+"""Resolve ROS package names to folders, as ``$(find pkg)`` and ``package://pkg/`` need.
+
+Order (first hit wins):
+1. ``--package-path NAME=DIR`` (explicit),
+2. ``--package-path DIR`` (scanned for package.xml),
+3. ``AMENT_PREFIX_PATH`` (``<prefix>/share/<pkg>``),
+4. ``ROS_PACKAGE_PATH`` (scanned for package.xml),
+5. with no ``--package-path`` at all: the workspace around the file being loaded, i.e. its
+   own package and the packages beside it, as in a colcon ``src/``.
+
+Scans are lazy (nothing is read until a package is asked for) and bounded, so a stray
+``--package-path /`` cannot hang sensorkit.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+_SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
+_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+MAX_SCAN_DIRS = 5000
+MAX_SCAN_DEPTH = 5
+
+
+def package_name(package_xml: Path) -> str | None:
+    """The ``<name>`` of a package.xml, read without a full XML parse (it may be broken)."""
+    try:
+        data = package_xml.read_bytes()[:65536]
+    except OSError:
+        return None
+    m = _NAME_RE.search(data)
+    return m.group(1).decode("utf-8", "replace") if m else None
+
+
+def scan_packages(root: Path, *, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, Path]:
+    """Every package below ``root`` (a folder holding package.xml), first found wins.
+
+    Like colcon: a package folder is not descended into, folders holding COLCON_IGNORE,
+    AMENT_IGNORE or CATKIN_IGNORE and hidden or build folders are skipped.
+    """
+    found: dict[str, Path] = {}
+    if not root.is_dir():
+        return found
+    stack: list[tuple[Path, int]] = [(root, 0)]
+    visited = 0
+    while stack and visited < MAX_SCAN_DIRS:
+        folder, depth = stack.pop()
+        visited += 1
+        try:
+            names = set(os.listdir(folder))
+        except OSError:
+            continue
+        if names & {"COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE"}:
+            continue
+        if "package.xml" in names:
+            name = package_name(folder / "package.xml")
+            if name and name not in found:
+                found[name] = folder
+            continue
+        if depth >= max_depth:
+            continue
+        for child in sorted(names, reverse=True):
+            if child.startswith(".") or child in _SKIP_DIRS:
+                continue
+            path = folder / child
+            if path.is_dir() and not path.is_symlink():
+                stack.append((path, depth + 1))
+    return found
+
+
+def own_package(path: Path) -> Path | None:
+    """The package folder holding ``path`` (nearest ancestor with a package.xml)."""
+    for folder in [path.parent, *path.parent.parents]:
+        if (folder / "package.xml").is_file():
+            return folder
+    return None
+
+
+def workspace_roots(path: Path) -> list[Path]:
+    """Where to look for sibling packages of the file at ``path``.
+
+    The nearest ancestor called ``src`` (a colcon workspace) if any; otherwise the
+    package's parent and grandparent (a repository of packages, and the folder of
+    repositories beside it), or the file's own folder when it is in no package.
+    """
+    pkg = own_package(path)
+    start = pkg if pkg is not None else path.parent
+    for folder in [start, *start.parents]:
+        if folder.name == "src":
+            return [folder]
+    if pkg is None:
+        return [path.parent]
+    roots = [pkg]
+    if pkg.parent != pkg:
+        roots.append(pkg.parent)
+        if pkg.parent.parent != pkg.parent:
+            roots.append(pkg.parent.parent)
+    return roots
+
+
+@dataclass
+class PackageResolver:
+    """Maps package names to folders; records every place it searched."""
+
+    explicit: dict[str, Path] = field(default_factory=dict)
+    scan_dirs: list[Path] = field(default_factory=list)
+    use_environment: bool = True
+    workspace_of: Path | None = None
+    _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
+    _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def from_options(
+        cls, package_paths: Sequence[str] = (), *, near: Path | None = None
+    ) -> PackageResolver:
+        """Build a resolver from ``--package-path`` values (``NAME=DIR`` or ``DIR``).
+
+        With no ``--package-path`` at all, the workspace around ``near`` is searched too.
+        """
+        explicit: dict[str, Path] = {}
+        scan: list[Path] = []
+        for item in package_paths:
+            name, sep, folder = item.partition("=")
+            if sep and name and "/" not in name:
+                explicit[name] = Path(folder).expanduser().resolve()
+            else:
+                scan.append(Path(item).expanduser().resolve())
+        return cls(
+            explicit=explicit,
+            scan_dirs=scan,
+            workspace_of=None if package_paths else near,
+        )
+
+    def for_file(self, path: Path) -> PackageResolver:
+        """The same resolver, searching the workspace around ``path`` when allowed."""
+        if self.explicit or self.scan_dirs:
+            return self
+        return PackageResolver(
+            explicit=dict(self.explicit),
+            scan_dirs=list(self.scan_dirs),
+            use_environment=self.use_environment,
+            workspace_of=path.resolve(),
+        )
+
+    def _scan(self, root: Path, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, Path]:
+        if root not in self._scanned:
+            self._scanned[root] = scan_packages(root, max_depth=max_depth)
+        return self._scanned[root]
+
+    def _env_paths(self, var: str) -> list[Path]:
+        if not self.use_environment:
+            return []
+        return [Path(p) for p in os.environ.get(var, "").split(os.pathsep) if p]
+
+    def _workspace(self) -> list[Path]:
+        return workspace_roots(self.workspace_of) if self.workspace_of is not None else []
+
+    def searched(self) -> list[str]:
+        """Human-readable list of every place searched, in order."""
+        places = [f"--package-path {n}={p}" for n, p in self.explicit.items()]
+        places += [f"--package-path {p}" for p in self.scan_dirs]
+        places += [f"AMENT_PREFIX_PATH {p}/share" for p in self._env_paths("AMENT_PREFIX_PATH")]
+        places += [f"ROS_PACKAGE_PATH {p}" for p in self._env_paths("ROS_PACKAGE_PATH")]
+        places += [f"workspace {p}" for p in self._workspace()]
+        if not places:
+            places.append("nowhere: pass --package-path DIR or NAME=DIR")
+        return places
+
+    def find(self, name: str) -> Path | None:
+        """The folder of package ``name``, or None."""
+        if name in self._cache:
+            return self._cache[name]
+        result = self._find(name)
+        self._cache[name] = result
+        return result
+
+    def _find(self, name: str) -> Path | None:
+        if name in self.explicit:
+            return self.explicit[name]
+        for root in self.scan_dirs:
+            hit = self._scan(root).get(name)
+            if hit:
+                return hit
+        for prefix in self._env_paths("AMENT_PREFIX_PATH"):
+            share = prefix / "share" / name
+            if (share / "package.xml").is_file() or share.is_dir():
+                return share
+        for root in self._env_paths("ROS_PACKAGE_PATH"):
+            hit = self._scan(root).get(name)
+            if hit:
+                return hit
+        for root in self._workspace():
+            hit = self._scan(root, max_depth=3).get(name)
+            if hit:
+                return hit
+        return None
+
+    def known(self) -> Iterable[str]:
+        """Names found so far (for messages)."""
+        return sorted(k for k, v in self._cache.items() if v is not None)

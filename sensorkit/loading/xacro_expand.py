@@ -1,0 +1,301 @@
+"""Run the real xacro library, isolated, with line tracking and package resolution.
+
+xacro keeps module-level state (file and macro stacks, included files, substitution
+args, the root folder). Each expansion runs in a forked child process where that is
+available (Linux, macOS), so every call starts from the same clean module, a runaway
+expression (``${10**10**10}``) can be stopped by a timeout and a memory bomb by a
+memory limit. Elsewhere it runs in-process after resetting xacro's globals.
+
+Line tracking: xacro parses with minidom, which records no line numbers. We hand xacro
+a parser that stamps every non-xacro element with ``sk_loc_="<file index>:<line>"``;
+the stamp survives macro instantiation (xacro clones elements), so each element of the
+expanded robot still says which file and line it was written in.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+import sys
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from sensorkit.loading.packages import PackageResolver
+
+LOC_ATTR = "sk_loc_"
+MAX_INCLUDE_DEPTH = 64
+DEFAULT_TIMEOUT = 60.0
+MEMORY_LIMIT = 6 * 1024**3
+
+_ENTITY_RE = re.compile(rb"<!ENTITY", re.IGNORECASE)
+
+
+class PackageMissing(Exception):
+    """``$(find pkg)`` named a package the resolver could not find."""
+
+    def __init__(self, name: str, searched: list[str]) -> None:
+        super().__init__(f"package {name!r} not found")
+        self.name = name
+        self.searched = searched
+
+
+@dataclass
+class ExpandOutcome:
+    """What one expansion produced: XML text, or a classified failure."""
+
+    xml: str | None = None
+    files: list[str] = field(default_factory=list)
+    includes: list[str] = field(default_factory=list)
+    error_kind: str | None = None  # "xml", "xacro", "package", "timeout", "memory"
+    message: str = ""
+    error_file: str | None = None
+    error_line: int | None = None
+    error_column: int | None = None
+    stack: list[str] = field(default_factory=list)
+    package: str | None = None
+    searched: list[str] = field(default_factory=list)
+
+
+def forbid_entities(data: bytes) -> str | None:
+    """A reason to refuse the bytes, or None. URDF never needs a DTD with entities."""
+    head = data[:65536]
+    if b"<!DOCTYPE" in head and _ENTITY_RE.search(data):
+        return (
+            "DTD entity declarations are not allowed (entity expansion and external "
+            "entities are refused for safety); remove the <!DOCTYPE ...> block"
+        )
+    return None
+
+
+def _loc_parser(files: list[str], orig_parse: Any) -> Any:
+    import xml.dom.minidom
+    from xml.dom import expatbuilder
+
+    import xacro
+
+    class _LineBuilder(expatbuilder.ExpatBuilderNS):  # type: ignore[misc]
+        file_index = 0
+
+        def start_element_handler(self, name: str, attributes: Any) -> None:
+            super().start_element_handler(name, attributes)
+            node = self.curNode
+            tag = node.tagName
+            if not tag.startswith("xacro:") or tag in ("xacro:macro", "xacro:include"):
+                node.setAttribute(
+                    LOC_ATTR, f"{self.file_index}:{self._parser.CurrentLineNumber}"
+                )
+
+    def parse(inp: Any, filename: str | None = None) -> Any:
+        if inp is not None or filename is None:
+            return orig_parse(inp, filename)
+        full = os.path.abspath(os.path.join(xacro.root_dir, filename))
+        stack = [os.path.abspath(f) for f in (xacro.filestack or []) if f]
+        if stack.count(full) > 1:
+            chain = " -> ".join(stack[stack.index(full):])
+            raise xacro.XacroException(f"include loop: {chain}")
+        if len(stack) > MAX_INCLUDE_DEPTH:
+            raise xacro.XacroException(f"includes nested deeper than {MAX_INCLUDE_DEPTH}")
+        try:
+            data = Path(full).read_bytes()
+        except OSError as exc:
+            if xacro.filestack:
+                xacro.filestack.pop()
+            raise xacro.XacroException(
+                f"{exc.strerror}: {exc.filename}", exc=exc
+            ) from None
+        reason = forbid_entities(data)
+        if reason:
+            raise xacro.XacroException(reason)
+        if full not in files:
+            files.append(full)
+        builder = _LineBuilder()
+        builder.file_index = files.index(full)
+        doc: xml.dom.minidom.Document = builder.parseString(data)
+        return doc
+
+    return parse
+
+
+def _reset_xacro() -> None:
+    import xacro
+
+    xacro.all_includes = []
+    xacro.substitution_args_context.clear()
+    xacro.init_stacks(None)
+    xacro.root_dir = os.curdir
+    xacro.verbosity = 0
+
+
+def expand_in_process(
+    path: Path, args: dict[str, str], resolver: PackageResolver
+) -> ExpandOutcome:
+    """Expand ``path`` with xacro in this process (resets xacro's globals first)."""
+    import xacro
+    import xacro.substitution_args as sa
+
+    files: list[str] = []
+    out = ExpandOutcome(files=files)
+    orig_parse = xacro.parse
+    orig_find = sa._eval_find
+    orig_dict_find = sa._eval_dict.get("find")
+    orig_stderr = sys.stderr
+
+    def find(pkg: str) -> str:
+        hit = resolver.find(pkg)
+        if hit is None:
+            raise PackageMissing(pkg, resolver.searched())
+        return str(hit)
+
+    _reset_xacro()
+    xacro.parse = _loc_parser(files, orig_parse)
+    sa._eval_find = find
+    sa._eval_dict["find"] = find
+    sys.stderr = io.StringIO()
+    try:
+        doc = xacro.process_file(str(path.resolve()), mappings=dict(args), verbosity=0)
+        out.xml = doc.documentElement.toxml()
+        out.includes = [os.path.abspath(p) for p in xacro.all_includes]
+    except BaseException as exc:  # classify everything; never let xacro escape
+        if isinstance(exc, KeyboardInterrupt):
+            raise
+        _classify(exc, out)
+    finally:
+        stack_files = [f for f in (xacro.filestack or []) if f]
+        macros = list(xacro.macrostack or [])
+        xacro.parse = orig_parse
+        sa._eval_find = orig_find
+        if orig_dict_find is not None:
+            sa._eval_dict["find"] = orig_dict_find
+        sys.stderr = orig_stderr
+    if out.error_kind is not None:
+        if out.error_file is None and stack_files:
+            out.error_file = os.path.abspath(stack_files[-1])
+        out.stack = _describe_stack(stack_files, macros, files)
+    _reset_xacro()
+    return out
+
+
+def _classify(exc: BaseException, out: ExpandOutcome) -> None:
+    import xml.parsers.expat
+
+    chain: list[BaseException] = []
+    cur: BaseException | None = exc
+    while cur is not None and cur not in chain:
+        chain.append(cur)
+        cur = getattr(cur, "exc", None) or cur.__cause__ or cur.__context__
+    for item in chain:
+        if isinstance(item, PackageMissing):
+            out.error_kind = "package"
+            out.package = item.name
+            out.searched = item.searched
+            out.message = f"$(find {item.name}): package {item.name!r} not found"
+            return
+    for item in chain:
+        if isinstance(item, xml.parsers.expat.ExpatError):
+            out.error_kind = "xml"
+            out.message = xml.parsers.expat.ErrorString(item.code)
+            out.error_line = item.lineno
+            out.error_column = item.offset + 1
+            return
+    if any(isinstance(i, RecursionError) for i in chain):
+        out.error_kind = "xacro"
+        out.message = "xacro recursed too deep: a macro that calls itself without end?"
+        return
+    if any(isinstance(i, MemoryError) for i in chain):
+        out.error_kind = "memory"
+        out.message = "xacro ran out of memory evaluating an expression"
+        return
+    text = str(exc) or repr(exc)
+    if os.environ.get("SENSORKIT_DEBUG"):
+        text += "\n" + "".join(traceback.format_exception(exc))
+    out.error_kind = "xacro"
+    out.message = text.strip()
+
+
+def _describe_stack(stack_files: list[str], macros: list[Any], files: list[str]) -> list[str]:
+    lines: list[str] = []
+    for m in reversed(macros):
+        try:
+            name = m.body.getAttribute("name")
+            loc = m.body.getAttribute(LOC_ATTR)
+        except Exception:
+            continue
+        where = ""
+        if loc:
+            idx, _, line = loc.partition(":")
+            if idx.isdigit() and int(idx) < len(files):
+                where = f" ({files[int(idx)]}:{line})"
+        lines.append(f"in macro {name}{where}")
+    for f in reversed(stack_files):
+        lines.append(f"in file {f}")
+    return lines
+
+
+def expand(
+    path: Path,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> ExpandOutcome:
+    """Expand ``path`` isolated from this process where possible (see the module doc)."""
+    if not hasattr(os, "fork") or os.environ.get("SENSORKIT_XACRO_INPROCESS"):
+        return expand_in_process(path, args, resolver)
+    import multiprocessing as mp
+    import pickle
+
+    ctx = mp.get_context("fork")
+    recv, send = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_child, args=(path, args, resolver, send), daemon=True)
+    proc.start()
+    send.close()
+    outcome: ExpandOutcome | None = None
+    try:
+        if recv.poll(timeout):
+            try:
+                outcome = pickle.loads(recv.recv_bytes())
+            except (EOFError, OSError, pickle.UnpicklingError):
+                outcome = None
+            if outcome is None:
+                proc.join(5)
+                code = proc.exitcode
+                outcome = ExpandOutcome(
+                    error_kind="memory" if code and code < 0 else "xacro",
+                    message=f"xacro stopped without an answer (exit status {code})",
+                )
+        else:
+            outcome = ExpandOutcome(
+                error_kind="timeout",
+                message=f"xacro did not finish within {timeout:g} s (a runaway expression?)",
+            )
+    finally:
+        if proc.is_alive():
+            proc.kill()
+        proc.join(5)
+        recv.close()
+    return outcome
+
+
+def _child(path: Path, args: dict[str, str], resolver: PackageResolver, send: Any) -> None:
+    import pickle
+
+    try:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+    except (ImportError, ValueError, OSError):
+        pass
+    try:
+        outcome = expand_in_process(path, args, resolver)
+    except BaseException as exc:
+        outcome = ExpandOutcome(error_kind="xacro", message=str(exc) or repr(exc))
+    try:
+        send.send_bytes(pickle.dumps(outcome))
+    except BaseException:
+        send.send_bytes(pickle.dumps(ExpandOutcome(error_kind="memory", message="result too large")))
+    finally:
+        send.close()
+        os._exit(0)

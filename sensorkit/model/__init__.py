@@ -1,0 +1,36 @@
+"""The robot model: frames, joints, sensors, and what the simulator keeps."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from sensorkit.findings import Finding
+from sensorkit.loading import PackageResolver, load_description
+from sensorkit.model.robot import Robot, build_robot
+
+
+@dataclass
+class Loaded:
+    """A robot, or the findings (SK101..SK103) that say why it could not be read."""
+
+    robot: Robot | None
+    findings: list[Finding] = field(default_factory=list)
+
+
+def load_robot(
+    path: Path,
+    *,
+    args: dict[str, str] | None = None,
+    package_paths: tuple[str, ...] | list[str] = (),
+    timeout: float = 60.0,
+) -> Loaded:
+    """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input."""
+    resolver = PackageResolver.from_options(list(package_paths), near=path)
+    result = load_description(path, args=args, resolver=resolver, timeout=timeout)
+    if result.document is None:
+        return Loaded(None, result.findings)
+    return Loaded(build_robot(result.document), result.findings)
+
+
+__all__ = ["Loaded", "Robot", "build_robot", "load_robot"]

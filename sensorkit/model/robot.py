@@ -1,0 +1,384 @@
+"""The robot model: links, joints, inertials and the kinematic tree, read from URDF XML.
+
+Reading is tolerant: a broken value becomes ``None`` plus a note, duplicate names and
+cycles are kept as they are, so that the rules can report them (findings are data). The
+model never raises on bad input.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from lxml import etree
+
+from sensorkit.findings import SourceRef
+from sensorkit.loading.document import Document
+
+if TYPE_CHECKING:
+    from sensorkit.model.sensors import Plugin, Sensor
+    from sensorkit.model.transforms import Mat
+
+Vec3 = tuple[float, float, float]
+JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
+
+
+def parse_vec(text: str | None, n: int = 3) -> tuple[tuple[float, ...] | None, str | None]:
+    """``n`` numbers from an attribute, or (None, why)."""
+    if text is None:
+        return None, None
+    parts = text.split()
+    if len(parts) != n:
+        return None, f"{text!r} is not {n} numbers"
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        return None, f"{text!r} is not {n} numbers"
+    if not all(math.isfinite(v) for v in values):
+        return None, f"{text!r} is not finite"
+    return values, None
+
+
+def parse_float(text: str | None) -> tuple[float | None, str | None]:
+    """One finite number, or (None, why)."""
+    if text is None:
+        return None, None
+    try:
+        value = float(text.strip())
+    except ValueError:
+        return None, f"{text!r} is not a number"
+    if not math.isfinite(value):
+        return None, f"{text!r} is not finite"
+    return value, None
+
+
+def local(el: etree._Element) -> str:
+    """Tag name without namespace ('' for comments and processing instructions)."""
+    tag = el.tag
+    if not isinstance(tag, str):
+        return ""
+    return tag.rsplit("}", 1)[-1]
+
+
+def children(el: etree._Element, name: str) -> list[etree._Element]:
+    return [c for c in el if local(c) == name]
+
+
+def child(el: etree._Element | None, name: str) -> etree._Element | None:
+    if el is None:
+        return None
+    for c in el:
+        if local(c) == name:
+            return c
+    return None
+
+
+def text_of(el: etree._Element | None, *path: str) -> str | None:
+    """Stripped text of a descendant by child names, or None."""
+    cur = el
+    for name in path:
+        cur = child(cur, name)
+        if cur is None:
+            return None
+    if cur is None or cur.text is None:
+        return None
+    return cur.text.strip()
+
+
+@dataclass
+class Origin:
+    """A URDF ``<origin>``: xyz and rpy, zeros when absent; notes when unreadable."""
+
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+    problems: list[str] = field(default_factory=list)
+    rpy_text: str | None = None
+    source: SourceRef | None = None
+
+    @classmethod
+    def read(cls, el: etree._Element | None, source: SourceRef | None = None) -> Origin:
+        if el is None:
+            return cls(source=source)
+        out = cls(source=source, rpy_text=el.get("rpy"))
+        xyz, why = parse_vec(el.get("xyz"))
+        if why:
+            out.problems.append(f"xyz {why}")
+        elif xyz is not None:
+            out.xyz = (xyz[0], xyz[1], xyz[2])
+        rpy, why = parse_vec(el.get("rpy"))
+        if why:
+            out.problems.append(f"rpy {why}")
+        elif rpy is not None:
+            out.rpy = (rpy[0], rpy[1], rpy[2])
+        return out
+
+    def matrix(self) -> Mat:
+        from sensorkit.model.transforms import transform
+
+        return transform(self.xyz, self.rpy)
+
+
+@dataclass
+class Inertial:
+    mass: float | None
+    inertia: dict[str, float | None]
+    origin: Origin
+    source: SourceRef
+    problems: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Link:
+    name: str
+    element: etree._Element
+    source: SourceRef
+    inertial: Inertial | None = None
+    meshes: list[tuple[str, SourceRef]] = field(default_factory=list)
+
+    @property
+    def mass(self) -> float:
+        """Mass Gazebo sees (0 when missing or unreadable)."""
+        if self.inertial is None or self.inertial.mass is None:
+            return 0.0
+        return self.inertial.mass
+
+
+@dataclass
+class Joint:
+    name: str
+    type: str
+    parent: str | None
+    child: str | None
+    origin: Origin
+    element: etree._Element
+    source: SourceRef
+    axis: Vec3 | None = None
+    axis_problem: str | None = None
+    limit: dict[str, float | None] | None = None
+    limit_problems: list[str] = field(default_factory=list)
+    mimic: str | None = None
+    has_mimic: bool = False
+
+
+@dataclass
+class GazeboBlock:
+    """A ``<gazebo>`` extension; ``reference`` is None for model-level blocks."""
+
+    reference: str | None
+    element: etree._Element
+    source: SourceRef
+
+
+@dataclass
+class Robot:
+    """The whole description, with lazy forward kinematics at zero joint positions."""
+
+    name: str
+    document: Document
+    links: list[Link] = field(default_factory=list)
+    joints: list[Joint] = field(default_factory=list)
+    gazebo: list[GazeboBlock] = field(default_factory=list)
+    sensors: list[Sensor] = field(default_factory=list)
+    model_plugins: list[Plugin] = field(default_factory=list)
+    link_map: dict[str, Link] = field(default_factory=dict)
+    joint_map: dict[str, Joint] = field(default_factory=dict)
+    parent_joint: dict[str, Joint] = field(default_factory=dict)
+    child_joints: dict[str, list[Joint]] = field(default_factory=dict)
+    _T_world: dict[str, Mat | None] = field(default_factory=dict, repr=False)
+
+    # ---- tree -------------------------------------------------------------------------
+    def roots(self) -> list[str]:
+        """Links that no joint names as child, in document order."""
+        return [lk.name for lk in self.links if lk.name not in self.parent_joint]
+
+    def root(self) -> str | None:
+        r = self.roots()
+        return r[0] if len(r) == 1 else None
+
+    def ancestors(self, link: str) -> list[str]:
+        """Links from ``link``'s parent up to its root (stops on a cycle)."""
+        out: list[str] = []
+        seen = {link}
+        cur = link
+        while cur in self.parent_joint:
+            parent = self.parent_joint[cur].parent
+            if parent is None or parent in seen:
+                break
+            out.append(parent)
+            seen.add(parent)
+            cur = parent
+        return out
+
+    def subtree(self, link: str) -> list[str]:
+        """``link`` and every link below it (cycle-safe)."""
+        out: list[str] = []
+        seen: set[str] = set()
+        stack = [link]
+        while stack:
+            cur = stack.pop()
+            if cur in seen:
+                continue
+            seen.add(cur)
+            out.append(cur)
+            for j in self.child_joints.get(cur, []):
+                if j.child is not None:
+                    stack.append(j.child)
+        return out
+
+    # ---- kinematics -------------------------------------------------------------------
+    def T_world_link(self, link: str) -> Mat | None:
+        """Pose of ``link`` in its root's frame at zero joint positions (None if unknown).
+
+        "World" is the root link of the tree ``link`` belongs to. Memoised; iterative, so
+        a 10,000-link chain costs no recursion.
+        """
+        if link in self._T_world:
+            return self._T_world[link]
+        if link not in self.link_map:
+            return None
+        import numpy as np
+
+        chain: list[str] = []
+        cur: str | None = link
+        seen: set[str] = set()
+        base: Mat | None = None
+        while cur is not None:
+            if cur in self._T_world:
+                base = self._T_world[cur]
+                break
+            if cur in seen:  # cycle: no defined pose
+                for c in chain:
+                    self._T_world[c] = None
+                return None
+            seen.add(cur)
+            chain.append(cur)
+            joint = self.parent_joint.get(cur)
+            if joint is None:
+                base = np.eye(4)
+                self._T_world[cur] = base
+                chain.pop()
+                break
+            cur = joint.parent
+            if cur is None or cur not in self.link_map:
+                for c in chain:
+                    self._T_world[c] = None
+                return None
+        T = base
+        for name in reversed(chain):
+            joint = self.parent_joint[name]
+            T = None if T is None else T @ joint.origin.matrix()
+            self._T_world[name] = T
+        return self._T_world[link]
+
+    def T_link_link(self, a: str, b: str) -> Mat | None:
+        """Pose of link ``b`` in link ``a`` (None unless both are in one tree)."""
+        from sensorkit.model.transforms import invert
+
+        Ta, Tb = self.T_world_link(a), self.T_world_link(b)
+        if Ta is None or Tb is None:
+            return None
+        ra = [a, *self.ancestors(a)][-1]
+        rb = [b, *self.ancestors(b)][-1]
+        if ra != rb:
+            return None
+        return invert(Ta) @ Tb
+
+
+def _read_inertial(el: etree._Element, doc: Document) -> Inertial:
+    src = doc.locate(el)
+    problems: list[str] = []
+    mass_el = child(el, "mass")
+    mass: float | None = None
+    if mass_el is None:
+        problems.append("no <mass>")
+    else:
+        mass, why = parse_float(mass_el.get("value"))
+        if why:
+            problems.append(f"mass {why}")
+        elif mass_el.get("value") is None:
+            problems.append("<mass> has no value attribute")
+    inertia: dict[str, float | None] = {}
+    in_el = child(el, "inertia")
+    for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+        value, why = parse_float(in_el.get(key) if in_el is not None else None)
+        if why:
+            problems.append(f"{key} {why}")
+        inertia[key] = value
+    origin = Origin.read(child(el, "origin"), src)
+    return Inertial(mass=mass, inertia=inertia, origin=origin, source=src, problems=problems)
+
+
+def _read_link(el: etree._Element, doc: Document) -> Link:
+    src = doc.locate(el)
+    link = Link(name=el.get("name", ""), element=el, source=src)
+    inertial_el = child(el, "inertial")
+    if inertial_el is not None:
+        link.inertial = _read_inertial(inertial_el, doc)
+    for kind in ("visual", "collision"):
+        for part in children(el, kind):
+            mesh = child(child(part, "geometry"), "mesh")
+            if mesh is not None and mesh.get("filename"):
+                link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
+    return link
+
+
+def _read_joint(el: etree._Element, doc: Document) -> Joint:
+    src = doc.locate(el)
+    parent_el, child_el = child(el, "parent"), child(el, "child")
+    joint = Joint(
+        name=el.get("name", ""),
+        type=el.get("type", ""),
+        parent=parent_el.get("link") if parent_el is not None else None,
+        child=child_el.get("link") if child_el is not None else None,
+        origin=Origin.read(child(el, "origin"), src),
+        element=el,
+        source=src,
+    )
+    axis_el = child(el, "axis")
+    if axis_el is not None:
+        axis, why = parse_vec(axis_el.get("xyz"))
+        joint.axis_problem = why
+        if axis is not None:
+            joint.axis = (axis[0], axis[1], axis[2])
+            if all(v == 0.0 for v in axis):
+                joint.axis_problem = "axis is zero"
+    limit_el = child(el, "limit")
+    if limit_el is not None:
+        joint.limit = {}
+        for key in ("lower", "upper", "effort", "velocity"):
+            value, why = parse_float(limit_el.get(key))
+            if why:
+                joint.limit_problems.append(f"{key} {why}")
+            joint.limit[key] = value
+    mimic_el = child(el, "mimic")
+    if mimic_el is not None:
+        joint.has_mimic = True
+        joint.mimic = mimic_el.get("joint")
+    return joint
+
+
+def build_robot(doc: Document) -> Robot:
+    """Read the model from a loaded document. Never raises on bad content."""
+    from sensorkit.model.sensors import read_gazebo
+
+    root = doc.root
+    robot = Robot(name=root.get("name", ""), document=doc)
+    for el in root:
+        name = local(el)
+        if name == "link":
+            robot.links.append(_read_link(el, doc))
+        elif name == "joint":
+            robot.joints.append(_read_joint(el, doc))
+        elif name == "gazebo":
+            robot.gazebo.append(GazeboBlock(el.get("reference"), el, doc.locate(el)))
+    for lk in robot.links:
+        robot.link_map.setdefault(lk.name, lk)
+    for j in robot.joints:
+        robot.joint_map.setdefault(j.name, j)
+        if j.child is not None and j.child not in robot.parent_joint:
+            robot.parent_joint[j.child] = j
+        if j.parent is not None:
+            robot.child_joints.setdefault(j.parent, []).append(j)
+    read_gazebo(robot)
+    return robot

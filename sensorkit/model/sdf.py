@@ -1,0 +1,104 @@
+"""What Gazebo's URDF-to-SDF conversion (sdformat ``parser_urdf.cc``) keeps.
+
+- Fixed joints are lumped: the child link merges into its parent (mass added, visuals,
+  collisions, ``<gazebo reference>`` blocks and sensors move with their poses composed)
+  unless the joint carries ``<preserveFixedJoint>true</preserveFixedJoint>`` or
+  ``<disableFixedJointLumping>true</disableFixedJointLumping>`` in its gazebo block.
+- A surviving link with no inertial or mass <= 0 is not modelled, and neither are its
+  joint and everything below it (``CreateSDF``). A root named ``world`` is exempt.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from sensorkit.model.robot import text_of
+
+if TYPE_CHECKING:
+    from sensorkit.model.robot import Robot
+
+_TRUE = {"true", "1"}
+
+
+@dataclass
+class Conversion:
+    """Result of the conversion as far as frames and masses go."""
+
+    target_of: dict[str, str] = field(default_factory=dict)  # link -> surviving link
+    mass_of: dict[str, float] = field(default_factory=dict)  # surviving link -> lumped mass
+    dropped: dict[str, str] = field(default_factory=dict)  # link -> massless link that drops it
+    preserved_joints: set[str] = field(default_factory=set)
+
+    def survivor(self, link: str) -> str:
+        return self.target_of.get(link, link)
+
+    def is_lumped(self, link: str) -> bool:
+        return self.survivor(link) != link
+
+
+def preserved_fixed_joints(robot: Robot) -> set[str]:
+    """Joints whose gazebo block disables fixed-joint lumping."""
+    out: set[str] = set()
+    for block in robot.gazebo:
+        if block.reference is None:
+            continue
+        for tag in ("preserveFixedJoint", "disableFixedJointLumping"):
+            value = text_of(block.element, tag)
+            if value is not None and value.lower() in _TRUE:
+                out.add(block.reference)
+    return out
+
+
+def convert(robot: Robot) -> Conversion:
+    """Compute lumping and dropping for ``robot`` (cycle-safe)."""
+    conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
+    order: list[str] = []
+    seen: set[str] = set()
+    for root in robot.roots():
+        stack = [root]
+        while stack:
+            cur = stack.pop()
+            if cur in seen:
+                continue
+            seen.add(cur)
+            order.append(cur)
+            for j in reversed(robot.child_joints.get(cur, [])):
+                if j.child is not None and robot.parent_joint.get(j.child) is j:
+                    stack.append(j.child)
+    for name in order:
+        joint = robot.parent_joint.get(name)
+        lumped = (
+            joint is not None
+            and joint.type == "fixed"
+            and joint.name not in conv.preserved_joints
+            and joint.parent is not None
+            and joint.parent in conv.target_of
+            and conv.target_of[joint.parent] != "world"
+        )
+        conv.target_of[name] = conv.target_of[joint.parent] if lumped else name  # type: ignore[union-attr,index]
+    for name in robot.link_map:
+        conv.target_of.setdefault(name, name)
+    for name, target in conv.target_of.items():
+        link = robot.link_map.get(name)
+        conv.mass_of[target] = conv.mass_of.get(target, 0.0) + (link.mass if link else 0.0)
+    # CreateSDF: walk surviving links from each root; a massless one drops its subtree.
+    for name in order:
+        if conv.target_of[name] != name or name in conv.dropped:
+            continue
+        joint = robot.parent_joint.get(name)
+        if joint is not None and joint.parent is not None:
+            parent_target = conv.target_of.get(joint.parent, joint.parent)
+            if parent_target in conv.dropped:
+                conv.dropped[name] = conv.dropped[parent_target]
+                continue
+        if name == "world" and joint is None:
+            continue
+        if conv.mass_of.get(name, 0.0) <= 0.0:
+            conv.dropped[name] = name
+    for name in order:  # lumped links follow their survivor
+        target = conv.target_of[name]
+        if target != name and target in conv.dropped:
+            conv.dropped[name] = conv.dropped[target]
+    return conv
+
