@@ -1,0 +1,53 @@
+"""The ``sensorkit`` command. Thin: each command parses options, calls one library
+function and formats its result. Command groups live in their own modules, each with a
+``register(app)``; heavy imports (pybullet, ...) stay inside the command functions so
+``sensorkit validate`` starts fast."""
+
+from __future__ import annotations
+
+import typer
+
+from sensorkit import __version__
+
+app = typer.Typer(
+    name="sensorkit",
+    help="Correct-by-construction sensors for URDF/xacro robots on ROS 2 and Gazebo.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"sensorkit {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="print the version"),
+) -> None:
+    """sensorkit: validate, generate and preview robot sensors."""
+
+
+def _register() -> None:
+    import importlib
+
+    for name in ("validate", "edit", "new", "render"):
+        try:
+            module = importlib.import_module(f"sensorkit.cli.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"sensorkit.cli.{name}":
+                raise
+            continue
+        module.register(app)
+
+
+_register()
+
+
+def main() -> None:
+    """Console entry point."""
+    app()
