@@ -1,0 +1,46 @@
+"""ROS ``camera_info`` YAML, as ``camera_calibration_parsers`` writes and reads it."""
+
+from __future__ import annotations
+
+from sensorkit.exporters import _text as t
+from sensorkit.intrinsics import Intrinsics
+
+__all__ = ["camera_info_yaml"]
+
+
+def _matrix(name: str, rows: int, cols: int, data: list[float]) -> list[str]:
+    return [
+        f"{name}:",
+        f"  rows: {rows}",
+        f"  cols: {cols}",
+        f"  data: {t.real_list(data, name)}",
+    ]
+
+
+def camera_info_yaml(intr: Intrinsics, *, camera_name: str = "camera") -> str:
+    """The ``camera_info`` calibration file a ``camera_info_manager`` URL can load.
+
+    Keys and layout follow ``camera_calibration_parsers`` (``parse_yml.cpp``):
+    ``image_width``, ``image_height``, ``camera_name``, ``camera_matrix`` (3x3),
+    ``distortion_model: plumb_bob``, ``distortion_coefficients`` (1x5, k1 k2 p1 p2 k3),
+    ``rectification_matrix`` (3x3) and ``projection_matrix`` (3x4). Ints are written
+    as ints, every matrix entry as an exact real.
+
+    Args:
+        intr: the camera.
+        camera_name: the ``camera_name`` field (gazebo_ros_camera's ``<camera_name>``).
+
+    Raises:
+        InvalidValue: ``camera_name`` is empty.
+    """
+    lines = [
+        f"image_width: {t.integer(intr.width, 'width')}",
+        f"image_height: {t.integer(intr.height, 'height')}",
+        f"camera_name: {t.string(camera_name, 'camera_name')}",
+        *_matrix("camera_matrix", 3, 3, t.matrix_rows(intr.K)),
+        "distortion_model: plumb_bob",
+        *_matrix("distortion_coefficients", 1, 5, list(intr.distortion)),
+        *_matrix("rectification_matrix", 3, 3, t.matrix_rows(intr.R)),
+        *_matrix("projection_matrix", 3, 4, t.matrix_rows(intr.P)),
+    ]
+    return "\n".join(lines) + "\n"
