@@ -30,7 +30,8 @@ def display_path(path: str | Path) -> str:
         rel = os.path.relpath(p)
     except ValueError:
         return str(p)
-    return rel if not rel.startswith("..") else str(p)
+    ups = len(re.findall(r"(?:^|/)\.\.(?=/|$)", rel))
+    return rel if ups <= 3 else str(p)
 
 
 def strict_parser() -> etree.XMLParser:

@@ -4,7 +4,7 @@
   collisions, ``<gazebo reference>`` blocks and sensors move with their poses composed)
   unless the joint carries ``<preserveFixedJoint>true</preserveFixedJoint>`` or
   ``<disableFixedJointLumping>true</disableFixedJointLumping>`` in its gazebo block.
-- A surviving link with no inertial or mass <= 0 is not modelled, and neither are its
+- A surviving link with no inertial or zero (lumped) mass is not modelled, and neither are its
   joint and everything below it (``CreateSDF``). A root named ``world`` is exempt.
 """
 
@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
 
 _TRUE = {"true", "1"}
+MASS_EPSILON = 1e-6  # sdformat compares the (lumped) mass with 0 by math::equal
 
 
 @dataclass
@@ -94,7 +95,7 @@ def convert(robot: Robot) -> Conversion:
                 continue
         if name == "world" and joint is None:
             continue
-        if conv.mass_of.get(name, 0.0) <= 0.0:
+        if abs(conv.mass_of.get(name, 0.0)) <= MASS_EPSILON:
             conv.dropped[name] = name
     for name in order:  # lumped links follow their survivor
         target = conv.target_of[name]

@@ -1,0 +1,85 @@
+"""``sensorkit validate`` and ``sensorkit rules``."""
+
+from __future__ import annotations
+
+import sys
+from typing import Annotated
+
+import typer
+
+from sensorkit.cli.common import ArgOpt, FilesArg, PackagePathOpt, handle_errors, parse_xacro_args
+
+FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
+
+
+def register(app: typer.Typer) -> None:
+    app.command("validate")(validate)
+    app.command("rules")(rules)
+
+
+@handle_errors
+def validate(
+    files: FilesArg,
+    target: Annotated[str | None, typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty")] = None,
+    fmt: Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)] = "text",
+    fail_on: Annotated[str | None, typer.Option("--fail-on", help="lowest severity that fails: error | warning | info")] = None,
+    select: Annotated[list[str] | None, typer.Option("--select", help="only these rules (ids or prefixes, repeatable)")] = None,
+    ignore: Annotated[list[str] | None, typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)")] = None,
+    arg: ArgOpt = None,
+    package_path: PackagePathOpt = None,
+    timeout: Annotated[float, typer.Option("--timeout", help="seconds one xacro expansion may take")] = 60.0,
+) -> None:
+    """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
+
+    Exit status: 0 nothing at or above --fail-on, 1 findings, 2 could not run.
+    """
+    from sensorkit.config import load_config
+    from sensorkit.engine import Options, validate_paths
+    from sensorkit.errors import UsageError
+    from sensorkit.findings import Severity
+    from sensorkit.report import FORMATS, render
+
+    if fmt not in FORMATS:
+        raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+    cfg = load_config()
+    sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
+    ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
+    try:
+        threshold = Severity.parse(fail_on or cfg.fail_on or "error")
+    except ValueError as exc:
+        raise UsageError(f"--fail-on: {exc}") from None
+    args = dict(cfg.args)
+    args.update(parse_xacro_args(arg))
+    options = Options(
+        target=target or cfg.target or "auto",
+        select=tuple(sep),
+        ignore=tuple(ign),
+        fail_on=threshold,
+        args=args,
+        package_paths=tuple(package_path or cfg.package_paths),
+        timeout=timeout,
+    )
+    report = validate_paths(files, options)
+    sys.stdout.write(render(report, fmt, color=fmt == "text" and sys.stdout.isatty()))
+    for fr in report.files:
+        if fr.error:
+            typer.echo(f"sensorkit: {fr.error}", err=True)
+        for err in fr.internal_errors:
+            typer.echo(f"sensorkit: internal error: {err}", err=True)
+    raise typer.Exit(report.exit_code(threshold))
+
+
+@handle_errors
+def rules(
+    fmt: Annotated[str, typer.Option("--format", "-f", help="text or markdown")] = "text",
+) -> None:
+    """List every rule: id, severity, what it checks."""
+    from sensorkit.report import rule_table
+    from sensorkit.rules import RULES
+
+    if fmt == "markdown":
+        sys.stdout.write(rule_table())
+        return
+    for rid in sorted(RULES):
+        info = RULES[rid]
+        typer.echo(f"{rid}  {info.severity:<13} {info.title}")

@@ -1,0 +1,181 @@
+"""Formatters: text (for people, grouped by sensor), json, sarif 2.1.0 and github."""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from typing import Any
+
+from sensorkit import __version__
+from sensorkit.engine import Report
+from sensorkit.findings import Finding, Severity
+from sensorkit.rules import RULES
+
+FORMATS = ("text", "json", "sarif", "github")
+HOME = "https://github.com/sensorkit/sensorkit"
+_SARIF_LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+
+
+def _loc(f: Finding) -> str:
+    if f.file is None:
+        return "<unknown>"
+    out = f.file
+    if f.line:
+        out += f":{f.line}"
+        if f.column:
+            out += f":{f.column}"
+    return out
+
+
+def format_text(report: Report, *, color: bool = False) -> str:
+    """Findings grouped per file, then per sensor (robot-wide findings last), each with its fix."""
+    styles = {Severity.ERROR: "31", Severity.WARNING: "33", Severity.INFO: "36"}
+
+    def sev(s: Severity) -> str:
+        return f"\x1b[{styles[s]}m{s.label}\x1b[0m" if color else s.label
+
+    def bold(t: str) -> str:
+        return f"\x1b[1m{t}\x1b[0m" if color else t
+
+    lines: list[str] = []
+    for fr in report.files:
+        if fr.error:
+            continue  # said once, on stderr, by the CLI
+        head = fr.display
+        if fr.target:
+            head += f" (target {fr.target}; {fr.target_reason})"
+        lines.append(bold(head))
+        groups: dict[str | None, list[Finding]] = defaultdict(list)
+        for f in fr.findings:
+            groups[f.sensor].append(f)
+        order = [k for k in groups if k is not None] + ([None] if None in groups else [])
+        for key in order:
+            lines.append(f"  {'sensor ' + key if key else 'robot'}:")
+            for f in groups[key]:
+                lines.append(f"    {_loc(f)}: {f.rule} {sev(f.severity)}: {f.message}")
+                if f.fix:
+                    lines.append(f"      fix: {f.fix}")
+        if not fr.findings:
+            sensors = len(fr.robot.sensors) if fr.robot else 0
+            lines.append(f"  ok: no findings ({sensors} sensors checked)")
+        for err in fr.internal_errors:
+            lines.append(f"  internal error: {err}")
+    s = report.summary()
+    lines.append(f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {len(report.files)} files")
+    return "\n".join(lines) + "\n"
+
+
+def to_json(report: Report) -> dict[str, Any]:
+    """The JSON output contract of rules.md (fields are only ever added)."""
+    targets = {fr.target for fr in report.files if fr.target}
+    return {
+        "version": 1,
+        "files": [fr.display for fr in report.files],
+        "target": targets.pop() if len(targets) == 1 else ("mixed" if targets else None),
+        "targets": {fr.display: fr.target for fr in report.files},
+        "findings": [f.to_dict() for f in report.findings],
+        "errors": [{"file": fr.display, "message": fr.error} for fr in report.files if fr.error],
+        "summary": report.summary(),
+    }
+
+
+def format_json(report: Report) -> str:
+    return json.dumps(to_json(report), indent=2) + "\n"
+
+
+def to_sarif(report: Report) -> dict[str, Any]:
+    """SARIF 2.1.0 with stable ruleIds and the full rule table."""
+    ids = sorted(RULES)
+    index = {rid: i for i, rid in enumerate(ids)}
+    rules = []
+    for rid in ids:
+        info = RULES[rid]
+        level = "note" if info.severity == "info" else info.severity.split("/")[0]
+        rules.append({
+            "id": rid,
+            "name": rid,
+            "shortDescription": {"text": info.title},
+            "fullDescription": {"text": f"{info.title} (existing tool: {info.existing})"},
+            "defaultConfiguration": {"level": level},
+            "helpUri": f"{HOME}#rules",
+        })
+    results = []
+    for f in report.findings:
+        text = f.message + (f" Fix: {f.fix}" if f.fix else "")
+        result: dict[str, Any] = {
+            "ruleId": f.rule,
+            "ruleIndex": index[f.rule],
+            "level": _SARIF_LEVEL[f.severity],
+            "message": {"text": text},
+        }
+        if f.file:
+            phys: dict[str, Any] = {"artifactLocation": {"uri": f.file.replace("\\", "/")}}
+            if f.line:
+                phys["region"] = {"startLine": f.line}
+                if f.column:
+                    phys["region"]["startColumn"] = f.column
+            result["locations"] = [{"physicalLocation": phys}]
+        props = {k: v for k, v in (("link", f.link), ("joint", f.joint), ("sensor", f.sensor), ("frame", f.frame)) if v}
+        if props:
+            result["properties"] = props
+        results.append(result)
+    return {
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [{
+            "tool": {"driver": {"name": "sensorkit", "version": __version__, "informationUri": HOME, "rules": rules}},
+            "results": results,
+        }],
+    }
+
+
+def format_sarif(report: Report) -> str:
+    return json.dumps(to_sarif(report), indent=2) + "\n"
+
+
+def _gh_escape(text: str, prop: bool = False) -> str:
+    out = text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    if prop:
+        out = out.replace(":", "%3A").replace(",", "%2C")
+    return out
+
+
+def format_github(report: Report) -> str:
+    """GitHub Actions workflow commands (annotations)."""
+    kinds = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
+    lines = []
+    for fr in report.files:
+        if fr.error:
+            lines.append(f"::error file={_gh_escape(fr.display, True)},title=sensorkit::{_gh_escape(fr.error)}")
+    for f in report.findings:
+        props = []
+        if f.file:
+            props.append(f"file={_gh_escape(f.file, True)}")
+        if f.line:
+            props.append(f"line={f.line}")
+        if f.column:
+            props.append(f"col={f.column}")
+        props.append(f"title={_gh_escape(f.rule, True)}")
+        text = f.message + (f" Fix: {f.fix}" if f.fix else "")
+        lines.append(f"::{kinds[f.severity]} {','.join(props)}::{_gh_escape(text)}")
+    return "\n".join(lines) + ("\n" if lines else "")
+
+
+def render(report: Report, fmt: str, *, color: bool = False) -> str:
+    if fmt == "json":
+        return format_json(report)
+    if fmt == "sarif":
+        return format_sarif(report)
+    if fmt == "github":
+        return format_github(report)
+    return format_text(report, color=color)
+
+
+def rule_table() -> str:
+    """The Markdown rule table for the README, generated from the registry."""
+    lines = ["| id | severity | checks | existing tool |", "|---|---|---|---|"]
+    for rid in sorted(RULES):
+        info = RULES[rid]
+        lines.append(f"| {rid} | {info.severity} | {info.title} | {info.existing} |")
+    return "\n".join(lines) + "\n"
+

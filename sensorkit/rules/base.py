@@ -1,0 +1,96 @@
+"""The rule registry and the context every rule reads.
+
+A rule is a pure function ``(ctx) -> Iterable[Finding]``: it reads the model and never
+prints, raises for a finding, touches files or exits. Register with ``@rule``; the ids
+are a public contract (never renumber or reuse one).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from sensorkit.findings import Finding, Severity, SourceRef
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from sensorkit.model.frames import SensorFrames
+    from sensorkit.model.robot import Robot
+    from sensorkit.model.sdf import Conversion
+    from sensorkit.model.sensors import Sensor
+
+RuleFunc = Callable[["Context"], Iterable[Finding]]
+
+
+@dataclass(frozen=True)
+class RuleInfo:
+    id: str
+    severity: str  # as in the catalogue: "error", "warning", "info", "error/warning"
+    title: str
+    existing: str
+    func: RuleFunc | None = None
+
+    @property
+    def family(self) -> str:
+        return self.id[:3] + "xx"
+
+
+RULES: dict[str, RuleInfo] = {}
+
+
+def rule(id: str, severity: str, title: str, existing: str = "none") -> Callable[[RuleFunc], RuleFunc]:
+    """Register a rule function under its public id."""
+
+    def deco(func: RuleFunc) -> RuleFunc:
+        if id in RULES and RULES[id].func is not None:
+            msg = f"rule {id} registered twice"
+            raise RuntimeError(msg)
+        RULES[id] = RuleInfo(id, severity, title, existing, func)
+        return func
+
+    return deco
+
+
+def declare(id: str, severity: str, title: str, existing: str = "none") -> None:
+    """Register a rule whose findings come from loading (SK101..SK103), not a function."""
+    RULES[id] = RuleInfo(id, severity, title, existing, None)
+
+
+@dataclass
+class MissingFile:
+    """A file reference (mesh, texture) that does not resolve; found before rules run."""
+
+    uri: str
+    source: SourceRef
+    reason: str
+    link: str | None = None
+
+
+@dataclass
+class Context:
+    """Everything a rule may read. Computed once per robot by the engine."""
+
+    robot: Robot
+    target: str
+    conversion: Conversion
+    frames: dict[int, SensorFrames] = field(default_factory=dict)
+    missing_files: list[MissingFile] = field(default_factory=list)
+
+    def frames_of(self, sensor: Sensor) -> SensorFrames:
+        return self.frames[id(sensor)]
+
+    def locate(self, el: etree._Element | None) -> SourceRef:
+        return self.robot.document.locate(el)
+
+    def finding(
+        self,
+        rule_id: str,
+        severity: Severity,
+        message: str,
+        where: etree._Element | SourceRef | None = None,
+        **extra: Any,
+    ) -> Finding:
+        source = where if isinstance(where, SourceRef) else self.locate(where)
+        return Finding(rule_id, severity, message, source, **extra)

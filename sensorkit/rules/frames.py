@@ -1,0 +1,283 @@
+"""SK5xx: frames. The data must be where TF says it is."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+import numpy as np
+
+from sensorkit.findings import Finding, Severity
+from sensorkit.model.frames import SensorFrames
+from sensorkit.model.robot import Joint, Robot
+from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, angle_between, rotation_angle
+from sensorkit.rules.base import Context, rule
+
+ANGLE_TOL = math.radians(0.5)
+EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
+POSITION_TOL = 1e-3
+OPTICAL_RPY = '${-pi/2} 0 ${-pi/2}'
+
+
+def _describe_axis(v: Mat) -> str:
+    names = {
+        (1, 0, 0): "forward", (-1, 0, 0): "backwards", (0, 1, 0): "to the left",
+        (0, -1, 0): "to the right", (0, 0, 1): "up", (0, 0, -1): "down",
+    }
+    i = int(np.argmax(np.abs(v)))
+    key = [0, 0, 0]
+    key[i] = 1 if v[i] > 0 else -1
+    return names[(key[0], key[1], key[2])]
+
+
+def optical_consequence(R_render_frame: Mat) -> str:
+    """What consumers will see when optical data is stamped with this frame."""
+    forward = R_render_frame @ np.array([0.0, 0.0, 1.0])
+    right = R_render_frame @ np.array([1.0, 0.0, 0.0])
+    fwd = _describe_axis(forward)
+    if rotation_angle(R_render_frame) < ANGLE_TOL:
+        return (
+            "the frame is x-forward (a body frame), so the camera's viewing axis (optical z) "
+            "lands on z: the point cloud points up at the sky and images are rotated in RViz"
+        )
+    if fwd == "forward":
+        return f"the viewing axis is right but image x points {_describe_axis(right)}: the image is rotated or mirrored"
+    if fwd == "up":
+        return "the viewing axis lands pointing up: the point cloud points at the sky"
+    if fwd == "down":
+        return "the viewing axis lands pointing down: the point cloud points into the floor"
+    return f"the viewing axis lands pointing {fwd}: the point cloud is turned away from where the camera looks"
+
+
+def _frame_pose(robot: Robot, fr: SensorFrames, frame: str | None) -> Mat | None:
+    if frame is None or frame not in robot.link_map:
+        return None
+    return robot.T_world_link(frame)
+
+
+def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
+    """Joints from ``top`` down to ``frame`` (empty unless ``top`` is an ancestor)."""
+    chain = [frame, *robot.ancestors(frame)]
+    if top not in chain:
+        return []
+    out = []
+    for link in chain[: chain.index(top)]:
+        out.append(robot.parent_joint[link])
+    return list(reversed(out))
+
+
+def _exists(robot: Robot, name: str) -> bool:
+    return name in robot.link_map
+
+
+@rule("SK501", "error", "the published frame names an existing link (or is not one at all, for gz defaults)")
+def frame_exists(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for s in robot.sensors:
+        fr = ctx.frames_of(s)
+        for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
+            if frame is None or fr.is_default and how == fr.how or _exists(robot, frame):
+                continue
+            import difflib
+
+            close = difflib.get_close_matches(frame, list(robot.link_map), n=1)
+            yield ctx.finding(
+                "SK501",
+                Severity.ERROR,
+                f"sensor {s.name!r} publishes in frame {frame!r} (<{how}>), which is not a link of this robot: "
+                "TF cannot place its data and RViz shows nothing",
+                s.source,
+                sensor=s.name,
+                frame=frame,
+                fix=f"did you mean {close[0]!r}?" if close else f"add a link {frame!r} or name an existing one",
+            )
+
+
+@rule(
+    "SK502",
+    "error",
+    "camera/depth image frame is optical: its rotation from the render pose is Rz(-pi/2)*Rx(-pi/2) "
+    '(z forward, x right, y down) within 0.5 degree; say what the data will look like otherwise ("point cloud points up")',
+)
+def camera_optical(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for s in robot.sensors:
+        if not s.is_camera:
+            continue
+        fr = ctx.frames_of(s)
+        frame = fr.camera_frame
+        T_frame = _frame_pose(robot, fr, frame)
+        if fr.T_world_render is None or T_frame is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
+            continue
+        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
+        err = angle_between(R, R_BODY_OPTICAL)
+        if err <= ANGLE_TOL:
+            continue
+        where = "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
+        if fr.how == "default":
+            where = f"the default frame (the link {frame!r}, since the plugin names none)"
+        yield ctx.finding(
+            "SK502",
+            Severity.ERROR,
+            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
+            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R)}",
+            s.source,
+            sensor=s.name,
+            frame=frame,
+            link=fr.link,
+            fix=(
+                f"add a link {fr.link}_optical_frame with a fixed joint from {fr.link!r}: "
+                f'<origin xyz="0 0 0" rpy="{OPTICAL_RPY}"/>, and publish in it '
+                f"(frame_name / gz_frame_id)"
+            ),
+        )
+
+
+@rule("SK503", "error", "the published frame is co-located with the render origin (within 1 mm); report the offset")
+def frame_position(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for s in robot.sensors:
+        if not (s.is_camera or s.kind == "lidar"):
+            continue  # an IMU's frame position only matters through its lever arm
+        fr = ctx.frames_of(s)
+        frame = fr.camera_frame if s.is_camera else fr.published
+        T_frame = _frame_pose(robot, fr, frame)
+        if fr.T_world_render is None or T_frame is None:
+            continue
+        offset_world = T_frame[:3, 3] - fr.T_world_render[:3, 3]
+        dist = float(np.linalg.norm(offset_world))
+        if dist <= POSITION_TOL:
+            continue
+        off = fr.T_world_render[:3, :3].T @ offset_world
+        yield ctx.finding(
+            "SK503",
+            Severity.ERROR,
+            f"sensor {s.name!r} renders from one point but its frame {frame!r} sits {dist * 1000:.1f} mm away "
+            f"(offset x {off[0]:+.4f}, y {off[1]:+.4f}, z {off[2]:+.4f} m in the sensor's frame): "
+            "every point is displaced by that much",
+            s.source,
+            sensor=s.name,
+            frame=frame,
+            fix=f"put {frame!r} at the sensor's origin: xyz=\"0 0 0\" on its joint (and the same <pose> as the sensor)",
+        )
+
+
+@rule("SK504", "error", "lidar, IMU and other body sensors are published in a frame with identity rotation from the render pose (x forward, z up)")
+def body_frame(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for s in robot.sensors:
+        if s.kind not in ("lidar", "imu"):
+            continue
+        fr = ctx.frames_of(s)
+        T_frame = _frame_pose(robot, fr, fr.published)
+        if fr.T_world_render is None or T_frame is None:
+            continue
+        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
+        err = rotation_angle(R)
+        if err <= ANGLE_TOL:
+            continue
+        what = "scan" if s.kind == "lidar" else "IMU data"
+        optical = angle_between(R, R_BODY_OPTICAL) <= ANGLE_TOL
+        yield ctx.finding(
+            "SK504",
+            Severity.ERROR,
+            f"{s.kind} {s.name!r} publishes in {fr.published!r}, rotated {math.degrees(err):.1f} degrees from where it measures"
+            + (" (an optical frame)" if optical else "")
+            + f": the {what} appears turned by that much in TF",
+            s.source,
+            sensor=s.name,
+            frame=fr.published,
+            fix=f"publish in {fr.link!r} (or a frame with rpy 0 0 0 from it)",
+        )
+
+
+def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
+    """Joints into frames used (or named) as optical whose rotation is nearly, not exactly, optical."""
+    robot = ctx.robot
+    seen: set[str] = set()
+    candidates: list[tuple[str, str | None]] = []
+    for s in robot.sensors:
+        if s.is_camera:
+            fr = ctx.frames_of(s)
+            if fr.camera_frame in robot.link_map and fr.link is not None:
+                candidates.append((fr.camera_frame, fr.link))  # type: ignore[arg-type]
+    for lk in robot.links:
+        if "optical" in lk.name and lk.name in robot.parent_joint:
+            candidates.append((lk.name, None))
+    for frame, top in candidates:
+        joint = robot.parent_joint.get(frame)
+        if joint is None or joint.name in seen:
+            continue
+        if top is not None:
+            joints = _chain_joints(robot, top, frame)
+            rotated = [j for j in joints if j.origin.rpy != (0.0, 0.0, 0.0)]
+            if len(rotated) != 1:
+                continue
+            joint = rotated[0]
+        R = joint.origin.matrix()[:3, :3]
+        err = angle_between(R, R_BODY_OPTICAL)
+        if EXACT_TOL < err <= ANGLE_TOL and joint.name not in seen:
+            seen.add(joint.name)
+            yield joint, err, frame
+
+
+@rule("SK505", "info", "optical rotation written approximately (e.g. -1.57 for -pi/2): report the angular error and suggest `${-pi/2}`")
+def approximate_optical(ctx: Context) -> Iterator[Finding]:
+    for joint, err, frame in _approx_joints(ctx):
+        text = joint.origin.rpy_text or " ".join(f"{v:g}" for v in joint.origin.rpy)
+        yield ctx.finding(
+            "SK505",
+            Severity.INFO,
+            f"joint {joint.name!r} into {frame!r} writes the optical rotation approximately (rpy \"{text}\"): "
+            f"off by {math.degrees(err):.3f} degrees",
+            joint.source,
+            joint=joint.name,
+            frame=frame,
+            fix=f'write rpy="{OPTICAL_RPY}" (xacro) or rpy="-1.5707963267948966 0 -1.5707963267948966"',
+        )
+
+
+@rule("SK506", "info", "a frame used as optical frame lacks the REP 103 `_optical` naming")
+def optical_naming(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    seen: set[str] = set()
+    for s in robot.sensors:
+        if not s.is_camera:
+            continue
+        fr = ctx.frames_of(s)
+        frame = fr.camera_frame
+        T_frame = _frame_pose(robot, fr, frame)
+        if frame is None or frame in seen or "optical" in frame or fr.T_world_render is None or T_frame is None:
+            continue
+        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
+        if angle_between(R, R_BODY_OPTICAL) <= ANGLE_TOL:
+            seen.add(frame)
+            yield ctx.finding(
+                "SK506",
+                Severity.INFO,
+                f"camera {s.name!r} publishes in {frame!r}, an optical frame whose name does not say so",
+                s.source,
+                sensor=s.name,
+                frame=frame,
+                fix=f"REP 103: call it {fr.link}_optical_frame",
+            )
+
+
+@rule(
+    "SK507",
+    "warning",
+    "the robot description defines `odom` or `map` links, which clash with the TF that localization "
+    "publishes (`world` fixed to the robot is a legitimate Gazebo idiom)",
+)
+def reserved_frames(ctx: Context) -> Iterator[Finding]:
+    for lk in ctx.robot.links:
+        if lk.name.lstrip("/") in ("odom", "map"):
+            yield ctx.finding(
+                "SK507",
+                Severity.WARNING,
+                f"link {lk.name!r} is part of the robot description: robot_state_publisher will fight "
+                f"localization/odometry over the {lk.name!r} frame",
+                lk.source,
+                link=lk.name,
+                fix=f"remove {lk.name!r} from the URDF; odometry or localization publishes it",
+            )

@@ -1,0 +1,169 @@
+"""SK3xx: mass, and what the URDF-to-SDF conversion keeps."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from sensorkit.findings import Finding, Severity
+from sensorkit.model.robot import Inertial
+from sensorkit.model.targets import is_gz
+from sensorkit.rules.base import Context, rule
+
+# gz-math MassMatrix3 compares with machine epsilon scaled by a tolerance of 10.
+_EPS = 10 * 2.220446049250313e-16
+
+
+def principal_moments(inertia: dict[str, float]) -> tuple[float, float, float]:
+    """Eigenvalues of the symmetric inertia tensor (closed form when diagonal)."""
+    ixx, iyy, izz = inertia["ixx"], inertia["iyy"], inertia["izz"]
+    ixy, ixz, iyz = inertia["ixy"], inertia["ixz"], inertia["iyz"]
+    if ixy == 0.0 and ixz == 0.0 and iyz == 0.0:
+        return tuple(sorted((ixx, iyy, izz)))  # type: ignore[return-value]
+    import numpy as np
+
+    m = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+    ev = sorted(float(v) for v in np.linalg.eigvalsh(m))
+    return (ev[0], ev[1], ev[2])
+
+
+def inertia_problem(inertial: Inertial) -> str | None:
+    """Why gz-math would call this inertial invalid, or None."""
+    if inertial.problems:
+        return "; ".join(inertial.problems)
+    mass = inertial.mass
+    if mass is None:
+        return "no mass"
+    if mass < 0:
+        return f"mass {mass:g} is negative"
+    values = inertial.inertia
+    if any(values[k] is None for k in values):
+        missing = [k for k, v in values.items() if v is None]
+        return "<inertia> lacks " + ", ".join(missing)
+    full = {k: float(v) for k, v in values.items() if v is not None}
+    moments = principal_moments(full)
+    scale = max(1.0, max(abs(m) for m in moments))
+    if moments[0] < -_EPS * scale:
+        return (
+            f"inertia is not positive definite (principal moments {moments[0]:.3g}, "
+            f"{moments[1]:.3g}, {moments[2]:.3g})"
+        )
+    a, b, c = moments
+    if a + b + _EPS * scale < c:
+        return (
+            f"principal moments {a:.3g} + {b:.3g} < {c:.3g}: no real body has this inertia "
+            "(triangle inequality)"
+        )
+    return None
+
+
+@rule(
+    "SK301",
+    "error",
+    "a link joined by a non-fixed joint has an `<inertial>` with mass > 0, else Gazebo drops "
+    "it and its subtree (name what is lost)",
+    "sdformat, at spawn",
+)
+def massless_links(ctx: Context) -> Iterator[Finding]:
+    robot, conv = ctx.robot, ctx.conversion
+    for name, cause in conv.dropped.items():
+        if name != cause:
+            continue
+        link = robot.link_map[name]
+        lost = [n for n, c in conv.dropped.items() if c == name]
+        sensors = [s.name for s in robot.sensors if s.reference in lost]
+        joint = robot.parent_joint.get(name)
+        what = "has no <inertial>" if link.inertial is None else "has zero mass"
+        if joint is None:
+            where = f"the root link {name!r} {what}, even with the links fixed to it"
+            loss = "Gazebo drops the whole robot"
+        elif joint.name in conv.preserved_joints:
+            where = f"link {name!r} (fixed joint {joint.name!r} with preserveFixedJoint) {what}"
+            loss = "Gazebo drops it and everything below it"
+        else:
+            where = f"link {name!r} (joined by {joint.type} joint {joint.name!r}) {what}"
+            loss = "Gazebo drops it and everything below it"
+        detail = f"links: {', '.join(lost)}"
+        if sensors:
+            detail += f"; sensors: {', '.join(sensors)}"
+        yield ctx.finding(
+            "SK301",
+            Severity.ERROR,
+            f"{where}: {loss} ({detail})",
+            link.source,
+            link=name,
+            joint=joint.name if joint else None,
+            sensor=sensors[0] if sensors else None,
+            fix=(
+                f"give {name!r} an <inertial> with <mass value=\"...\"/> > 0 and an <inertia> "
+                "(e.g. a box: ixx = m/12 (y²+z²), iyy = m/12 (x²+z²), izz = m/12 (x²+y²))"
+            ),
+        )
+
+
+@rule(
+    "SK302",
+    "error",
+    "inertia finite, positive definite, triangle inequality (tolerance as gz-math)",
+    "gz sdf -k",
+)
+def inertia_valid(ctx: Context) -> Iterator[Finding]:
+    for link in ctx.robot.links:
+        if link.inertial is None:
+            continue
+        problem = inertia_problem(link.inertial)
+        if problem:
+            yield ctx.finding(
+                "SK302",
+                Severity.ERROR,
+                f"link {link.name!r} inertial: {problem}",
+                link.inertial.source,
+                link=link.name,
+                fix="compute the inertia from the link's shape and mass (box, cylinder, sphere formulas)",
+            )
+
+
+@rule(
+    "SK303",
+    "warning",
+    "a sensor sits on a link that fixed-joint lumping removes and its plugin has no explicit "
+    "frame: the published frame silently becomes the surviving parent link",
+)
+def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
+    if is_gz(ctx.target):
+        return
+    conv = ctx.conversion
+    for sensor in ctx.robot.sensors:
+        fr = ctx.frames_of(sensor)
+        if fr.link is None or fr.plugin is None or not fr.is_default:
+            continue
+        if conv.is_lumped(fr.link):
+            survivor = conv.survivor(fr.link)
+            yield ctx.finding(
+                "SK303",
+                Severity.WARNING,
+                f"sensor {sensor.name!r} is on {fr.link!r}, which fixed-joint lumping merges into "
+                f"{survivor!r}; with no frame_name its data is stamped {survivor!r}, not {fr.link!r}",
+                sensor.source,
+                sensor=sensor.name,
+                link=fr.link,
+                frame=survivor,
+                fix=f"add <frame_name>{fr.link}</frame_name> (or the optical frame for a camera) to the plugin",
+            )
+
+
+@rule("SK304", "info", "root link carries inertia (KDL/robot_state_publisher ignores it)", "kdl_parser, at run time")
+def root_inertia(ctx: Context) -> Iterator[Finding]:
+    root = ctx.robot.root()
+    if root is None:
+        return
+    link = ctx.robot.link_map[root]
+    if link.inertial is not None and link.mass > 0 and not math.isnan(link.mass):
+        yield ctx.finding(
+            "SK304",
+            Severity.INFO,
+            f"root link {root!r} has an inertial: KDL (robot_state_publisher) ignores a root inertia",
+            link.inertial.source,
+            link=root,
+            fix=f'add a massless root: <link name="base_footprint"/> with a fixed joint to {root!r}',
+        )

@@ -1,0 +1,243 @@
+"""SK2xx: the kinematic tree."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator
+
+from sensorkit.findings import Finding, Severity
+from sensorkit.model.robot import JOINT_TYPES
+from sensorkit.rules.base import Context, rule
+
+
+@rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
+def unique_names(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for kind, items in (("link", robot.links), ("joint", robot.joints)):
+        counts = Counter(x.name for x in items)
+        seen: set[str] = set()
+        for item in items:
+            if not item.name:
+                yield ctx.finding(
+                    "SK201", Severity.ERROR, f"a <{kind}> has no name", item.source,
+                    fix=f"give the <{kind}> a unique name=\"...\"",
+                )
+                continue
+            if counts[item.name] > 1:
+                if item.name in seen:
+                    yield ctx.finding(
+                        "SK201",
+                        Severity.ERROR,
+                        f"{kind} name {item.name!r} is used {counts[item.name]} times",
+                        item.source,
+                        **{kind: item.name},
+                        fix=f"rename one of the {kind}s called {item.name!r}",
+                    )
+                seen.add(item.name)
+
+
+@rule("SK202", "error", "every joint has parent and child, and both links exist", "urdfdom")
+def joint_links(ctx: Context) -> Iterator[Finding]:
+    links = ctx.robot.link_map
+    for j in ctx.robot.joints:
+        for role, name in (("parent", j.parent), ("child", j.child)):
+            if name is None:
+                yield ctx.finding(
+                    "SK202", Severity.ERROR, f"joint {j.name!r} has no <{role} link=\"...\"/>",
+                    j.source, joint=j.name, fix=f"add <{role} link=\"LINK\"/> to the joint",
+                )
+            elif name not in links:
+                import difflib
+
+                close = difflib.get_close_matches(name, list(links), n=1)
+                yield ctx.finding(
+                    "SK202",
+                    Severity.ERROR,
+                    f"joint {j.name!r} names {role} link {name!r}, which does not exist",
+                    j.source,
+                    joint=j.name,
+                    link=name,
+                    fix=f"did you mean {close[0]!r}?" if close else f"define <link name=\"{name}\"/>",
+                )
+
+
+@rule("SK203", "error", "exactly one root link; name every disconnected link", "urdfdom")
+def single_root(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    if not robot.links:
+        if robot.document.expanded and not robot.joints and not robot.sensors:
+            yield ctx.finding(
+                "SK203",
+                Severity.INFO,
+                "nothing to check: this file defines only macros or properties (no links); "
+                "validate a robot that uses them",
+                robot.document.root,
+                fix="run sensorkit validate on the top-level robot file instead",
+            )
+            return
+        yield ctx.finding(
+            "SK203",
+            Severity.ERROR,
+            "the robot has no links",
+            robot.document.root,
+            fix="add at least one <link>",
+        )
+        return
+    roots = robot.roots()
+    if len(roots) > 1:
+        main = max(roots, key=lambda r: len(robot.subtree(r)))
+        for r in roots:
+            if r == main:
+                continue
+            sub = robot.subtree(r)
+            extra = f" (with {len(sub) - 1} links below it)" if len(sub) > 1 else ""
+            yield ctx.finding(
+                "SK203",
+                Severity.ERROR,
+                f"link {r!r}{extra} is not connected to the tree rooted at {main!r}",
+                robot.link_map[r].source,
+                link=r,
+                fix=f"add a joint with <child link=\"{r}\"/> from a link of the main tree",
+            )
+
+
+@rule(
+    "SK204",
+    "error",
+    "no link with two parent joints, no self-joint, no cycle (must terminate: check_urdf hangs)",
+)
+def tree_shape(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    parents: dict[str, list[str]] = {}
+    for j in robot.joints:
+        if j.parent is not None and j.parent == j.child:
+            yield ctx.finding(
+                "SK204", Severity.ERROR, f"joint {j.name!r} joins link {j.parent!r} to itself",
+                j.source, joint=j.name, link=j.parent, fix="a joint's parent and child must differ",
+            )
+        elif j.child is not None:
+            parents.setdefault(j.child, []).append(j.name)
+    for child, joints in parents.items():
+        if len(joints) > 1:
+            yield ctx.finding(
+                "SK204",
+                Severity.ERROR,
+                f"link {child!r} has {len(joints)} parent joints: {', '.join(joints)}",
+                robot.joint_map[joints[1]].source,
+                link=child,
+                joint=joints[1],
+                fix="a URDF is a tree: keep one parent joint (model closed chains with a plugin)",
+            )
+    # Cycles: follow first parent joints; a walk that returns to a link is a cycle.
+    state: dict[str, int] = {}
+    for start in robot.link_map:
+        path: list[str] = []
+        cur: str | None = start
+        while cur is not None and state.get(cur, 0) == 0:
+            state[cur] = 1
+            path.append(cur)
+            j = robot.parent_joint.get(cur)
+            cur = j.parent if j is not None and j.parent != j.child else None
+        if cur is not None and state.get(cur) == 1 and cur in path:
+            cycle = path[path.index(cur):]
+            joints = [robot.parent_joint[c].name for c in cycle]
+            yield ctx.finding(
+                "SK204",
+                Severity.ERROR,
+                "kinematic cycle: " + " -> ".join([*reversed(cycle), cycle[-1]])
+                + f" (joints {', '.join(reversed(joints))})",
+                robot.parent_joint[cycle[0]].source,
+                link=cycle[0],
+                joint=joints[0],
+                fix="break the loop: one of these joints must hang from a link outside it",
+            )
+        for p in path:
+            state[p] = 2
+
+
+@rule(
+    "SK205",
+    "error",
+    "joint type valid; revolute/prismatic have `<limit>` with effort and velocity; lower <= upper",
+    "urdfdom (partly)",
+)
+def joint_types(ctx: Context) -> Iterator[Finding]:
+    for j in ctx.robot.joints:
+        if j.type not in JOINT_TYPES:
+            yield ctx.finding(
+                "SK205", Severity.ERROR, f"joint {j.name!r} has type {j.type!r}", j.source,
+                joint=j.name, fix="use one of: " + ", ".join(sorted(JOINT_TYPES)),
+            )
+            continue
+        for problem in j.limit_problems:
+            yield ctx.finding(
+                "SK205", Severity.ERROR, f"joint {j.name!r} <limit>: {problem}", j.source,
+                joint=j.name, fix="write finite numbers",
+            )
+        if j.type in ("revolute", "prismatic"):
+            if j.limit is None:
+                yield ctx.finding(
+                    "SK205", Severity.ERROR, f"{j.type} joint {j.name!r} has no <limit>", j.source,
+                    joint=j.name,
+                    fix='add <limit lower="..." upper="..." effort="..." velocity="..."/> (or use type="continuous")',
+                )
+                continue
+            for key in ("effort", "velocity"):
+                if j.limit.get(key) is None and not any(key in p for p in j.limit_problems):
+                    yield ctx.finding(
+                        "SK205", Severity.ERROR, f"{j.type} joint {j.name!r}: <limit> has no {key}",
+                        j.source, joint=j.name, fix=f'add {key}="..." to <limit>',
+                    )
+            lo, hi = j.limit.get("lower"), j.limit.get("upper")
+            if lo is not None and hi is not None and lo > hi:
+                yield ctx.finding(
+                    "SK205", Severity.ERROR, f"joint {j.name!r}: lower {lo:g} > upper {hi:g}",
+                    j.source, joint=j.name, fix="swap lower and upper",
+                )
+
+
+@rule("SK206", "error", "origin xyz/rpy and axis are three finite numbers; axis non-zero", "urdfdom (partly)")
+def numbers(ctx: Context) -> Iterator[Finding]:
+    robot = ctx.robot
+    for j in robot.joints:
+        for problem in j.origin.problems:
+            yield ctx.finding(
+                "SK206", Severity.ERROR, f"joint {j.name!r} <origin>: {problem}", j.source,
+                joint=j.name, fix="write three finite numbers separated by spaces",
+            )
+        if j.axis_problem:
+            yield ctx.finding(
+                "SK206", Severity.ERROR, f"joint {j.name!r} <axis>: {j.axis_problem}", j.source,
+                joint=j.name, fix='write a non-zero direction, e.g. <axis xyz="0 0 1"/>',
+            )
+    for lk in robot.links:
+        if lk.inertial is not None:
+            for problem in lk.inertial.origin.problems:
+                yield ctx.finding(
+                    "SK206", Severity.ERROR, f"link {lk.name!r} inertial <origin>: {problem}",
+                    lk.inertial.source, link=lk.name, fix="write three finite numbers",
+                )
+
+
+@rule("SK207", "error", "mimic joint names an existing, non-fixed joint")
+def mimic(ctx: Context) -> Iterator[Finding]:
+    joints = ctx.robot.joint_map
+    for j in ctx.robot.joints:
+        if not j.has_mimic:
+            continue
+        target = joints.get(j.mimic or "")
+        if not j.mimic or target is None:
+            yield ctx.finding(
+                "SK207", Severity.ERROR, f"joint {j.name!r} mimics {j.mimic!r}, which does not exist",
+                j.source, joint=j.name, fix="name an existing joint in <mimic joint=\"...\"/>",
+            )
+        elif target.type == "fixed":
+            yield ctx.finding(
+                "SK207", Severity.ERROR, f"joint {j.name!r} mimics fixed joint {j.mimic!r}",
+                j.source, joint=j.name, fix="mimic a joint that moves",
+            )
+        elif target.name == j.name:
+            yield ctx.finding(
+                "SK207", Severity.ERROR, f"joint {j.name!r} mimics itself", j.source, joint=j.name,
+                fix="mimic another joint",
+            )

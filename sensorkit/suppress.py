@@ -1,0 +1,65 @@
+"""Inline suppressions: ``<!-- sensorkit: ignore SK502 SK506 -->``.
+
+A comment suppresses the listed rules (or all, with ``ignore`` alone) for findings on the
+comment's own line and on the line right after it (put it just above the element the
+finding points at). ``<!-- sensorkit: ignore-file SK104 -->`` anywhere in a file
+suppresses those rules for every finding in that file.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from sensorkit.findings import Finding
+
+_COMMENT = re.compile(r"<!--(.*?)-->", re.S)
+_DIRECTIVE = re.compile(r"sensorkit\s*:\s*(ignore-file|ignore)\b([^>]*)", re.I)
+_ID = re.compile(r"SK\d{3}")
+ALL = "*"
+
+
+@dataclass
+class Suppressions:
+    by_line: dict[tuple[str, int], set[str]] = field(default_factory=dict)
+    by_file: dict[str, set[str]] = field(default_factory=dict)
+
+    def add_text(self, file: str, text: str) -> None:
+        for m in _COMMENT.finditer(text):
+            d = _DIRECTIVE.search(m.group(1))
+            if not d:
+                continue
+            ids = set(_ID.findall(d.group(2))) or {ALL}
+            if d.group(1).lower() == "ignore-file":
+                self.by_file.setdefault(file, set()).update(ids)
+                continue
+            start = text.count("\n", 0, m.start()) + 1
+            end = text.count("\n", 0, m.end()) + 1
+            for line in (start, end, end + 1):
+                self.by_line.setdefault((file, line), set()).update(ids)
+
+    def suppressed(self, f: Finding) -> bool:
+        if f.file is None:
+            return False
+        ids = self.by_file.get(f.file, set())
+        if ALL in ids or f.rule in ids:
+            return True
+        if f.line is None:
+            return False
+        ids = self.by_line.get((f.file, f.line), set())
+        return ALL in ids or f.rule in ids
+
+
+def collect(files: Iterable[tuple[str, Path]]) -> Suppressions:
+    """Read suppression comments from (display name, path) pairs."""
+    sup = Suppressions()
+    for display, path in files:
+        try:
+            text = path.read_text("utf-8", "replace")
+        except OSError:
+            continue
+        if "sensorkit" in text:
+            sup.add_text(display, text)
+    return sup
