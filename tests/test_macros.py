@@ -172,8 +172,8 @@ def resolve(name: str, namespace: str) -> str:
     return namespace.rstrip("/") + "/" + name
 
 
-def classic_graph(root: etree._Element) -> tuple[list[str], list[str], list[str]]:
-    """(topics, node names, services) the gazebo_ros plugins of a robot will create.
+def classic_graph(root: etree._Element) -> tuple[list[str], list[str]]:
+    """(topics, node names) the gazebo_ros plugins of a robot will create.
 
     Follows gazebo_ros_camera / gazebo_ros_ray_sensor / gazebo_ros_imu_sensor: node name
     = plugin name in <ros><namespace> (default /); camera topics are camera_name (default
@@ -182,7 +182,6 @@ def classic_graph(root: etree._Element) -> tuple[list[str], list[str], list[str]
     """
     topics: list[str] = []
     nodes: list[str] = []
-    services: list[str] = []
     for sensor in root.iter("sensor"):
         for plugin in sensor.iter("plugin"):
             ns = (plugin.findtext("ros/namespace") or "").strip() or "/"
@@ -199,11 +198,10 @@ def classic_graph(root: etree._Element) -> tuple[list[str], list[str], list[str]
                 if sensor.get("type") == "depth":
                     suffixes += ["depth/image_raw", "depth/camera_info", "points"]
                 topics += [resolve(f"{cam}/{s}", ns) for s in suffixes]
-                services.append(resolve(remaps.get("set_camera_info", "set_camera_info"), ns))
             else:
                 out = remaps.get("~/out")
                 topics.append(resolve(out, ns) if out else node + "/out")
-    return topics, nodes, services
+    return topics, nodes
 
 
 def gz_topics(root: etree._Element) -> list[str]:
@@ -574,7 +572,7 @@ def test_classic_plugins_are_ros2(
             else:
                 assert hack is None
 
-    topics, nodes, _ = classic_graph(root)
+    topics, nodes = classic_graph(root)
     assert set(topics) == case.expected_topics(NAME, "classic", namespace)
     ns = "/robot1" if namespace else ""
     assert set(nodes) == {f"{ns}/{s}_controller" for s in case.sensors(NAME)}
@@ -718,9 +716,8 @@ def test_two_instances_share_no_topic_or_node(
     sensor_names = [s.get("name") for s in root.iter("sensor")]
     assert len(sensor_names) == len(set(sensor_names))
     if sim == "classic":
-        topics, nodes, services = classic_graph(root)
+        topics, nodes = classic_graph(root)
         assert len(nodes) == len(set(nodes)), nodes
-        assert len(services) == len(set(services)), services
         plugin_names = [p.get("name") for p in root.iter("plugin")]
         assert len(plugin_names) == len(set(plugin_names))
         expected = case.expected_topics("a", sim, namespace) | case.expected_topics(
@@ -750,8 +747,8 @@ def test_all_macros_in_one_robot(sim: str, gz_version: str, tmp_path: Path) -> N
         expected_links |= set(case.links(f"s_{case.key}"))
     assert {link.get("name") for link in root.iter("link")} == expected_links
     if sim == "classic":
-        topics, nodes, services = classic_graph(root)
-        for group in (topics, nodes, services):
+        topics, nodes = classic_graph(root)
+        for group in (topics, nodes):
             assert len(group) == len(set(group))
     elif sim == "gz":
         topics = gz_topics(root)
