@@ -1,0 +1,189 @@
+"""``sensorkit new``: a robot YAML in, a colcon-ready ament package out.
+
+The package is built complete in a temporary folder beside the output folder, expanded
+with xacro once (the bridge is read from that expansion), and only then renamed into
+place, so a failure never leaves a half-written package and ``--force`` swaps the old
+one out in a single rename.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import shutil
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+from sensorkit.errors import InputError, UsageError
+from sensorkit.exporters.bridge import BridgeEntry
+from sensorkit.generate import render
+from sensorkit.generate.bridge import bridge_entries, bridge_file_text
+from sensorkit.generate.spec import Mark, RobotSpec, load_spec
+from sensorkit.intrinsics import InvalidValue
+
+
+@dataclass
+class GeneratedPackage:
+    """What :func:`new_package` wrote (or, with ``dry_run``, would write)."""
+
+    spec: RobotSpec
+    path: Path
+    files: list[str]  # relative to path, sorted, "/"-separated
+    bridge: list[BridgeEntry] = field(default_factory=list)
+    dry_run: bool = False
+
+    @property
+    def robot_xacro(self) -> Path:
+        return self.path / "urdf" / f"{self.spec.name}.urdf.xacro"
+
+
+def _write(root: Path, rel: str, data: str | bytes) -> None:
+    path = root / rel
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if isinstance(data, str):
+        path.write_text(data, encoding="utf-8", newline="\n")
+    else:
+        path.write_bytes(data)
+
+
+def _listing(root: Path) -> list[str]:
+    return sorted(p.relative_to(root).as_posix() for p in root.rglob("*") if p.is_file())
+
+
+def _where(spec: RobotSpec, message: str) -> Mark | None:
+    """The YAML place a macro's own check points at (``sensorkit_<type> <name>: ...``)."""
+    for s in spec.sensors:
+        if re.search(rf"\b{re.escape(s.macro.macro)} {re.escape(s.name)}\b", message):
+            return s.mark
+    if spec.base_macro.macro in message:
+        return spec.marks.get("base_params") or spec.marks.get("base")
+    return None
+
+
+def _expand(spec: RobotSpec, xacro_file: Path) -> etree._Element:
+    from sensorkit.loading.packages import PackageResolver
+    from sensorkit.loading.xacro_expand import expand
+
+    outcome = expand(xacro_file, {}, PackageResolver(use_environment=False))
+    if outcome.xml is None:
+        text = " ".join(outcome.message.split())
+        mark = _where(spec, text)
+        place = str(mark) if mark else str(spec.path)
+        msg = f"{place}: the generated description does not expand: {text}"
+        raise InputError(msg)
+    return etree.fromstring(outcome.xml.encode("utf-8"))
+
+
+def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[BridgeEntry]:
+    """Write every file of the package for ``spec`` into the (empty) folder ``root``.
+
+    Returns the bridge entries (empty unless ``spec.sim == "gz"``).
+
+    Raises:
+        InputError: the assembled description does not expand, or two sensors would
+            publish on the same ROS topic.
+    """
+    urdf = f"urdf/{spec.name}.urdf.xacro"
+    _write(root, urdf, render.robot_xacro(spec, yaml_name))
+    base = spec.base_macro
+    _write(root, f"urdf/{base.file.name}", base.file.read_bytes())
+    for macro in {s.type: s.macro for s in spec.sensors}.values():
+        _write(root, f"urdf/sensors/{macro.file.name}", macro.file.read_bytes())
+
+    robot = _expand(spec, root / urdf)
+    install = ["launch", "urdf"]
+    entries: list[BridgeEntry] = []
+    if spec.sim == "gz":
+        entries = bridge_entries(robot, spec.gz_version)
+        try:
+            text = bridge_file_text(entries, robot=spec.name, gz_version=spec.gz_version)
+        except InvalidValue as exc:
+            msg = f"{spec.path}: cannot write the ros_gz bridge: {exc}"
+            raise InputError(msg) from None
+        _write(root, "config/bridge.yaml", text)
+        install.append("config")
+    world = render.world_sdf(spec)
+    if world is not None:
+        _write(root, f"worlds/{spec.name}.sdf", world)
+        install.append("worlds")
+    _write(root, "launch/description.launch.py", render.description_launch(spec))
+    sim = render.sim_launch(spec)
+    if sim is not None:
+        _write(root, "launch/sim.launch.py", sim)
+    _write(root, "package.xml", render.package_xml(spec))
+    _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install)))
+    _write(root, "README.md", render.readme(spec, yaml_name, entries))
+    return entries
+
+
+def _check_target(out: Path, spec_path: Path, *, force: bool) -> None:
+    if out.exists() and not out.is_dir():
+        msg = f"{out}: exists and is not a folder"
+        raise UsageError(msg)
+    if not out.is_dir() or not any(out.iterdir()):
+        return
+    if not force:
+        msg = f"{out}: folder is not empty; choose another -o or pass --force to replace it"
+        raise UsageError(msg)
+    resolved = out.resolve()
+    protected = {Path.home().resolve(), Path.cwd().resolve(), Path(resolved.anchor)}
+    if resolved in protected or resolved in Path.cwd().resolve().parents:
+        msg = f"{out}: refusing to replace this folder even with --force; choose a subfolder"
+        raise UsageError(msg)
+    if resolved in spec_path.resolve().parents:
+        msg = f"{out}: holds {spec_path.name}; --force would delete it, choose another -o"
+        raise UsageError(msg)
+
+
+def _publish(temp: Path, out: Path) -> None:
+    """Rename the finished ``temp`` folder to ``out``, replacing what is there."""
+    if not out.exists():
+        os.replace(temp, out)
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
+    old.rmdir()
+    os.replace(out, old)
+    try:
+        os.replace(temp, out)
+    except BaseException:
+        os.replace(old, out)
+        raise
+    shutil.rmtree(old, ignore_errors=True)
+
+
+def new_package(
+    spec_path: Path, out: Path, *, force: bool = False, dry_run: bool = False
+) -> GeneratedPackage:
+    """Generate the ament package described by the robot YAML at ``spec_path`` into ``out``.
+
+    ``out`` must not exist or be empty unless ``force`` (then it is replaced whole).
+    With ``dry_run`` everything is built and checked in a temporary folder that is then
+    deleted; nothing at ``out`` changes.
+
+    Raises:
+        InputError: the YAML is unreadable or wrong (``FILE:LINE:COLUMN: ...``), or the
+            result does not expand.
+        UsageError: ``out`` is not empty and ``force`` is not given, or is not a folder.
+        OSError: the file system refused.
+    """
+    spec = load_spec(spec_path)
+    _check_target(out, spec_path, force=force)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
+    try:
+        entries = build_package(spec, temp, yaml_name=spec_path.name)
+        files = _listing(temp)
+        umask = os.umask(0)
+        os.umask(umask)
+        for folder in [temp, *(p for p in temp.rglob("*") if p.is_dir())]:
+            folder.chmod(0o777 & ~umask)
+        if not dry_run:
+            _publish(temp, out)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            shutil.rmtree(temp)
+    return GeneratedPackage(spec, out, files, entries, dry_run)

@@ -1,0 +1,224 @@
+"""The text of each generated file, from a checked :class:`RobotSpec`.
+
+Package skeleton files come from ``templates/package/*.in`` with ``@key@``
+placeholders (CMake's ``configure_file`` style, so ``${PROJECT_NAME}`` in CMake and
+``$(arg ...)`` in xacro pass through untouched). The top-level robot xacro is assembled
+here because its shape depends on the sensors. Every function is pure: same spec,
+same bytes.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from xml.sax.saxutils import escape, quoteattr
+
+from sensorkit.exporters.bridge import BridgeEntry
+from sensorkit.generate.spec import RobotSpec
+from sensorkit.resources import templates_dir
+
+_PLACEHOLDER = re.compile(r"@([a-z_]+)@")
+
+
+def fill(template_name: str, values: Mapping[str, str]) -> str:
+    """``templates/package/<template_name>`` with every ``@key@`` replaced.
+
+    Raises:
+        KeyError: the template names a key ``values`` lacks (a bug in sensorkit).
+    """
+    text = (templates_dir() / "package" / template_name).read_text(encoding="utf-8")
+
+    def sub(match: re.Match[str]) -> str:
+        return values[match.group(1)]
+
+    return _PLACEHOLDER.sub(sub, text)
+
+
+def _common(spec: RobotSpec) -> dict[str, str]:
+    return {
+        "package": spec.package,
+        "robot": spec.name,
+        "namespace": spec.namespace,
+        "sim": spec.sim,
+        "gz_version": spec.gz_version,
+    }
+
+
+def exec_depends(spec: RobotSpec) -> list[str]:
+    deps = ["xacro", "robot_state_publisher", "launch", "launch_ros", "ament_index_python"]
+    if spec.sim == "gz":
+        deps += ["ros_gz_sim", "ros_gz_bridge"]
+    elif spec.sim == "classic":
+        deps += ["gazebo_ros", "gazebo_plugins"]
+    return deps
+
+
+def package_xml(spec: RobotSpec) -> str:
+    deps = "".join(f"  <exec_depend>{d}</exec_depend>\n" for d in exec_depends(spec))
+    return fill(
+        "package.xml.in",
+        {
+            **_common(spec),
+            "version": spec.version,
+            "description": escape(spec.description),
+            "maintainer_email": escape(spec.maintainer_email),
+            "maintainer_name": escape(spec.maintainer_name),
+            "license": escape(spec.license),
+            "exec_depends": deps,
+        },
+    )
+
+
+def cmakelists(spec: RobotSpec, install_dirs: Sequence[str]) -> str:
+    return fill("CMakeLists.txt.in", {**_common(spec), "install_dirs": " ".join(install_dirs)})
+
+
+def description_launch(spec: RobotSpec) -> str:
+    return fill("description.launch.py.in", _common(spec))
+
+
+def sim_launch(spec: RobotSpec) -> str | None:
+    if spec.sim == "gz":
+        return fill("sim_gz.launch.py.in", _common(spec))
+    if spec.sim == "classic":
+        return fill("sim_classic.launch.py.in", _common(spec))
+    return None
+
+
+def world_sdf(spec: RobotSpec) -> str | None:
+    if spec.sim != "gz":
+        return None
+    fortress = spec.gz_version == "fortress"
+    return fill(
+        "world.sdf.in",
+        {
+            **_common(spec),
+            "sys_file": "ignition-gazebo-" if fortress else "gz-sim-",
+            "sys_class": "ignition::gazebo::systems::" if fortress else "gz::sim::systems::",
+        },
+    )
+
+
+def _attrs(pairs: Sequence[tuple[str, str]], indent: str) -> str:
+    """Attributes on one line if short, else one per line under the tag."""
+    parts = [f"{k}={quoteattr(v)}" for k, v in pairs]
+    line = " ".join(parts)
+    if len(line) <= 72:
+        return " " + line
+    return "\n" + "\n".join(f"{indent}    {p}" for p in parts)
+
+
+def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
+    """The top-level ``urdf/<robot>.urdf.xacro``: include the base and each sensor macro
+    (relative paths, so plain ``xacro`` expands it anywhere) and call them."""
+    base = spec.base_macro
+    types = list(dict.fromkeys(s.type for s in spec.sensors))
+    lines = [
+        '<?xml version="1.0"?>',
+        "<!--",
+        f"  {spec.name}: a {spec.base} base with {len(spec.sensors)} sensor"
+        f"{'' if len(spec.sensors) == 1 else 's'}, written by `sensorkit new {yaml_name}`.",
+        f"  Change {yaml_name} and run sensorkit new again (with force) rather than editing",
+        "  this file: a new run replaces the whole package.",
+        "",
+        "  Argument:",
+        f"    sim   classic | gz | none (default {spec.sim}). none gives the links and joints",
+        "          only, for a real robot whose drivers publish the sensor data.",
+        "",
+        "  Sensors (type, parent link):",
+    ]
+    for s in spec.sensors:
+        lines.append(f"    {s.name} ({s.type}) on {s.parent} at xyz {s.xyz} rpy {s.rpy}")
+    if not spec.sensors:
+        lines.append("    none")
+    lines += [
+        "-->",
+        f'<robot name="{spec.name}" xmlns:xacro="http://www.ros.org/wiki/xacro">',
+        "",
+        f'  <xacro:arg name="sim" default="{spec.sim}"/>',
+        "",
+        f'  <xacro:include filename="{base.file.name}"/>',
+    ]
+    for t in types:
+        lines.append(f'  <xacro:include filename="sensors/{t}.urdf.xacro"/>')
+    shared = [
+        ("sim", "$(arg sim)"),
+        ("gz_version", spec.gz_version),
+        ("namespace", spec.namespace),
+    ]
+    lines += [
+        "",
+        f"  <xacro:{base.macro}{_attrs([*spec.base_params.items(), *shared], '  ')}/>",
+    ]
+    for s in spec.sensors:
+        pairs = [("name", s.name), ("parent", s.parent), *s.options.items(), *shared]
+        macro = s.macro.macro
+        lines += [
+            "",
+            f"  <xacro:{macro}{_attrs(pairs, '  ')}>",
+            f'    <origin xyz="{s.xyz}" rpy="{s.rpy}"/>',
+            f"  </xacro:{macro}>",
+        ]
+    lines += ["", "</robot>", ""]
+    return "\n".join(lines)
+
+
+def readme(spec: RobotSpec, yaml_name: str, entries: Sequence[BridgeEntry]) -> str:
+    xacro_rel = f"urdf/{spec.name}.urdf.xacro"
+    lines = [
+        f"# {spec.package}",
+        "",
+        f"{spec.description}",
+        "",
+        f"Written by `sensorkit new {yaml_name}`: change the YAML and generate again rather",
+        "than editing these files by hand.",
+        "",
+        "| sensor | type | parent | xyz | rpy |",
+        "|---|---|---|---|---|",
+    ]
+    for s in spec.sensors:
+        lines.append(f"| {s.name} | {s.type} | {s.parent} | {s.xyz} | {s.rpy} |")
+    lines += [
+        "",
+        "## Try it",
+        "",
+        "```bash",
+        f"sensorkit validate {xacro_rel}",
+        f"sensorkit render preview {xacro_rel}",
+        f"xacro {xacro_rel} sim:=none > /tmp/{spec.name}.urdf && check_urdf /tmp/{spec.name}.urdf",
+        "```",
+        "",
+        "In a colcon workspace (`src/` holding this folder):",
+        "",
+        "```bash",
+        f"colcon build --packages-select {spec.package} && source install/setup.bash",
+        f"ros2 launch {spec.package} description.launch.py   # robot_state_publisher only",
+    ]
+    if spec.sim in ("gz", "classic"):
+        lines.append(f"ros2 launch {spec.package} sim.launch.py           # the simulator too")
+    lines += ["```", ""]
+    if spec.sim == "gz":
+        lines += [
+            f"## Topics (Gazebo Sim {spec.gz_version}, bridged by `config/bridge.yaml`)",
+            "",
+            "| ROS topic | ROS type | gz topic | direction |",
+            "|---|---|---|---|",
+        ]
+        for e in entries:
+            ros, gz = f"`{e.ros_topic_name}`", f"`{e.gz_topic_name}`"
+            lines.append(f"| {ros} | {e.ros_type_name} | {gz} | {e.direction} |")
+        lines += [
+            "",
+            f"The world (`worlds/{spec.name}.sdf`) loads the Sensors and Imu systems that",
+            "the sensors need; another world must load them too.",
+            "",
+        ]
+    elif spec.sim == "classic":
+        lines += [
+            "## Topics (Gazebo Classic)",
+            "",
+            "Each sensor's gazebo_ros plugin publishes straight to ROS; the topics are listed",
+            "in the header of its macro in `urdf/sensors/`.",
+            "",
+        ]
+    return "\n".join(lines)
