@@ -66,6 +66,19 @@ def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
     return list(reversed(out))
 
 
+def _optical_candidate(robot: Robot, T_world_render: Mat) -> str | None:
+    """A link already placed as this camera's optical frame, if the robot has one."""
+    for lk in robot.links:
+        T = robot.T_world_link(lk.name) if lk.name in robot.parent_joint else None
+        if T is None:
+            continue
+        if float(np.linalg.norm(T[:3, 3] - T_world_render[:3, 3])) > POSITION_TOL:
+            continue
+        if angle_between(T_world_render[:3, :3].T @ T[:3, :3], R_BODY_OPTICAL) <= ANGLE_TOL:
+            return lk.name
+    return None
+
+
 def _exists(robot: Robot, name: str) -> bool:
     return name in robot.link_map
 
@@ -113,6 +126,7 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         err = angle_between(R, R_BODY_OPTICAL)
         if err <= ANGLE_TOL:
             continue
+        existing = _optical_candidate(robot, fr.T_world_render)
         where = "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
         if fr.how == "default":
             where = f"the default frame (the link {frame!r}, since the plugin names none)"
@@ -126,7 +140,9 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             frame=frame,
             link=fr.link,
             fix=(
-                f"add a link {fr.link}_optical_frame with a fixed joint from {fr.link!r}: "
+                f"publish in {existing!r}, which is already an optical frame at the camera"
+                if existing
+                else f"add a link {fr.link}_optical_frame with a fixed joint from {fr.link!r}: "
                 f'<origin xyz="0 0 0" rpy="{OPTICAL_RPY}"/>, and publish in it '
                 f"(frame_name / gz_frame_id)"
             ),

@@ -275,6 +275,14 @@ def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
     return []
 
 
+def plugin_services(p: Plugin) -> list[str]:
+    """Unresolved names of services a known sensor plugin offers (remappable too)."""
+    if p.library == "gazebo_ros_camera":
+        # camera_info_manager creates "set_camera_info" relative to the node's namespace.
+        return ["set_camera_info"]
+    return []
+
+
 def resolved_topics(p: Plugin, s: Sensor | None) -> list[tuple[str, str]]:
     """(unresolved, resolved-after-remapping) for a plugin's topics."""
     ns, node = p.namespace(), p.name
@@ -460,8 +468,9 @@ def useless_remapping(ctx: Context) -> Iterator[Finding]:
                 continue
             ns, node = p.namespace(), p.name
             published = {_resolve(n, ns, node) for n in names}
+            services = {_resolve(n, ns, node) for n in plugin_services(p)}
             for src, dst, el in p.remappings():
-                if _resolve(src, ns, node) in published:
+                if _resolve(src, ns, node) in published | services:
                     continue
                 hint = "~/out" if "~/out" in names else names[0]
                 yield ctx.finding(

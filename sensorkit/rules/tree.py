@@ -128,31 +128,51 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 joint=joints[1],
                 fix="a URDF is a tree: keep one parent joint (model closed chains with a plugin)",
             )
-    # Cycles: follow first parent joints; a walk that returns to a link is a cycle.
-    state: dict[str, int] = {}
-    for start in robot.link_map:
-        path: list[str] = []
-        cur: str | None = start
-        while cur is not None and state.get(cur, 0) == 0:
-            state[cur] = 1
-            path.append(cur)
-            j = robot.parent_joint.get(cur)
-            cur = j.parent if j is not None and j.parent != j.child else None
-        if cur is not None and state.get(cur) == 1 and cur in path:
-            cycle = path[path.index(cur):]
-            joints = [robot.parent_joint[c].name for c in cycle]
-            yield ctx.finding(
-                "SK204",
-                Severity.ERROR,
-                "kinematic cycle: " + " -> ".join([*reversed(cycle), cycle[-1]])
-                + f" (joints {', '.join(reversed(joints))})",
-                robot.parent_joint[cycle[0]].source,
-                link=cycle[0],
-                joint=joints[0],
-                fix="break the loop: one of these joints must hang from a link outside it",
-            )
-        for p in path:
-            state[p] = 2
+    # Cycles over every joint (a second parent can close a loop too): iterative DFS.
+    edges: dict[str, list[tuple[str, str]]] = {}
+    for j in robot.joints:
+        if j.parent is not None and j.child is not None and j.parent != j.child:
+            edges.setdefault(j.parent, []).append((j.child, j.name))
+    color: dict[str, int] = {}
+    reported: set[frozenset[str]] = set()
+    for start in [lk.name for lk in robot.links] + list(edges):
+        if color.get(start):
+            continue
+        color[start] = 1
+        path: list[tuple[str, str | None]] = [(start, None)]
+        iters = [iter(edges.get(start, []))]
+        while iters:
+            nxt = next(iters[-1], None)
+            if nxt is None:
+                color[path[-1][0]] = 2
+                path.pop()
+                iters.pop()
+                continue
+            child, jname = nxt
+            state = color.get(child, 0)
+            if state == 0:
+                color[child] = 1
+                path.append((child, jname))
+                iters.append(iter(edges.get(child, [])))
+            elif state == 1:
+                names = [n for n, _ in path]
+                loop = path[names.index(child):]
+                key = frozenset(n for n, _ in loop)
+                if key in reported:
+                    continue
+                reported.add(key)
+                joints = [jn for _, jn in loop[1:]] + [jname]
+                first = robot.joint_map.get(jname)
+                yield ctx.finding(
+                    "SK204",
+                    Severity.ERROR,
+                    "kinematic cycle: " + " -> ".join([*(n for n, _ in loop), child])
+                    + f" (joints {', '.join(joints)}); check_urdf loops forever on this",
+                    first.source if first else robot.document.locate(None),
+                    link=child,
+                    joint=jname,
+                    fix="break the loop: one of these joints must hang from a link outside it",
+                )
 
 
 @rule(

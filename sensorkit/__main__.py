@@ -1,0 +1,5 @@
+"""``python -m sensorkit``."""
+
+from sensorkit.cli import main
+
+main()

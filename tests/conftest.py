@@ -1,0 +1,43 @@
+from __future__ import annotations
+
+import shutil
+import subprocess
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+from sensorkit.engine import FileReport, Options, validate_file
+
+ROOT = Path(__file__).resolve().parent.parent
+CORPUS = ROOT / "tests" / "corpus"  # a copy of shared/corpus, licences included
+
+
+@pytest.fixture
+def check(tmp_path: Path) -> Callable[..., FileReport]:
+    """Write a robot to a file and validate it."""
+    counter = iter(range(10**6))
+
+    def run(text: str, *, suffix: str = ".urdf", target: str = "auto", **kw: object) -> FileReport:
+        path = tmp_path / f"robot{next(counter)}{suffix}"
+        path.write_text(text)
+        report = validate_file(path, Options(target=target, **kw))  # type: ignore[arg-type]
+        assert not report.internal_errors, report.internal_errors
+        return report
+
+    return run
+
+
+def rules_of(report: FileReport) -> set[str]:
+    return {f.rule for f in report.findings}
+
+
+def check_urdf_bin() -> str:
+    exe = shutil.which("check_urdf")
+    if exe is None:
+        pytest.fail("check_urdf is missing: apt-get install liburdfdom-tools (the test command installs it)")
+    return exe
+
+
+def run_check_urdf(path: Path, timeout: float = 20) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([check_urdf_bin(), str(path)], capture_output=True, text=True, timeout=timeout)

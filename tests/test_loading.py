@@ -1,0 +1,212 @@
+"""Loading: plain URDF, xacro, packages, and bad input of every kind (never a traceback or a hang)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from builders import robot
+from conftest import CORPUS, ROOT, rules_of
+
+from sensorkit.engine import Options, validate_file
+from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.xacro_expand import expand, expand_in_process
+
+XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+BOMB = """<?xml version="1.0"?>
+<!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">
+<!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;">
+<!ENTITY lol4 "&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;">
+<!ENTITY lol5 "&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;">
+<!ENTITY lol6 "&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;">
+<!ENTITY lol7 "&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;">
+<!ENTITY lol8 "&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;">
+<!ENTITY lol9 "&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;">]>
+<robot name="&lol9;"><link name="a"/></robot>
+"""
+SECRET = "sensorkit-secret-canary-1234"
+
+
+def cli(*args: str, cwd: Path | None = None, timeout: float = 120) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "sensorkit", *args], capture_output=True, text=True, timeout=timeout, cwd=cwd
+    )
+
+
+def write(tmp_path: Path, name: str, text: str | bytes) -> Path:
+    p = tmp_path / name
+    p.parent.mkdir(parents=True, exist_ok=True)
+    if isinstance(text, bytes):
+        p.write_bytes(text)
+    else:
+        p.write_text(text)
+    return p
+
+
+def test_malformed_xml_is_sk101_with_line_and_column(tmp_path: Path) -> None:
+    p = write(tmp_path, "bad.urdf", '<?xml version="1.0"?>\n<robot name="r">\n  <link name="a">\n</robot>\n')
+    report = validate_file(p)
+    (f,) = report.findings
+    assert f.rule == "SK101" and f.line == 4 and f.column is not None and f.file and f.file.endswith("bad.urdf")
+
+
+@pytest.mark.parametrize("content", [b"", b"   \n", bytes(range(256)) * 4, b"\x89PNG\r\n\x1a\n\x00\x00"])
+def test_empty_or_binary_is_sk101(tmp_path: Path, content: bytes) -> None:
+    report = validate_file(write(tmp_path, "x.urdf", content))
+    assert rules_of(report) == {"SK101"}
+
+
+def test_non_robot_root_is_a_one_line_error(tmp_path: Path) -> None:
+    p = write(tmp_path, "model.sdf", '<sdf version="1.9"><model name="m"/></sdf>')
+    res = cli("validate", str(p))
+    assert res.returncode == 2 and "Traceback" not in res.stderr
+    assert res.stderr.count("\n") == 1 and "<sdf>" in res.stderr
+
+
+def test_missing_file_and_folder_are_exit_2(tmp_path: Path) -> None:
+    for target in (tmp_path / "nope.urdf", tmp_path):
+        res = cli("validate", str(target))
+        assert res.returncode == 2 and "Traceback" not in res.stderr and res.stderr.startswith("sensorkit: ")
+
+
+def test_entity_bomb_is_refused_quickly(tmp_path: Path) -> None:
+    for suffix in (".urdf", ".urdf.xacro"):
+        report = validate_file(write(tmp_path, "bomb" + suffix, BOMB))
+        assert rules_of(report) == {"SK101"}
+        assert "entity" in report.findings[0].message
+
+
+def test_external_entity_content_never_leaks(tmp_path: Path) -> None:
+    secret = write(tmp_path, "secret.txt", SECRET)
+    text = f'<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY x SYSTEM "file://{secret}">]>\n<robot name="&x;"><link name="&x;"/></robot>\n'
+    for suffix in (".urdf", ".xacro"):
+        p = write(tmp_path, "ext" + suffix, text)
+        for fmt in ("text", "json"):
+            res = cli("validate", str(p), "--format", fmt)
+            assert SECRET not in res.stdout + res.stderr
+            assert res.returncode in (1, 2) and "Traceback" not in res.stderr
+
+
+def test_cycle_self_joint_two_parents_terminate(check) -> None:
+    from builders import joint, link
+
+    text = '<robot name="c">' + link("a") + link("b") + link("c") + joint("j1", "a", "b") + joint("j2", "b", "c") + joint("j3", "c", "b") + joint("j4", "a", "a") + "</robot>"
+    report = check(text)
+    msgs = [f.message for f in report.findings if f.rule == "SK204"]
+    assert any("cycle" in m for m in msgs) and any("itself" in m for m in msgs) and any("2 parent joints" in m for m in msgs)
+
+
+def test_include_loop_is_sk102(tmp_path: Path) -> None:
+    write(tmp_path, "b.xacro", f'<robot {XACRO_NS}><xacro:include filename="a.urdf.xacro"/></robot>')
+    a = write(tmp_path, "a.urdf.xacro", f'<robot name="r" {XACRO_NS}><xacro:include filename="b.xacro"/><link name="x"/></robot>')
+    (f,) = validate_file(a).findings
+    assert f.rule == "SK102" and "include loop" in f.message
+
+
+def test_infinite_macro_recursion_is_sk102(tmp_path: Path) -> None:
+    p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}><xacro:macro name="m" params=""><xacro:m/></xacro:macro><xacro:m/></robot>')
+    (f,) = validate_file(p).findings
+    assert f.rule == "SK102" and "recurs" in f.message
+
+
+def test_runaway_expression_times_out(tmp_path: Path) -> None:
+    p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}><link name="${{str(10**10**10)[:3]}}"/></robot>')
+    (f,) = validate_file(p, Options(timeout=3)).findings
+    assert f.rule == "SK102" and "did not finish" in f.message
+
+
+def test_missing_include_names_the_file(tmp_path: Path) -> None:
+    p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}>\n<xacro:include filename="parts/wheel.xacro"/>\n<link name="x"/></robot>')
+    (f,) = validate_file(p).findings
+    assert f.rule == "SK102" and "wheel.xacro" in f.message
+
+
+def test_unknown_package_lists_places_searched(tmp_path: Path) -> None:
+    write(tmp_path, "package.xml", "<package><name>here_pkg</name></package>")
+    p = write(tmp_path, "urdf/r.urdf.xacro", f'<robot name="r" {XACRO_NS}>\n  <xacro:include filename="$(find ghost_pkg)/x.xacro"/>\n</robot>')
+    (f,) = validate_file(p).findings
+    assert f.rule == "SK103" and "ghost_pkg" in f.message and "workspace" in f.message and f.line == 2
+    f2 = validate_file(p, Options(package_paths=(str(tmp_path),))).findings[0]
+    assert "--package-path" in f2.message
+
+
+def test_package_uri_for_unknown_package_is_sk103(check) -> None:
+    text = robot(extra='<link name="m"><visual><geometry><mesh filename="package://ghost_pkg/meshes/m.stl"/></geometry></visual></link><joint name="mj" type="fixed"><parent link="base_link"/><child link="m"/></joint>')
+    assert "SK103" in rules_of(check(text))
+
+
+def test_undefined_arg_says_how_to_pass_it(tmp_path: Path) -> None:
+    p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}><link name="$(arg prefix)base"/></robot>')
+    (f,) = validate_file(p).findings
+    assert f.rule == "SK102" and "--arg prefix:=" in (f.fix or "")
+    ok = validate_file(p, Options(args={"prefix": "my_"}))
+    assert ok.robot is not None and "my_base" in ok.robot.link_map
+
+
+def test_malformed_include_reports_the_include_line(tmp_path: Path) -> None:
+    write(tmp_path, "part.xacro", f'<robot {XACRO_NS}>\n<link name="a">\n</robot>\n')
+    p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}><xacro:include filename="part.xacro"/></robot>')
+    (f,) = validate_file(p).findings
+    assert f.rule == "SK101" and f.file and f.file.endswith("part.xacro") and f.line == 3
+
+
+def test_urdf_with_xacro_markup_is_expanded() -> None:
+    p = CORPUS / "ROBOTIS-GIT__turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf"
+    report = validate_file(p)
+    assert report.robot is not None and "base_footprint" in report.robot.link_map
+
+
+def test_workspace_of_two_packages_validates_with_no_flags() -> None:
+    p = ROOT / "tests/robots/workspace/src/rover_description/urdf/rover.urdf.xacro"
+    res = cli("validate", str(p))
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "0 errors, 0 warnings" in res.stdout
+
+
+def test_findings_point_into_the_included_file(tmp_path: Path) -> None:
+    import shutil
+
+    ws = tmp_path / "ws"
+    shutil.copytree(ROOT / "tests/robots/workspace", ws)
+    macro = ws / "src/rover_sensors/urdf/camera.urdf.xacro"
+    macro.write_text(macro.read_text().replace("${name}_optical_frame</frame_name>", "${name}_link</frame_name>"))
+    report = validate_file(ws / "src/rover_description/urdf/rover.urdf.xacro")
+    f = next(f for f in report.findings if f.rule == "SK502")
+    lines = macro.read_text().splitlines()
+    assert f.file and f.file.endswith("camera.urdf.xacro") and '<sensor name="${name}"' in lines[f.line - 1]
+
+
+def test_expansion_is_repeatable_in_one_process(tmp_path: Path) -> None:
+    p = ROOT / "tests/robots/workspace/src/rover_description/urdf/rover.urdf.xacro"
+    resolver = PackageResolver().for_file(p)
+    first = expand_in_process(p, {}, resolver)
+    other = expand_in_process(p, {"camera_x": "0.5"}, resolver)
+    again = expand_in_process(p, {}, resolver)
+    assert first.xml and first.xml == again.xml and other.xml != first.xml
+    assert expand(p, {}, resolver).xml == first.xml
+
+
+def test_package_resolution_order(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    for where in ("explicit", "scanned", "ament/share", "rospath"):
+        write(tmp_path, f"{where}/pkg/package.xml", "<package><name>pkg</name></package>")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "ament"))
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "rospath"))
+    r = PackageResolver.from_options([f"pkg={tmp_path / 'explicit/pkg'}", str(tmp_path / "scanned")])
+    assert r.find("pkg") == tmp_path / "explicit/pkg"
+    assert PackageResolver.from_options([str(tmp_path / "scanned")]).find("pkg") == tmp_path / "scanned/pkg"
+    assert PackageResolver.from_options([]).find("pkg") == tmp_path / "ament/share/pkg"
+    monkeypatch.delenv("AMENT_PREFIX_PATH")
+    assert PackageResolver.from_options([]).find("pkg") == tmp_path / "rospath/pkg"
+
+
+def test_cli_never_prints_a_traceback_on_bad_input(tmp_path: Path) -> None:
+    files = [
+        write(tmp_path, "a.urdf", "<robot"),
+        write(tmp_path, "b.urdf", BOMB),
+        write(tmp_path, "c.urdf.xacro", f'<robot name="r" {XACRO_NS}><xacro:include filename="$(find nope)/x"/></robot>'),
+        write(tmp_path, "d.urdf", '<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/><child link="a"/><origin xyz="nan inf 0"/></joint></robot>'),
+    ]
+    res = cli("validate", *map(str, files), "--format", "json")
+    assert res.returncode == 1 and "Traceback" not in res.stderr
