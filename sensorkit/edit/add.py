@@ -1,0 +1,507 @@
+"""Add a sensor to a robot file: plan in memory, check, then publish atomically.
+
+``plan_add`` reads everything and writes nothing: it works out the new bytes of the
+robot file (the original bytes with new text spliced in before the closing root tag,
+and for xacro a namespace declaration when the root lacks one), the macro file to copy
+beside it, the diff, and it refuses (``EditRefused``) when a name is taken, the parent
+link is missing, or the result would carry a validator error the original does not.
+``apply_add`` publishes a plan; ``add_sensor`` does both.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import difflib
+import os
+import posixpath
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from lxml import etree
+
+from sensorkit.edit.atomic import atomic_write
+from sensorkit.edit.check import Verdict, check_names, check_parent, compare, describe
+from sensorkit.edit.fragment import Fragment, expand_fragment
+from sensorkit.edit.kinds import KINDS, XACRO_NS, MacroInfo, SensorKind, read_macro, shipped_macro
+from sensorkit.edit.layout import Layout, read_layout
+from sensorkit.edit.render import Lines, fragment_lines, macro_call_lines, render_block
+from sensorkit.errors import EditRefused, InputError, UsageError
+from sensorkit.findings import Finding
+from sensorkit.loading.document import (
+    Document,
+    display_path,
+    looks_like_xacro,
+    read_input,
+    strict_parser,
+)
+from sensorkit.loading.xacro_expand import forbid_entities
+
+if TYPE_CHECKING:
+    from sensorkit.engine import Options
+    from sensorkit.model import Robot
+
+NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+SENSORS_DIR = "sensors"
+_RESERVED = ("name", "parent")
+
+
+@dataclass(frozen=True)
+class AddRequest:
+    """What to add, where. ``params`` are macro parameters as text (``width="640"``)."""
+
+    path: Path
+    kind: str
+    name: str
+    parent: str
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    params: Mapping[str, str] = field(default_factory=dict)
+    output: Path | None = None
+    args: Mapping[str, str] = field(default_factory=dict)
+    package_paths: tuple[str, ...] = ()
+    validation: Options | None = None  # how to validate; default: every rule, target auto
+
+
+@dataclass(frozen=True)
+class PlannedWrite:
+    """One file an add writes: ``role`` is ``"robot"`` or ``"macro"``."""
+
+    path: Path
+    data: bytes
+    role: str
+    mode: int | None = None
+
+
+@dataclass
+class AddResult:
+    """A planned (and, once ``written``, published) add."""
+
+    kind: SensorKind
+    name: str
+    source: Path
+    target: Path
+    style: str  # "xacro" (macro call) or "urdf" (expanded elements)
+    macro: MacroInfo
+    original: bytes
+    new: bytes
+    writes: list[PlannedWrite]
+    diff: str
+    notes: list[str] = field(default_factory=list)
+    links: list[str] = field(default_factory=list)
+    joints: list[str] = field(default_factory=list)
+    sensors: list[str] = field(default_factory=list)
+    written: bool = False
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def _diff_lines(text: str) -> list[str]:
+    """Lines with their own terminators (\\n or \\r\\n kept), for difflib."""
+    return re.findall(r"[^\n]*\n|[^\n]+\Z", text)
+
+
+def unified_diff(old: str, new: str, old_label: str, new_label: str) -> str:
+    """A unified diff that ``patch``/``git apply`` accept (marks a missing final newline)."""
+    out: list[str] = []
+    for line in difflib.unified_diff(_diff_lines(old), _diff_lines(new), old_label, new_label):
+        if line.endswith("\n"):
+            out.append(line)
+        else:
+            out.append(line + "\n\\ No newline at end of file\n")
+    return "".join(out)
+
+
+def _parse(data: bytes, where: str) -> etree._Element:
+    reason = forbid_entities(data)
+    if reason:
+        msg = f"{where}: {reason}"
+        raise EditRefused(msg)
+    try:
+        return etree.fromstring(data, strict_parser())
+    except etree.XMLSyntaxError as exc:
+        line, col = exc.position if exc.position else (exc.lineno, exc.offset)
+        msg = f"{where}:{line}:{col}: not well-formed XML ({exc.msg}); fix it before adding sensors"
+        raise EditRefused(msg) from None
+
+
+def _node_key(node: etree._Element) -> str:
+    if isinstance(node, etree._Comment):
+        return "#comment"
+    return f"{node.tag}|{node.get('name', '')}"
+
+
+def _resolve_kind(kind: str) -> SensorKind:
+    try:
+        return KINDS[kind]
+    except KeyError:
+        msg = f"unknown sensor kind {kind!r} (known: {', '.join(KINDS)})"
+        raise UsageError(msg) from None
+
+
+def _top_level_includes(root: etree._Element) -> list[str]:
+    """``filename`` of every ``<xacro:include>`` directly under the root."""
+    out: list[str] = []
+    for el in root:
+        if (
+            isinstance(el.tag, str)
+            and etree.QName(el).localname == "include"
+            and el.prefix == "xacro"
+        ):
+            out.append(el.get("filename", ""))
+    return out
+
+
+def _relative_include_warnings(root: etree._Element, source: Path, target: Path) -> list[str]:
+    """Notes for relative includes that stop resolving when the output moves folder."""
+    notes: list[str] = []
+    if source.resolve().parent == target.resolve().parent:
+        return notes
+    for filename in _top_level_includes(root):
+        if not filename or filename.startswith(("$", "/", "package://", "file://")):
+            continue
+        if not (target.parent / filename).exists():
+            notes.append(
+                f"{display_path(target)} is in another folder than {display_path(source)}: "
+                f"its include '{filename}' does not resolve from there"
+            )
+    return notes
+
+
+# ----------------------------------------------------------------------------- planning
+
+
+@dataclass
+class _MacroChoice:
+    path: Path  # the macro file the call will use
+    info: MacroInfo
+    copy_to: Path | None  # where the shipped file must be copied (xacro only), or None
+    copy_data: bytes = b""
+    notes: list[str] = field(default_factory=list)
+
+
+def _choose_macro(kind: SensorKind, xacro_style: bool, target: Path) -> _MacroChoice:
+    shipped = shipped_macro(kind)
+    if not xacro_style:
+        info = read_macro(shipped, kind.macro_name)
+        if info is None:
+            msg = f"sensorkit's {shipped} defines no macro {kind.macro_name}"
+            raise InputError(msg)
+        return _MacroChoice(path=shipped, info=info, copy_to=None)
+    local = target.parent / SENSORS_DIR / kind.macro_file
+    shipped_data = shipped.read_bytes()
+    if local.exists() or local.is_symlink():
+        if not local.is_file():
+            msg = f"{display_path(local)} is not a file; move it away to add a {kind.label}"
+            raise EditRefused(msg)
+        if local.read_bytes() == shipped_data:
+            info = read_macro(local, kind.macro_name)
+            if info is None:
+                msg = f"sensorkit's {shipped} defines no macro {kind.macro_name}"
+                raise InputError(msg)
+            return _MacroChoice(path=local, info=info, copy_to=None)
+        info = read_macro(local, kind.macro_name)
+        if info is None:
+            msg = (
+                f"{display_path(local)} differs from sensorkit's and defines no macro "
+                f"{kind.macro_name}; rename it or remove it so sensorkit can copy its own"
+            )
+            raise EditRefused(msg)
+        note = (
+            f"{display_path(local)} differs from sensorkit's {kind.macro_file}: "
+            "left as it is and used (your modified copy)"
+        )
+        return _MacroChoice(path=local, info=info, copy_to=None, notes=[note])
+    info = read_macro(shipped, kind.macro_name)
+    if info is None:
+        msg = f"sensorkit's {shipped} defines no macro {kind.macro_name}"
+        raise InputError(msg)
+    return _MacroChoice(path=shipped, info=info, copy_to=local, copy_data=shipped_data)
+
+
+def _call_attributes(req: AddRequest, info: MacroInfo) -> list[tuple[str, str]]:
+    known = info.names()
+    for key in req.params:
+        if key in _RESERVED or key not in known:
+            offered = ", ".join(n for n in known if n not in _RESERVED)
+            where = f"the {info.name} macro in {display_path(info.path)}"
+            msg = f"{where} has no parameter {key!r} (it takes: {offered})"
+            raise UsageError(msg)
+    for needed in _RESERVED:
+        if needed not in known:
+            msg = (
+                f"the {info.name} macro in {display_path(info.path)} takes no {needed!r} parameter"
+            )
+            raise EditRefused(msg)
+    if "origin" not in info.blocks:
+        msg = f"the {info.name} macro in {display_path(info.path)} takes no *origin block"
+        raise EditRefused(msg)
+    attrs = [("name", req.name), ("parent", req.parent)]
+    attrs += [(n, req.params[n]) for n in known if n in req.params]
+    missing = [p.name for p in info.params if p.default is None and p.name not in dict(attrs)]
+    if missing:
+        msg = f"the {info.name} macro needs {', '.join(missing)} (no default)"
+        raise UsageError(msg)
+    return attrs
+
+
+def _splice(data: bytes, layout: Layout, block: str, at: int, ns_decl: str | None) -> bytes:
+    """Insert ``block`` at character ``at`` and ``ns_decl`` into the root start tag."""
+    edits: list[tuple[int, str]] = [(at, block)]
+    if ns_decl is not None:
+        end = layout.root_start_end - 1  # the '>'
+        while end > layout.root_start_at and layout.text[end - 1] in " \t\r\n":
+            end -= 1
+        edits.append((end, ns_decl))
+    out = data
+    for char_at, text in sorted(edits, key=lambda e: e[0], reverse=True):
+        off = layout.byte_offset(char_at)
+        out = out[:off] + layout.encode(text) + out[off:]
+    return out
+
+
+def plan_add(req: AddRequest) -> AddResult:
+    """Work out an add without writing anything (see the module doc)."""
+    from sensorkit.model import load_robot
+
+    kind = _resolve_kind(req.kind)
+    if not NAME_RE.match(req.name):
+        msg = (
+            f"--name {req.name!r}: use letters, digits and '_', starting with a letter "
+            "(it becomes link, frame and topic names)"
+        )
+        raise UsageError(msg)
+    if not req.parent or req.parent != req.parent.strip():
+        msg = f"--parent {req.parent!r}: give the name of an existing link"
+        raise UsageError(msg)
+    source = req.path
+    target = req.output if req.output is not None else source
+    if target.is_dir():
+        msg = f"{display_path(target)}: is a folder; -o takes a file name"
+        raise UsageError(msg)
+    if not target.parent.is_dir():
+        msg = f"{display_path(target.parent)}: no such folder"
+        raise UsageError(msg)
+    where = display_path(source)
+    data = read_input(source)
+    root = _parse(data, where)
+    layout = read_layout(data, where)
+    xacro_style = looks_like_xacro(source, data)
+
+    loaded = load_robot(source, args=dict(req.args), package_paths=req.package_paths)
+    robot = loaded.robot
+    if robot is None:
+        first = loaded.findings[0] if loaded.findings else None
+        why = f"{first.rule} {first.message}" if first else "it could not be read"
+        msg = f"{where} does not load, so sensorkit cannot add to it: {why}"
+        raise EditRefused(msg)
+
+    check_names(robot, req.name, (), where)
+    check_parent(robot, req.parent, where)
+
+    choice = _choose_macro(kind, xacro_style, target)
+    attrs = _call_attributes(req, choice.info)
+    call = macro_call_lines(kind.macro_name, attrs, req.xyz, req.rpy, include=None)
+    frag = expand_fragment(choice.path, kind.macro_name, call)
+    check_names(robot, req.name, frag.created(), where)
+
+    notes = list(choice.notes)
+    ns_decl: str | None = None
+    inserted_keys: list[str]
+    if xacro_style:
+        rel = posixpath.join(SENSORS_DIR, kind.macro_file)
+        local = (target.parent / SENSORS_DIR / kind.macro_file).resolve()
+        present = any(
+            f and "$" not in f and (target.parent / f).resolve() == local
+            for f in _top_level_includes(root)
+        )
+        if not present and source.resolve().parent == target.resolve().parent:
+            present = str(local) in {os.path.abspath(p) for p in robot.document.includes}
+        include = None if present else rel
+        lines: Lines = macro_call_lines(kind.macro_name, attrs, req.xyz, req.rpy, include=include)
+        inserted_keys = ([] if include is None else ["include"]) + [kind.macro_name]
+        if "xacro" not in root.nsmap:
+            ns_decl = f' xmlns:xacro="{XACRO_NS}"'
+        notes += _relative_include_warnings(root, source, target)
+    else:
+        header = f"{req.name}: {kind.label} from sensorkit's {kind.macro_name} macro"
+        lines = fragment_lines(frag.nodes, header)
+        inserted_keys = ["#comment", *[_node_key(n) for n in frag.nodes]]
+
+    line_start = layout.line_start_before(layout.root_end_at)
+    at = line_start if line_start is not None else layout.root_end_at
+    block = render_block(
+        lines,
+        layout,
+        at_line_start=line_start is not None,
+        blank_before=line_start is not None and not layout.previous_line_blank(line_start),
+    )
+    new = _splice(data, layout, block, at, ns_decl)
+    _self_check(root, new, inserted_keys, xacro_style, where)
+
+    verdict = _validate(
+        req,
+        robot=robot,
+        load_findings=list(loaded.findings),
+        new=new,
+        frag=frag,
+        xacro_style=xacro_style,
+    )
+    if verdict.new_errors:
+        first = verdict.new_errors[0]
+        more = len(verdict.new_errors) - 1
+        tail = f" (and {more} more)" if more else ""
+        msg = f"adding '{req.name}' would introduce an error: {describe(first)}{tail}"
+        raise EditRefused(msg)
+    notes += [f"new warning: {describe(f)}" for f in verdict.new_warnings]
+    notes += [f"validator internal error: {e}" for e in verdict.internal_errors]
+
+    writes: list[PlannedWrite] = []
+    diff_parts: list[str] = []
+    if choice.copy_to is not None:
+        writes.append(PlannedWrite(choice.copy_to, choice.copy_data, "macro"))
+        rel_copy = display_path(choice.copy_to)
+        notes.append(f"copied sensorkit's {kind.macro_file} to {rel_copy}")
+    mode = (target if target.exists() else source).stat().st_mode
+    writes.append(PlannedWrite(target, new, "robot", mode))
+    new_text = new[len(layout.bom) :].decode(layout.encoding)
+    diff_parts.append(
+        unified_diff(
+            layout.text, new_text, f"a/{display_path(source)}", f"b/{display_path(target)}"
+        )
+    )
+    if choice.copy_to is not None:
+        macro_text = choice.copy_data.decode("utf-8", "replace")
+        diff_parts.append(
+            unified_diff("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}")
+        )
+    return AddResult(
+        kind=kind,
+        name=req.name,
+        source=source,
+        target=target,
+        style="xacro" if xacro_style else "urdf",
+        macro=choice.info,
+        original=data,
+        new=new,
+        writes=writes,
+        diff="".join(diff_parts),
+        notes=notes,
+        links=list(frag.links),
+        joints=list(frag.joints),
+        sensors=list(frag.sensors),
+    )
+
+
+def _self_check(
+    old_root: etree._Element, new: bytes, inserted: list[str], xacro_style: bool, where: str
+) -> None:
+    """The spliced file parses and ends with exactly the inserted nodes (a guard)."""
+    try:
+        new_root = etree.fromstring(new, strict_parser())
+    except etree.XMLSyntaxError as exc:
+        msg = f"{where}: internal error, the edit would not parse ({exc.msg}); nothing was written"
+        raise EditRefused(msg) from None
+    old_nodes = [n for n in old_root if isinstance(n.tag, str) or isinstance(n, etree._Comment)]
+    new_nodes = [n for n in new_root if isinstance(n.tag, str) or isinstance(n, etree._Comment)]
+    added = new_nodes[len(old_nodes) :]
+    ok = len(new_nodes) == len(old_nodes) + len(inserted)
+    if ok and xacro_style:
+        ok = [
+            etree.QName(n).localname if isinstance(n.tag, str) else "#comment" for n in added
+        ] == ["include" if k == "include" else k for k in inserted]
+    elif ok:
+        ok = [_node_key(n) for n in added] == inserted
+    if not ok:
+        msg = f"{where}: internal error, the new text missed the closing tag; nothing was written"
+        raise EditRefused(msg)
+
+
+def _validate(
+    req: AddRequest,
+    *,
+    robot: Robot,
+    load_findings: list[Finding],
+    new: bytes,
+    frag: Fragment,
+    xacro_style: bool,
+) -> Verdict:
+    """Validator findings before and after, with the "after" robot built in memory."""
+    from sensorkit.engine import Options
+
+    options = req.validation or Options(args=dict(req.args), package_paths=req.package_paths)
+    doc = robot.document
+    if xacro_style:
+        # The result expands to the original's expansion followed by the macro's output:
+        # the call is the last thing in the file and the macro is self-contained.
+        root = copy.deepcopy(doc.root)
+        for node in frag.nodes:
+            root.append(copy.deepcopy(node))
+        after = Document(
+            path=doc.path,
+            root=root,
+            files=list(doc.files),
+            expanded=True,
+            includes=list(doc.includes),
+        )
+    else:
+        after = Document(path=doc.path, root=etree.fromstring(new, strict_parser()))
+    return compare(robot, load_findings, after, options)
+
+
+# ----------------------------------------------------------------------------- publishing
+
+
+def apply_add(result: AddResult) -> AddResult:
+    """Publish a planned add: the macro copy first, then the robot file, each atomically.
+
+    Refuses (and writes nothing) when the robot file changed since it was planned. If
+    the robot file cannot be written, a macro copy made for it is removed again.
+    """
+    if result.source.resolve() == result.target.resolve():
+        try:
+            current = result.target.read_bytes()
+        except OSError as exc:
+            msg = f"{display_path(result.target)}: cannot read it again ({exc.strerror})"
+            raise InputError(msg) from None
+        if current != result.original:
+            msg = (
+                f"{display_path(result.target)} changed while sensorkit worked; nothing was written"
+            )
+            raise EditRefused(msg)
+    made_dirs: list[Path] = []
+    made_files: list[Path] = []
+    try:
+        for w in result.writes:
+            if w.role == "macro":
+                if w.path.exists():
+                    msg = f"{display_path(w.path)} appeared meanwhile; nothing was written"
+                    raise EditRefused(msg)
+                if not w.path.parent.is_dir():
+                    w.path.parent.mkdir()
+                    made_dirs.append(w.path.parent)
+                atomic_write(w.path, w.data, None)
+                made_files.append(w.path)
+            else:
+                atomic_write(w.path, w.data, w.mode)
+    except BaseException:
+        for f in made_files:
+            f.unlink(missing_ok=True)
+        for d in reversed(made_dirs):
+            with contextlib.suppress(OSError):
+                d.rmdir()
+        raise
+    result.written = True
+    return result
+
+
+def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
+    """Plan an add and, unless ``dry_run``, publish it. Raises EditRefused on refusal."""
+    result = plan_add(req)
+    if not dry_run:
+        apply_add(result)
+    return result
