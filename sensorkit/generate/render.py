@@ -199,7 +199,8 @@ def readme(spec: RobotSpec, yaml_name: str, entries: Sequence[BridgeEntry]) -> s
     lines += ["```", ""]
     if spec.sim == "gz":
         lines += [
-            f"## Topics (Gazebo Sim {spec.gz_version}, bridged by `config/bridge.yaml`)",
+            f"## Topics (Gazebo Sim {spec.gz_version.capitalize()}, "
+            "bridged by `config/bridge.yaml`)",
             "",
             "| ROS topic | ROS type | gz topic | direction |",
             "|---|---|---|---|",
