@@ -223,28 +223,34 @@ def _choose_macro(kind: SensorKind, xacro_style: bool, target: Path) -> _MacroCh
     return _MacroChoice(path=shipped, info=info, copy_to=local, copy_data=shipped_data)
 
 
+def _macro_label(info: MacroInfo) -> str:
+    from sensorkit.resources import macros_dir
+
+    if info.path.resolve().parent == macros_dir().resolve():
+        return f"sensorkit's {info.name} macro"
+    return f"the {info.name} macro in {display_path(info.path)}"
+
+
 def _call_attributes(req: AddRequest, info: MacroInfo) -> list[tuple[str, str]]:
     known = info.names()
+    label = _macro_label(info)
     for key in req.params:
         if key in _RESERVED or key not in known:
             offered = ", ".join(n for n in known if n not in _RESERVED)
-            where = f"the {info.name} macro in {display_path(info.path)}"
-            msg = f"{where} has no parameter {key!r} (it takes: {offered})"
+            msg = f"{label} has no parameter {key!r} (it takes: {offered})"
             raise UsageError(msg)
     for needed in _RESERVED:
         if needed not in known:
-            msg = (
-                f"the {info.name} macro in {display_path(info.path)} takes no {needed!r} parameter"
-            )
+            msg = f"{label} takes no {needed!r} parameter"
             raise EditRefused(msg)
     if "origin" not in info.blocks:
-        msg = f"the {info.name} macro in {display_path(info.path)} takes no *origin block"
+        msg = f"{label} takes no *origin block"
         raise EditRefused(msg)
     attrs = [("name", req.name), ("parent", req.parent)]
     attrs += [(n, req.params[n]) for n in known if n in req.params]
     missing = [p.name for p in info.params if p.default is None and p.name not in dict(attrs)]
     if missing:
-        msg = f"the {info.name} macro needs {', '.join(missing)} (no default)"
+        msg = f"{label} needs {', '.join(missing)} (no default)"
         raise UsageError(msg)
     return attrs
 

@@ -136,7 +136,7 @@ def compare(
 
 
 def describe(finding: Finding) -> str:
-    """``RULE message (file:line)`` on one line."""
+    """``RULE message`` on one line. No file:line: a new finding is about text that is
+    not in the user's file yet (the message names the sensor, link or joint)."""
     text = " ".join(finding.message.split())
-    where = f" ({finding.source})" if finding.file else ""
-    return f"{finding.rule} {text}{where}"
+    return f"{finding.rule} {text}"
