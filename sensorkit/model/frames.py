@@ -73,6 +73,25 @@ class SensorFrames:
         return robot.T_world_link(frame)
 
 
+def optical_frame_at(robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087) -> str | None:
+    """A link already placed as the optical frame of a camera rendering from T_world_render."""
+    if T_world_render is None:
+        return None
+    import numpy as np
+
+    from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between
+
+    for lk in robot.links:
+        if lk.name not in robot.parent_joint:
+            continue
+        T = robot.T_world_link(lk.name)
+        if T is None or float(np.linalg.norm(T[:3, 3] - T_world_render[:3, 3])) > tol_m:
+            continue
+        if angle_between(T_world_render[:3, :3].T @ T[:3, :3], R_BODY_OPTICAL) <= tol_rad:
+            return lk.name
+    return None
+
+
 def ros_plugin(sensor: Sensor) -> Plugin | None:
     """The plugin that publishes a classic sensor's data to ROS, if any."""
     for p in sensor.plugins:

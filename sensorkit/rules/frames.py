@@ -8,7 +8,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from sensorkit.findings import Finding, Severity
-from sensorkit.model.frames import SensorFrames
+from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
 from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, angle_between, rotation_angle
 from sensorkit.rules.base import Context, rule
@@ -66,19 +66,6 @@ def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
     return list(reversed(out))
 
 
-def _optical_candidate(robot: Robot, T_world_render: Mat) -> str | None:
-    """A link already placed as this camera's optical frame, if the robot has one."""
-    for lk in robot.links:
-        T = robot.T_world_link(lk.name) if lk.name in robot.parent_joint else None
-        if T is None:
-            continue
-        if float(np.linalg.norm(T[:3, 3] - T_world_render[:3, 3])) > POSITION_TOL:
-            continue
-        if angle_between(T_world_render[:3, :3].T @ T[:3, :3], R_BODY_OPTICAL) <= ANGLE_TOL:
-            return lk.name
-    return None
-
-
 def _exists(robot: Robot, name: str) -> bool:
     return name in robot.link_map
 
@@ -126,10 +113,10 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         err = angle_between(R, R_BODY_OPTICAL)
         if err <= ANGLE_TOL:
             continue
-        existing = _optical_candidate(robot, fr.T_world_render)
+        existing = optical_frame_at(robot, fr.T_world_render)
         where = "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
         if fr.how == "default":
-            where = f"the default frame (the link {frame!r}, since the plugin names none)"
+            where = "the plugin names no frame, so Gazebo uses the link it sits on after lumping"
         yield ctx.finding(
             "SK502",
             Severity.ERROR,
@@ -174,7 +161,11 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
             s.source,
             sensor=s.name,
             frame=frame,
-            fix=f"put {frame!r} at the sensor's origin: xyz=\"0 0 0\" on its joint (and the same <pose> as the sensor)",
+            fix=(
+                f"name a frame at the sensor in the plugin (<frame_name>{optical_frame_at(robot, fr.T_world_render) or fr.link}</frame_name>)"
+                if fr.is_default
+                else f"move {frame!r} to the sensor's origin: xyz=\"0 0 0\" on its joint (and the same <pose> as the sensor)"
+            ),
         )
 
 

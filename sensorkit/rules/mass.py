@@ -6,7 +6,9 @@ import math
 from collections.abc import Iterator
 
 from sensorkit.findings import Finding, Severity
+from sensorkit.model.frames import optical_frame_at
 from sensorkit.model.robot import Inertial
+from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 from sensorkit.rules.base import Context, rule
 
@@ -148,8 +150,14 @@ def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
                 sensor=sensor.name,
                 link=fr.link,
                 frame=survivor,
-                fix=f"add <frame_name>{fr.link}</frame_name> (or the optical frame for a camera) to the plugin",
+                fix=f"add <frame_name>{_frame_for(ctx, sensor, fr.link)}</frame_name> to the plugin",
             )
+
+
+def _frame_for(ctx: Context, sensor: Sensor, link: str) -> str:
+    if sensor.is_camera:
+        return optical_frame_at(ctx.robot, ctx.frames_of(sensor).T_world_render) or f"{link}_optical_frame"
+    return link
 
 
 @rule("SK304", "info", "root link carries inertia (KDL/robot_state_publisher ignores it)", "kdl_parser, at run time")

@@ -1,0 +1,131 @@
+"""Output contract: json, sarif 2.1.0, github annotations, text; exit codes, select/ignore, config, suppressions."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from builders import camera_sensor, robot
+from conftest import ROOT
+
+from sensorkit.rules import RULES
+
+BAD = ROOT / "tests/robots/acceptance/sk502_bad.urdf"
+GOOD = ROOT / "tests/robots/acceptance/sk502_fixed.urdf"
+
+
+def cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "sensorkit", *args], capture_output=True, text=True, timeout=120, cwd=cwd)
+
+
+def test_json_contract() -> None:
+    res = cli("validate", str(BAD), str(GOOD), "--format", "json")
+    assert res.returncode == 1
+    data = json.loads(res.stdout)
+    assert data["version"] == 1 and data["target"] == "classic" and len(data["files"]) == 2
+    assert data["summary"] == {"error": 1, "warning": 0, "info": 0}
+    (f,) = data["findings"]
+    for key in ("rule", "severity", "message", "file", "line", "sensor", "frame", "fix"):
+        assert key in f
+    assert f["rule"] == "SK502" and f["severity"] == "error" and isinstance(f["line"], int)
+
+
+def test_sarif_structure() -> None:
+    res = cli("validate", str(BAD), "--format", "sarif")
+    data = json.loads(res.stdout)
+    assert data["version"] == "2.1.0" and data["$schema"].endswith("sarif-2.1.0.json")
+    (run,) = data["runs"]
+    driver = run["tool"]["driver"]
+    assert driver["name"] == "sensorkit" and isinstance(driver["version"], str)
+    ids = [r["id"] for r in driver["rules"]]
+    assert ids == sorted(RULES) and len(set(ids)) == len(ids)
+    for r in driver["rules"]:
+        assert r["shortDescription"]["text"] and r["defaultConfiguration"]["level"] in ("error", "warning", "note")
+    for result in run["results"]:
+        assert driver["rules"][result["ruleIndex"]]["id"] == result["ruleId"]
+        assert result["level"] in ("error", "warning", "note", "none")
+        assert result["message"]["text"]
+        loc = result["locations"][0]["physicalLocation"]
+        assert loc["artifactLocation"]["uri"].endswith("sk502_bad.urdf")
+        assert loc["region"]["startLine"] >= 1
+
+
+def test_github_annotations() -> None:
+    res = cli("validate", str(BAD), "--format", "github")
+    (line,) = res.stdout.splitlines()
+    assert line.startswith("::error file=") and ",line=" in line and "title=SK502::" in line and "\n" not in line
+
+
+def test_text_groups_by_sensor_with_fix() -> None:
+    out = cli("validate", str(BAD)).stdout
+    assert "sensor front_camera:" in out and "fix: " in out and "SK502 error" in out
+
+
+def test_exit_codes_fail_on_select_ignore(tmp_path: Path) -> None:
+    warn = tmp_path / "warn.urdf"
+    warn.write_text(robot(camera=camera_sensor(extra="")))  # SK407 warning only
+    assert cli("validate", str(warn)).returncode == 0
+    assert cli("validate", str(warn), "--fail-on", "warning").returncode == 1
+    assert cli("validate", str(BAD), "--ignore", "SK502").returncode == 0
+    assert cli("validate", str(BAD), "--select", "SK5").returncode == 1
+    assert cli("validate", str(BAD), "--select", "SK4").returncode == 0
+    bad_opt = cli("validate", str(BAD), "--select", "XX1")
+    assert bad_opt.returncode == 2 and "Traceback" not in bad_opt.stderr
+    assert cli("validate", str(BAD), "--target", "gazebo").returncode == 2
+    assert cli("validate", str(BAD), "--arg", "oops").returncode == 2
+
+
+def test_pyproject_config(tmp_path: Path) -> None:
+    (tmp_path / "pyproject.toml").write_text('[tool.sensorkit]\nignore = ["SK502"]\nfail-on = "warning"\n')
+    robot_file = tmp_path / "r.urdf"
+    robot_file.write_text(BAD.read_text())
+    assert cli("validate", "r.urdf", cwd=tmp_path).returncode == 0
+    robot_file.write_text(robot(camera=camera_sensor(extra="")))
+    assert cli("validate", "r.urdf", cwd=tmp_path).returncode == 1  # fail-on warning from config
+    (tmp_path / "pyproject.toml").write_text('[tool.sensorkit]\nbogus = 1\n')
+    res = cli("validate", "r.urdf", cwd=tmp_path)
+    assert res.returncode == 2 and "bogus" in res.stderr
+
+
+def test_inline_suppression(tmp_path: Path) -> None:
+    text = BAD.read_text()
+    lines = text.splitlines()
+    idx = next(i for i, line in enumerate(lines) if "<sensor " in line)
+    p = tmp_path / "s.urdf"
+    p.write_text("\n".join([*lines[:idx], "      <!-- sensorkit: ignore SK502 -->", *lines[idx:]]) + "\n")
+    assert cli("validate", str(p)).returncode == 0
+    p.write_text("\n".join([*lines[:idx], "      <!-- sensorkit: ignore SK503 -->", *lines[idx:]]) + "\n")
+    assert cli("validate", str(p)).returncode == 1
+    p.write_text(text.replace("<robot ", "<!-- sensorkit: ignore-file SK502 -->\n<robot ", 1))
+    assert cli("validate", str(p)).returncode == 0
+
+
+def test_readme_rule_table_matches_registry() -> None:
+    from sensorkit.report import rule_table
+
+    readme = (ROOT / "README.md").read_text()
+    begin, end = "<!-- rules:begin -->\n", "<!-- rules:end -->"
+    assert begin in readme and end in readme, "README lacks the generated rule table markers"
+    table = readme.split(begin, 1)[1].split(end, 1)[0]
+    assert table == rule_table(), "README rule table drifted: run `sensorkit rules --format markdown`"
+
+
+def test_validate_does_not_import_pybullet_or_trimesh() -> None:
+    code = (
+        "import sys, runpy; sys.argv=['sensorkit','validate',%r];\n"
+        "try:\n  runpy.run_module('sensorkit', run_name='__main__')\n"
+        "except SystemExit: pass\n"
+        "bad=[m for m in ('pybullet','trimesh','yourdfpy') if m in sys.modules]; print(bad)"
+    ) % str(GOOD)
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert res.stdout.strip().endswith("[]"), res.stdout + res.stderr
+
+
+def test_pre_commit_hook_file() -> None:
+    import yaml
+
+    hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
+    (hook,) = [h for h in hooks if h["id"] == "sensorkit-validate"]
+    assert hook["entry"] == "sensorkit validate" and hook["language"] == "python"
