@@ -11,6 +11,8 @@ from pathlib import Path
 
 import pytest
 import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from lxml import etree
 from typer.testing import CliRunner
 
@@ -489,3 +491,15 @@ def test_dry_run_writes_nothing(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert "config/bridge.yaml" in result.stdout
     assert [p.name for p in tmp_path.iterdir()] == ["robot.yaml"]
+
+
+finite = st.floats(allow_nan=False, allow_infinity=False, min_value=-1e9, max_value=1e9)
+
+
+@settings(max_examples=200, deadline=None)
+@given(xyz=st.lists(finite, min_size=3, max_size=3), rpy=st.lists(finite, min_size=3, max_size=3))
+def test_numbers_reach_the_xacro_exactly(xyz: list[float], rpy: list[float]) -> None:
+    text = GOOD.replace("xyz: [0.25, 0, 0.1]", f"xyz: {xyz!r}\n    rpy: {rpy!r}")
+    sensor = parse_spec(text, Path("robot.yaml")).sensors[0]
+    assert [float(v) for v in sensor.xyz.split()] == xyz
+    assert [float(v) for v in sensor.rpy.split()] == rpy

@@ -144,6 +144,10 @@ def _publish(temp: Path, out: Path) -> None:
     if not out.exists():
         os.replace(temp, out)
         return
+    if not any(out.iterdir()):
+        out.rmdir()  # POSIX would replace an empty folder, Windows would not
+        os.replace(temp, out)
+        return
     old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
     old.rmdir()
     os.replace(out, old)
