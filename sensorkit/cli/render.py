@@ -1,0 +1,137 @@
+"""``sensorkit render preview``: look through every sensor in pybullet.
+
+Thin: parse options, call ``sensorkit.render.render_preview``, print. pybullet (and
+numpy-heavy rendering code) is imported inside the command, so ``sensorkit validate``
+never loads it. Progress goes to stderr; the per-sensor result and the paths written
+go to stdout. Exit status: 0, or 1 when a check failed, 2 when it could not run.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from sensorkit.cli.common import (
+    ArgOpt,
+    FileArg,
+    PackagePathOpt,
+    die,
+    handle_errors,
+    parse_xacro_args,
+)
+
+render_app = typer.Typer(
+    name="render",
+    help="Render the robot's sensors in pybullet (no display needed).",
+    no_args_is_help=True,
+    add_completion=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
+
+
+def parse_joints(items: list[str] | None) -> dict[str, float]:
+    """``NAME=VALUE`` items (radians or metres) into a dict; a malformed one is a usage error."""
+    out: dict[str, float] = {}
+    for item in items or []:
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            die(f"--joint {item!r}: expected NAME=VALUE (radians or metres)")
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value):
+            die(f"--joint {item!r}: {text.strip()!r} is not a finite number")
+        out[name] = value
+    return out
+
+
+@render_app.command("preview")
+@handle_errors
+def preview(
+    file: FileArg,
+    out: Annotated[
+        Path, typer.Option("--out", "-o", help="folder to write into (created if needed)")
+    ] = Path("sensorkit-preview"),
+    scene: Annotated[
+        Path | None,
+        typer.Option(
+            "--scene",
+            help="a URDF of static objects to use instead of the default room (the ground stays)",
+        ),
+    ] = None,
+    sensor: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--sensor", help="only this sensor (repeatable; default: all)", metavar="NAME"
+        ),
+    ] = None,
+    joint: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--joint",
+            help="joint position NAME=VALUE in radians or metres (repeatable; default 0)",
+            metavar="NAME=VALUE",
+        ),
+    ] = None,
+    arg: ArgOpt = None,
+    package_path: PackagePathOpt = None,
+    target: Annotated[
+        str,
+        typer.Option(
+            "--target",
+            help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, frames)",
+        ),
+    ] = "auto",
+) -> None:
+    """Render every camera and cast every lidar of FILE, with checks, into --out."""
+    xacro_args = parse_xacro_args(arg)
+    joints = parse_joints(joint)
+    if scene is not None and not scene.is_file():
+        die(
+            f"--scene {scene}: no such file"
+            if not scene.exists()
+            else f"--scene {scene}: not a file"
+        )
+
+    from rich.console import Console
+
+    from sensorkit.render import render_preview
+
+    err = Console(stderr=True, highlight=False, log_path=False)
+    with err.status("starting", spinner="dots") as status:
+
+        def progress(message: str) -> None:
+            status.update(message)
+            err.log(message)
+
+        result = render_preview(
+            file,
+            out,
+            scene=scene,
+            sensors=tuple(sensor or ()),
+            joints=joints,
+            args=xacro_args,
+            package_paths=tuple(package_path or ()),
+            target=target,
+            progress=progress,
+        )
+    for s in result.sensors:
+        typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))
+        for c in s.checks:
+            if c.status in ("warn", "fail"):
+                typer.echo(f"  {c.status}: {c.name}: {c.message}")
+    for note in result.notes:
+        err.print(f"note: {note}", markup=False)
+    typer.echo(f"wrote {result.files['index']}")
+    if result.failed:
+        raise typer.Exit(1)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``render`` group to the ``sensorkit`` command."""
+    app.add_typer(render_app, name="render")

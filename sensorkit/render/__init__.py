@@ -1,0 +1,18 @@
+"""Rendering: the robot in pybullet, seen through its own sensors.
+
+This package is the only place in sensorkit that imports pybullet, and only
+``sensorkit.render.sim`` does, when a preview runs; importing ``sensorkit.render``
+itself stays light.
+
+Modules: ``preview`` (``render_preview``, the entry point), ``sim`` (pybullet),
+``camera`` and ``lidar`` (sensor geometry and checks), ``scene`` (shapes with exact
+geometry), ``poses`` (kinematics at given joints), ``urdf_out`` (the URDF pybullet
+loads), ``overview`` / ``raster`` / ``png`` (pictures), ``report`` (summary.json,
+index.html).
+"""
+
+from __future__ import annotations
+
+from sensorkit.render.preview import PreviewResult, SensorPreview, render_preview
+
+__all__ = ["PreviewResult", "SensorPreview", "render_preview"]

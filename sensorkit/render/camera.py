@@ -1,0 +1,411 @@
+"""Cameras: what the simulator renders, what camera_info publishes, and how they compare.
+
+Pixel coordinates
+-----------------
+Everything measured in an image here uses 0-based pixel-centre coordinates: pixel
+``(i, r)`` (column, row) covers ``[i - 0.5, i + 0.5] x [r - 0.5, r + 0.5]``, as OpenCV and
+ROS image_geometry read them. In those coordinates:
+
+* Gazebo (Classic and Sim, OpenGL rasterisers that sample at pixel centres) renders a
+  symmetric frustum whose optical axis passes through ``((W-1)/2, (H-1)/2)``; with
+  ``<lens><intrinsics>`` gz-sensors builds the frustum from ``cx, cy`` read with pixel
+  edges at integers, i.e. its axis passes through ``(cx - 0.5, cy - 0.5)``.
+* pybullet's TinyRenderer samples pixel ``(i, r)`` at viewport point ``(i, H - 1 - r)``,
+  not at the pixel centre: with pybullet's own symmetric projection
+  (``computeProjectionMatrixFOV``) its optical axis lands on ``(W/2, H/2 - 1)``, half a
+  pixel right of and half a pixel above Gazebo's. ``RenderCamera.projection_matrix``
+  builds the frustum so that pixel ``(i, r)`` sees exactly the direction
+  ``((i - cx)/fx, (r - cy)/fy, 1)`` of the camera being emulated; the preview's images
+  are therefore Gazebo's images, pixel for pixel (up to rasterisation).
+* camera_info's K is written in the simulator's convention: classic ``cx = (W+1)/2``
+  (the image centre if the first pixel's centre is 1), gz ``cx = W/2`` (first centre at
+  0.5), ideal ``cx = (W-1)/2`` (first centre at 0). ``PIXEL_ORIGIN`` holds those offsets.
+
+The reprojection check projects every visible marker through the published K, moves the
+result by the convention's ``PIXEL_ORIGIN`` into 0-based pixel-centre coordinates, and
+compares it with the marker's centroid in the image: that residual is what the check
+judges (it catches a wrong pose, fov, focal length or principal point). The constant
+``PIXEL_ORIGIN`` bias that a 0-based consumer (OpenCV, image_geometry, ORB-SLAM3) sees
+when it uses camera_info's K as is, 1 px for classic and 0.5 px for gz, is reported
+beside it, measured as well as predicted.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from sensorkit.intrinsics import Intrinsics, camera_intrinsics
+from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, invert
+from sensorkit.render.checks import Check
+
+if TYPE_CHECKING:
+    from sensorkit.model.sensors import CameraSpec, Sensor
+    from sensorkit.render.scene import Shape
+    from sensorkit.render.sim import CameraImage
+
+__all__ = [
+    "PIXEL_ORIGIN",
+    "RenderCamera",
+    "depth_check",
+    "depth_from_buffer",
+    "orb_check",
+    "published_intrinsics",
+    "render_camera",
+    "reprojection_check",
+]
+
+PIXEL_ORIGIN = {"classic": 1.0, "gz": 0.5, "ideal": 0.0}
+SDF_DEFAULTS = {"width": 320, "height": 240, "hfov": 1.047, "near": 0.1, "far": 100.0}
+REPROJECTION_LIMIT_PX = 0.5
+DEPTH_LIMIT_M = 0.01
+# ORB-SLAM3 Tracking: monocular initialisation needs more than 100 keypoints in each of
+# two frames, stereo/RGB-D initialisation more than 500 (StereoInitialization).
+ORB_NEEDED = {"mono": 100, "rgbd": 500}
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def convention_of(target: str) -> str:
+    """The camera_info convention of a target: Gazebo Classic (ROS 1 and 2) or gz."""
+    return "classic" if target in ("classic", "ros1") else "gz"
+
+
+@dataclass
+class RenderCamera:
+    """The pinhole camera the simulator renders, in 0-based pixel-centre coordinates."""
+
+    width: int
+    height: int
+    fx: float
+    fy: float
+    cx: float
+    cy: float
+    skew: float
+    near: float
+    far: float
+    T_world_render: Mat  # x forward, y left, z up (Gazebo's camera frame)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def T_world_optical(self) -> Mat:
+        T = np.eye(4)
+        T[:3, :3] = R_BODY_OPTICAL
+        out: Mat = self.T_world_render @ T
+        return out
+
+    def view_matrix(self) -> list[float]:
+        """OpenGL view matrix (column-major): eye frame x right, y up, z backwards."""
+        T_world_eye = self.T_world_optical.copy()
+        T_world_eye[:3, 1:3] *= -1.0
+        V = invert(T_world_eye)
+        return [float(v) for v in V.T.ravel()]
+
+    def projection_matrix(self) -> list[float]:
+        """Projection for TinyRenderer so that pixel (i, r) sees ((i-cx)/fx, (r-cy)/fy, 1).
+
+        TinyRenderer samples NDC ``x = 2i/W - 1`` and ``y = 1 - 2(r+1)/H`` (see the module
+        docstring); solving ``u = fx X/Z + s Y/Z + cx``, ``v = fy Y/Z + cy`` for the
+        clip coordinates gives the first two rows; the last two are OpenGL's.
+        """
+        W, H, n, f = self.width, self.height, self.near, self.far
+        M = np.array(
+            [
+                [2 * self.fx / W, -2 * self.skew / W, 1 - 2 * self.cx / W, 0.0],
+                [0.0, 2 * self.fy / H, 2 * (self.cy + 1) / H - 1, 0.0],
+                [0.0, 0.0, -(f + n) / (f - n), -2 * f * n / (f - n)],
+                [0.0, 0.0, -1.0, 0.0],
+            ]
+        )
+        return [float(v) for v in M.T.ravel()]
+
+    def pixel_rays(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(origin (3,), unit directions in the world (H, W, 3), cos to the axis (H, W))."""
+        i = np.arange(self.width, dtype=np.float64)[None, :]
+        r = np.arange(self.height, dtype=np.float64)[:, None]
+        y = (r - self.cy) / self.fy
+        x = (i - self.cx - self.skew * y) / self.fx
+        x, y = np.broadcast_arrays(x, y)
+        d = np.stack([x, y, np.ones_like(x)], axis=-1)
+        norm = np.linalg.norm(d, axis=-1)
+        d /= norm[..., None]
+        T = self.T_world_optical
+        return T[:3, 3].copy(), d @ T[:3, :3].T, 1.0 / norm
+
+    def world_to_optical(self, points: FloatArray) -> FloatArray:
+        T = invert(self.T_world_optical)
+        out: FloatArray = np.asarray(points) @ T[:3, :3].T + T[:3, 3]
+        return out
+
+
+def depth_from_buffer(
+    buffer: npt.NDArray[np.float32], near: float, far: float
+) -> npt.NDArray[np.float32]:
+    """OpenGL depth buffer to metres along the optical axis; nothing rendered -> +inf."""
+    d = buffer.astype(np.float64)
+    with np.errstate(divide="ignore"):
+        z = far * near / (far - (far - near) * d)
+    z[d >= 1.0] = np.inf
+    return z.astype(np.float32)
+
+
+def _plugin_number(sensor: Sensor, names: tuple[str, ...], notes: list[str]) -> float | None:
+    from sensorkit.model.frames import ros_plugin
+
+    plugin = ros_plugin(sensor)
+    if plugin is None:
+        return None
+    for name in names:
+        text = plugin.param(name)
+        if text is None:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            notes.append(f"plugin <{name}> {text!r} is not a number; ignored")
+            return None
+        return value if math.isfinite(value) else None
+    return None
+
+
+def _size(cam: CameraSpec, notes: list[str]) -> tuple[int, int, float]:
+    width = cam.width if cam.width and cam.width > 0 else None
+    height = cam.height if cam.height and cam.height > 0 else None
+    hfov = cam.hfov
+    if width is None:
+        width = int(SDF_DEFAULTS["width"])
+        notes.append(f"no usable image width: SDF's default {width}")
+    if height is None:
+        height = int(SDF_DEFAULTS["height"])
+        notes.append(f"no usable image height: SDF's default {height}")
+    if hfov is None:
+        hfov = SDF_DEFAULTS["hfov"]
+        notes.append(f"no horizontal_fov: SDF's default {hfov} rad")
+    return width, height, hfov
+
+
+def published_intrinsics(
+    sensor: Sensor, cam: CameraSpec, target: str
+) -> tuple[Intrinsics, list[str]]:
+    """The camera_info a simulator publishes for ``cam`` under ``target``.
+
+    Raises:
+        InvalidValue: the camera cannot be a pinhole (e.g. hfov >= pi).
+    """
+    notes: list[str] = []
+    width, height, hfov = _size(cam, notes)
+    dist = cam.distortion
+    distortion = None
+    if any(dist.get(k, 0.0) for k in ("k1", "k2", "k3", "p1", "p2")):
+        distortion = tuple(dist.get(k, 0.0) for k in ("k1", "k2", "p1", "p2", "k3"))
+        notes.append("distortion is published in camera_info but not rendered in the preview")
+    convention = convention_of(target)
+    if convention == "classic":
+        ros1 = target == "ros1"
+        cx = _plugin_number(sensor, ("Cx",) if ros1 else ("cx",), notes)
+        cy = _plugin_number(sensor, ("Cy",) if ros1 else ("cy",), notes)
+        focal = _plugin_number(sensor, ("focalLength",) if ros1 else ("focal_length",), notes)
+        baseline = _plugin_number(sensor, ("hackBaseline",) if ros1 else ("hack_baseline",), notes)
+        if ros1:  # gazebo_ros_camera_utils (ROS 1) treats 0 as "compute it"
+            cx = cx or None
+            cy = cy or None
+        intr = camera_intrinsics(
+            width,
+            height,
+            hfov,
+            "classic",
+            focal_length=focal,
+            cx=cx,
+            cy=cy,
+            distortion=distortion,  # type: ignore[arg-type]
+            hack_baseline=baseline or 0.0,
+        )
+    else:
+        intr = camera_intrinsics(
+            width,
+            height,
+            hfov,
+            "gz",
+            lens_intrinsics=cam.lens_intrinsics,
+            distortion=distortion,  # type: ignore[arg-type]
+        )
+    return intr, notes
+
+
+def render_camera(
+    sensor: Sensor, cam: CameraSpec, target: str, T_world_render: Mat, published: Intrinsics
+) -> RenderCamera:
+    """The camera the simulator actually renders (which camera_info may not describe)."""
+    notes: list[str] = []
+    width, height, hfov = _size(cam, [])
+    if convention_of(target) == "gz" and cam.lens_intrinsics is not None:
+        fx, fy, cx, cy, skew = cam.lens_intrinsics
+        cx0, cy0 = cx - PIXEL_ORIGIN["gz"], cy - PIXEL_ORIGIN["gz"]
+    else:
+        if convention_of(target) == "gz":
+            fx, fy = published.fx, published.fy
+        else:
+            fx = fy = width / (2.0 * math.tan(hfov / 2.0))
+        cx0, cy0, skew = (width - 1) / 2.0, (height - 1) / 2.0, 0.0
+    near = cam.near if cam.near is not None and cam.near > 0 else SDF_DEFAULTS["near"]
+    far = cam.far if cam.far is not None and cam.far > near else max(SDF_DEFAULTS["far"], near * 10)
+    return RenderCamera(width, height, fx, fy, cx0, cy0, skew, near, far, T_world_render, notes)
+
+
+# ---- checks ------------------------------------------------------------------------------
+def _keys(image: CameraImage) -> npt.NDArray[np.int64]:
+    return image.body.astype(np.int64) * 65536 + (image.link.astype(np.int64) + 1)
+
+
+def _interior(keys: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
+    """Pixels whose 4 neighbours all show the same body and link."""
+    inside = np.ones(keys.shape, dtype=bool)
+    inside[1:, :] &= keys[1:, :] == keys[:-1, :]
+    inside[:-1, :] &= keys[:-1, :] == keys[1:, :]
+    inside[:, 1:] &= keys[:, 1:] == keys[:, :-1]
+    inside[:, :-1] &= keys[:, :-1] == keys[:, 1:]
+    inside[0, :] = inside[-1, :] = False
+    inside[:, 0] = inside[:, -1] = False
+    return inside
+
+
+def reprojection_check(
+    camera: RenderCamera,
+    image: CameraImage,
+    published: Intrinsics,
+    markers: list[tuple[Shape, int, int]],
+) -> Check:
+    """Markers' image centroids against their projection through camera_info's K."""
+    origin = PIXEL_ORIGIN[published.convention]
+    if not markers:
+        return Check("reprojection", "skipped", "the scene has no markers")
+    centres = np.array([m.centre for m, _, _ in markers])
+    p_opt = camera.world_to_optical(centres)
+    predicted = published.project(p_opt)  # in the convention's coordinates
+    keys = _keys(image)
+    rows: list[dict[str, float | str]] = []
+    W, H = camera.width, camera.height
+    for (shape, body, link), p, uv in zip(markers, p_opt, predicted, strict=True):
+        if not np.isfinite(uv).all() or p[2] <= camera.near:
+            continue
+        radius = shape.size[0]
+        expected = math.pi * (camera.fx * radius / p[2]) * (camera.fy * radius / p[2])
+        u0, v0 = uv[0] - origin, uv[1] - origin
+        r_px = max(camera.fx, camera.fy) * radius / p[2]
+        if not (r_px + 1 <= u0 <= W - 2 - r_px and r_px + 1 <= v0 <= H - 2 - r_px):
+            continue
+        mask = keys == body * 65536 + link + 1
+        count = int(mask.sum())
+        if count < 12 or count < 0.7 * expected:
+            continue  # too small to measure to a fraction of a pixel, or partly hidden
+        ys, xs = np.nonzero(mask)
+        if xs.min() == 0 or ys.min() == 0 or xs.max() == W - 1 or ys.max() == H - 1:
+            continue
+        du, dv = float(xs.mean() - u0), float(ys.mean() - v0)
+        rows.append(
+            {
+                "marker": shape.name,
+                "u": float(xs.mean()),
+                "v": float(ys.mean()),
+                "du": du,
+                "dv": dv,
+                "pixels": count,
+            }
+        )
+    if not rows:
+        return Check(
+            "reprojection", "skipped", "no marker is fully in view (markers need 12 or more pixels)"
+        )
+    du = np.array([r["du"] for r in rows], dtype=np.float64)
+    dv = np.array([r["dv"] for r in rows], dtype=np.float64)
+    err = np.hypot(du, dv)
+    rms = float(np.sqrt(np.mean(err**2)))
+    worst_px = float(err.max())
+    bias = (float(np.mean(du)) + origin, float(np.mean(dv)) + origin)
+    details = {
+        "markers": len(rows),
+        "rms_px": rms,
+        "max_px": worst_px,
+        "convention": published.convention,
+        "pixel_origin": origin,
+        "rendered_principal_point": [camera.cx, camera.cy],
+        "published_principal_point": [published.cx, published.cy],
+        "zero_based_bias_px": [bias[0], bias[1]],
+        "zero_based_bias_predicted_px": [published.cx - camera.cx, published.cy - camera.cy],
+        "per_marker": rows[:50],
+    }
+    status = "ok" if rms <= REPROJECTION_LIMIT_PX else "fail"
+    message = (
+        f"{len(rows)} markers land {rms:.2f} px (rms, worst {worst_px:.2f} px) from camera_info's K "
+        f"({published.convention} convention, first pixel centre at {origin:g})"
+    )
+    if abs(published.cx - camera.cx) > 1e-9 or abs(published.cy - camera.cy) > 1e-9:
+        message += (
+            f"; read 0-based (OpenCV, image_geometry) that K is off by ({bias[0]:+.2f}, {bias[1]:+.2f}) px "
+            f"(predicted ({published.cx - camera.cx:+.2f}, {published.cy - camera.cy:+.2f}))"
+        )
+    return Check("reprojection", status, message, rms, "px", REPROJECTION_LIMIT_PX, details)
+
+
+def depth_check(
+    camera: RenderCamera,
+    image: CameraImage,
+    depth: npt.NDArray[np.float32],
+    shapes_of: dict[tuple[int, int], list[Shape]],
+) -> Check:
+    """Rendered depth against the exact depth of known flat surfaces (boxes, the ground)."""
+    keys = _keys(image)
+    interior = _interior(keys) & np.isfinite(depth)
+    origin, dirs, cos = camera.pixel_rays()
+    analytic = np.full(depth.shape, np.nan)
+    for (body, link), shapes in shapes_of.items():
+        visual = [s for s in shapes if s.visual]
+        if not visual or not all(s.is_flat for s in visual):
+            continue
+        sel = interior & (keys == body * 65536 + link + 1)
+        if not sel.any():
+            continue
+        d = dirs[sel]
+        o = np.broadcast_to(origin, d.shape)
+        t = (
+            np.fmin.reduce([s.intersect(o, d) for s in visual])
+            if len(visual) > 1
+            else visual[0].intersect(o, d)
+        )
+        analytic[sel] = t * cos[sel]
+    compared = np.isfinite(analytic)
+    n = int(compared.sum())
+    if n == 0:
+        return Check("depth", "skipped", "no known flat surface in view")
+    err = np.abs(depth[compared].astype(np.float64) - analytic[compared])
+    p99 = float(np.percentile(err, 99))
+    worst_m = float(err.max())
+    status = "ok" if p99 <= DEPTH_LIMIT_M else "fail"
+    message = (
+        f"rendered depth of {n} pixels on known surfaces is within {p99 * 1000:.2f} mm "
+        f"(99th percentile; worst {worst_m * 1000:.2f} mm) of the exact depth"
+    )
+    details = {"pixels": n, "p99_m": p99, "max_m": worst_m, "median_m": float(np.median(err))}
+    return Check("depth", status, message, p99, "m", DEPTH_LIMIT_M, details)
+
+
+def orb_check(rgb: npt.NDArray[np.uint8], kind: str) -> Check:
+    """ORB keypoints per frame (OpenCV, optional) against what ORB-SLAM3 needs to start."""
+    try:
+        import cv2
+    except ImportError:
+        return Check(
+            "orb_features", "skipped", "OpenCV is not installed (pip install 'sensorkit[orb]')"
+        )
+    need = ORB_NEEDED["rgbd" if kind in ("depth", "rgbd") else "mono"]
+    gray = cv2.cvtColor(np.ascontiguousarray(rgb), cv2.COLOR_RGB2GRAY)
+    orb = cv2.ORB_create(nfeatures=1000, scaleFactor=1.2, nlevels=8, fastThreshold=20)
+    count = len(orb.detect(gray, None))
+    status = "ok" if count > need else "warn"
+    mode = "RGB-D" if need == ORB_NEEDED["rgbd"] else "monocular"
+    message = f"{count} ORB keypoints (1000 asked); ORB-SLAM3 {mode} initialisation needs more than {need}"
+    return Check("orb_features", status, message, float(count), "keypoints", float(need))

@@ -1,0 +1,176 @@
+"""Top-down pictures: the whole scene with every sensor (overview.png), and each lidar's
+scan around the sensor (scan.png).
+
+In the overview, +x points right and +y up; grid lines are 1 m apart. Each sensor has its
+own colour: a camera's frustum (edge rays at the middle image row, as far as they reach)
+and optical axis, a lidar's beams to their hits. When the frame the data is stamped with
+does not match where the sensor looks, that frame's forward axis is drawn dashed in
+magenta from the frame's origin, beside the true axis (two magenta rings when that axis
+points straight up or down).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from sensorkit.render.raster import Canvas, convex_hull
+from sensorkit.render.scene import GROUND, MARKER, Shape
+
+__all__ = ["PALETTE", "SensorDrawing", "draw_overview", "draw_scan"]
+
+FloatArray = npt.NDArray[np.float64]
+PALETTE: list[tuple[int, int, int]] = [
+    (31, 119, 180),
+    (255, 127, 14),
+    (44, 160, 44),
+    (214, 39, 40),
+    (148, 103, 189),
+    (140, 86, 75),
+    (23, 190, 207),
+    (188, 189, 34),
+]
+MISMATCH = (230, 0, 200)
+
+
+@dataclass
+class SensorDrawing:
+    """What the overview needs of one sensor, in world coordinates."""
+
+    name: str
+    colour: tuple[int, int, int]
+    origin: FloatArray
+    axis_end: FloatArray  # the true forward axis, as far as drawn
+    edges: list[FloatArray] = field(default_factory=list)  # frustum edge end points
+    hits: FloatArray | None = None  # lidar hit points (N, 3)
+    published_origin: FloatArray | None = None
+    published_axis_end: FloatArray | None = None
+
+
+class _View:
+    def __init__(self, half: float, size: int) -> None:
+        self.half = half
+        self.scale = size / (2.0 * half)
+        self.size = size
+
+    def px(self, xy: FloatArray) -> FloatArray:
+        """World (x, y) rows to pixel (column, row) rows."""
+        a = np.atleast_2d(np.asarray(xy, dtype=np.float64))
+        return np.stack(
+            [(a[:, 0] + self.half) * self.scale, (self.half - a[:, 1]) * self.scale], axis=1
+        )
+
+
+def draw_overview(
+    scene_shapes: list[Shape],
+    robot_shapes: list[Shape],
+    robot_boxes: list[tuple[FloatArray, FloatArray]],
+    sensors: list[SensorDrawing],
+    half: float,
+    size: int = 720,
+) -> npt.NDArray[np.uint8]:
+    """The top-down overview as an RGB image."""
+    canvas = Canvas(size, size, (246, 246, 242))
+    view = _View(half, size)
+    if half <= 20:
+        for k in range(int(-np.floor(half)), int(np.floor(half)) + 1):
+            a = view.px(np.array([[k, -half], [k, half]]))
+            b = view.px(np.array([[-half, k], [half, k]]))
+            shade = (205, 205, 200) if k else (170, 170, 165)
+            canvas.line(a[0], a[1], shade)
+            canvas.line(b[0], b[1], shade)
+    for shape in scene_shapes:
+        if shape.kind == GROUND or not shape.visual:
+            continue
+        pts = shape.footprint()
+        if len(pts) < 3:
+            continue
+        hull = view.px(convex_hull(pts))
+        fill = (
+            (240, 120, 220)
+            if shape.role == MARKER
+            else (190, 180, 165)
+            if shape.role == "wall"
+            else (215, 200, 170)
+        )
+        canvas.polygon(hull, fill, (120, 110, 100))
+    for s in sensors:  # beams first, faint, so that the robot and the axes stay visible
+        if s.hits is not None and len(s.hits):
+            hits = s.hits[np.isfinite(s.hits).all(axis=1)]
+            step = max(1, len(hits) // 360)
+            sub = view.px(hits[::step, :2])
+            o = view.px(s.origin[:2])
+            faint = tuple(int(c * 0.25 + 255 * 0.75) for c in s.colour)
+            canvas.lines(np.repeat(o, len(sub), axis=0), sub, faint)  # type: ignore[arg-type]
+    for lo, hi in robot_boxes:
+        rect = view.px(np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]))
+        canvas.polygon(rect, (120, 130, 140), (60, 60, 70))
+    for shape in robot_shapes:
+        pts = shape.footprint()
+        if len(pts) >= 3:
+            canvas.polygon(view.px(convex_hull(pts)), (95, 105, 120), (40, 40, 50))
+    for s in sensors:
+        o = view.px(s.origin[:2])[0]
+        if s.hits is not None and len(s.hits):
+            canvas.points(view.px(s.hits[:, :2]), s.colour, radius=1.0)
+        for edge in s.edges:
+            canvas.line(o, view.px(edge[:2])[0], s.colour, width=2)
+        if len(s.edges) == 2:
+            canvas.line(view.px(s.edges[0][:2])[0], view.px(s.edges[1][:2])[0], s.colour)
+        canvas.line(o, view.px(s.axis_end[:2])[0], s.colour, width=2)
+        if s.published_origin is not None and s.published_axis_end is not None:
+            po = view.px(s.published_origin[:2])[0]
+            pe = view.px(s.published_axis_end[:2])[0]
+            true_len = float(np.hypot(*(view.px(s.axis_end[:2])[0] - o)))
+            canvas.line(po, pe, MISMATCH, width=2, dash=6)
+            if float(np.hypot(*(pe - po))) < max(6.0, 0.2 * true_len):  # it points up or down
+                canvas.circle(po, 9, None, MISMATCH)
+                canvas.circle(po, 12, None, MISMATCH)
+            canvas.circle(po, 3, MISMATCH)
+        canvas.circle(o, 4, s.colour, (0, 0, 0))
+    return canvas.image
+
+
+def draw_scan(
+    points: FloatArray,
+    elevation_index: npt.NDArray[np.int64],
+    self_hit: npt.NDArray[np.bool_],
+    range_max: float,
+    size: int = 480,
+) -> npt.NDArray[np.uint8]:
+    """A lidar's returns seen from above in its own frame, forward (+x) up, left (+y) left.
+
+    Range rings every 1, 2, 5, 10... m; returns from the robot itself in red; 3D scans are
+    coloured by beam row.
+    """
+    canvas = Canvas(size, size, (250, 250, 250))
+    finite = np.isfinite(points).all(axis=1)
+    reach = (
+        float(np.max(np.hypot(points[finite, 0], points[finite, 1]))) if finite.any() else range_max
+    )
+    half = max(1.0, min(range_max, reach * 1.1))
+    scale = size / (2.0 * half)
+    c = size / 2.0
+
+    def px(xy: FloatArray) -> FloatArray:
+        return np.stack([c - xy[:, 1] * scale, c - xy[:, 0] * scale], axis=1)
+
+    step = next((s for s in (0.5, 1, 2, 5, 10, 20, 50, 100) if half / s <= 8), 200.0)
+    for k in range(1, int(half / step) + 1):
+        canvas.circle((c, c), k * step * scale, None, (215, 215, 215))
+    canvas.line((c, 0), (c, size), (225, 225, 225))
+    canvas.line((0, c), (size, c), (225, 225, 225))
+    rows = int(elevation_index.max()) + 1 if len(elevation_index) else 1
+    if rows > 1:
+        t = elevation_index / max(1, rows - 1)
+        colours = np.stack([40 + 200 * t, 90 + 60 * (1 - t), 220 - 180 * t], axis=1).astype(
+            np.uint8
+        )
+    else:
+        colours = np.tile(np.array([[31, 119, 180]], dtype=np.uint8), (len(points), 1))
+    colours[self_hit] = (220, 30, 30)
+    canvas.points(px(points[finite, :2]), colours[finite], radius=1.0)
+    canvas.polygon(np.array([[c, c - 9], [c - 6, c + 6], [c + 6, c + 6]]), (0, 0, 0))
+    return canvas.image

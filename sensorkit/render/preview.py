@@ -1,0 +1,625 @@
+"""``render_preview``: put the robot in a textured scene and look through every sensor.
+
+The library side of ``sensorkit render preview``: it loads the description, builds the
+scene, renders every camera and casts every lidar in pybullet, runs the checks, and
+writes the files. It never prints; pass ``progress`` to hear what it is doing.
+
+Output folder layout::
+
+    DIR/summary.json  DIR/overview.png  DIR/index.html
+    DIR/<sensor>/rgb.png camera_info.yaml [depth.npy depth.png]     cameras
+    DIR/<sensor>/<camera>/...                                        multicamera
+    DIR/<sensor>/ranges.npy scan.png [points.npy]                    lidars
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from sensorkit.errors import InputError, UsageError
+from sensorkit.model.transforms import Mat, matrix_to_rpy
+from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
+
+if TYPE_CHECKING:
+    from sensorkit.findings import Finding
+    from sensorkit.model.frames import SensorFrames
+    from sensorkit.model.robot import Robot
+    from sensorkit.model.sensors import CameraSpec, Sensor
+    from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.scene import Scene, Shape
+    from sensorkit.render.sim import World
+
+__all__ = ["PreviewResult", "SensorPreview", "render_preview"]
+
+Progress = Callable[[str], None]
+
+
+@dataclass
+class SensorPreview:
+    """What was rendered for one sensor (one camera of a multicamera), and how it checked."""
+
+    name: str  # the sensor name; "sensor/camera" for a camera of a multicamera
+    sensor: str
+    type: str
+    kind: str
+    link: str | None
+    directory: Path | None = None
+    files: dict[str, Path] = field(default_factory=dict)
+    checks: list[Check] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    skipped: str | None = None  # why nothing was rendered
+    info: dict[str, Any] = field(default_factory=dict)  # frames, intrinsics, scan, topics
+
+    @property
+    def status(self) -> str:
+        return "skipped" if self.skipped else worst(self.checks)
+
+
+@dataclass
+class PreviewResult:
+    out_dir: Path
+    robot: str
+    source: Path
+    target: str
+    target_reason: str
+    scene: str
+    joints: dict[str, float]
+    sensors: list[SensorPreview]
+    files: dict[str, Path] = field(default_factory=dict)  # summary, overview, index
+    findings: list[Finding] | None = None  # validate's; None when it could not run
+    findings_error: str | None = None
+    notes: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @property
+    def status(self) -> str:
+        return worst([c for s in self.sensors for c in s.checks])
+
+    @property
+    def failed(self) -> bool:
+        return self.status == "fail"
+
+
+def _say(progress: Progress | None, message: str) -> None:
+    if progress is not None:
+        progress(message)
+
+
+def _folder_name(name: str, taken: set[str]) -> str:
+    base = re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "sensor"
+    out, k = base, 2
+    while out.lower() in taken or out.lower() in ("summary.json", "overview.png", "index.html"):
+        out, k = f"{base}_{k}", k + 1
+    taken.add(out.lower())
+    return out
+
+
+def _pose_dict(T: Mat) -> dict[str, Any]:
+    return {
+        "xyz": [float(v) for v in T[:3, 3]],
+        "rpy": [float(v) for v in matrix_to_rpy(T[:3, :3])],
+        "matrix": [[float(v) for v in row] for row in T],
+    }
+
+
+def _load_robot(
+    path: Path, args: Mapping[str, str], package_paths: Sequence[str], what: str
+) -> Robot:
+    from sensorkit.model import load_robot
+
+    loaded = load_robot(path, args=dict(args), package_paths=tuple(package_paths))
+    if loaded.robot is None:
+        first = loaded.findings[0] if loaded.findings else None
+        detail = f"{first.source}: {first.message}" if first is not None else "cannot be read"
+        msg = f"{what} {detail}" if what else detail
+        raise InputError(msg)
+    return loaded.robot
+
+
+def _topics(sensor: Sensor, target: str) -> list[str] | None:
+    try:
+        from sensorkit.model.frames import ros_plugin
+        from sensorkit.model.targets import is_gz
+        from sensorkit.rules.plugins import gz_topics, resolved_topics
+    except ImportError:
+        return None
+    if is_gz(target):
+        return gz_topics(sensor) or None
+    plugin = ros_plugin(sensor)
+    if plugin is None:
+        return None
+    return [full for _, full in resolved_topics(plugin, sensor)] or None
+
+
+class _Run:
+    """State shared by the sensors of one preview."""
+
+    def __init__(
+        self,
+        robot: Robot,
+        world: World,
+        scene: Scene,
+        poses: dict[str, Mat],
+        target: str,
+        out_dir: Path,
+    ) -> None:
+        from sensorkit.model.sdf import convert
+
+        self.robot = robot
+        self.world = world
+        self.scene = scene
+        self.poses = poses
+        self.target = target
+        self.out_dir = out_dir
+        self.conv = convert(robot)
+        self.taken: set[str] = set()
+        self.drawings: list[SensorDrawing] = []
+        self.link_index = {name: idx for idx, name in world.robot_links.items()}
+        self.markers: list[tuple[Shape, int, int]] = []
+        for (body, link), shapes in world.shape_of.items():
+            visual = [s for s in shapes if s.visual]
+            if len(visual) == 1 and visual[0].kind == "sphere":
+                self.markers.append((visual[0], body, link))
+
+    def colour(self) -> tuple[int, int, int]:
+        from sensorkit.render.overview import PALETTE
+
+        return PALETTE[len(self.drawings) % len(PALETTE)]
+
+    def frames(self, sensor: Sensor) -> SensorFrames:
+        from sensorkit.model.frames import sensor_frames
+
+        return sensor_frames(self.robot, sensor, self.target, self.conv)
+
+    def T_world_render(self, sensor: Sensor) -> Mat | None:
+        if sensor.reference is None or sensor.reference not in self.poses:
+            return None
+        out: Mat = self.poses[sensor.reference] @ sensor.pose.matrix()
+        return out
+
+    def pose_check(self, link: str) -> Check:
+        idx = self.link_index.get(link)
+        if idx is None or self.world.robot is None:
+            return Check("render_pose", "skipped", f"link {link!r} is not in pybullet's model")
+        return pose_check(self.poses[link], self.world.link_frame(self.world.robot, idx), link)
+
+    def frame_info(self, frames: SensorFrames, T_render: Mat) -> dict[str, Any]:
+        return {
+            "link": frames.link,
+            "render_pose": _pose_dict(T_render),
+            "published_frame": frames.published,
+            "published_how": frames.how,
+            "published_is_default": frames.is_default,
+            "camera_frame": frames.camera_frame,
+        }
+
+
+def _camera(
+    run: _Run, sensor: Sensor, cam: CameraSpec, name: str, progress: Progress | None
+) -> SensorPreview:
+    from sensorkit.exporters import camera_dict, camera_info_yaml, write_text_atomic
+    from sensorkit.intrinsics import InvalidValue
+    from sensorkit.render._files import save_npy
+    from sensorkit.render.camera import (
+        PIXEL_ORIGIN,
+        depth_check,
+        depth_from_buffer,
+        orb_check,
+        published_intrinsics,
+        render_camera,
+        reprojection_check,
+    )
+    from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.png import write_png
+    from sensorkit.render.raster import colourise_depth
+
+    out = SensorPreview(name, sensor.name, sensor.type, sensor.kind, sensor.reference)
+    T_render = run.T_world_render(sensor)
+    if T_render is None:
+        out.skipped = f"its reference link {sensor.reference!r} is not a link of the robot"
+        return out
+    if cam.pose is not None:
+        T_render = T_render @ cam.pose.matrix()
+    try:
+        published, notes = published_intrinsics(sensor, cam, run.target)
+    except InvalidValue as exc:
+        out.skipped = f"not a pinhole camera sensorkit can render: {exc}"
+        return out
+    out.notes += notes
+    rc = render_camera(sensor, cam, run.target, T_render, published)
+    _say(progress, f"rendering {name} ({rc.width}x{rc.height})")
+    image = run.world.render(rc.width, rc.height, rc.view_matrix(), rc.projection_matrix())
+    depth = depth_from_buffer(image.depth_buffer, rc.near, rc.far)
+
+    folder = run.out_dir / _folder_name(sensor.name, run.taken)
+    if sensor.kind == "multicamera":
+        folder = folder / _folder_name(cam.name or name, set())
+    folder.mkdir(parents=True, exist_ok=True)
+    out.directory = folder
+    out.files["rgb"] = folder / "rgb.png"
+    write_png(out.files["rgb"], image.rgb)
+    if sensor.is_depth:
+        near = cam.depth_near if cam.depth_near is not None else rc.near
+        far = cam.depth_far if cam.depth_far is not None else rc.far
+        published_depth = depth.copy()
+        published_depth[published_depth > far] = np.inf
+        published_depth[published_depth < near] = -np.inf
+        out.files["depth"] = folder / "depth.npy"
+        save_npy(out.files["depth"], published_depth.astype(np.float32))
+        out.files["depth_png"] = folder / "depth.png"
+        write_png(out.files["depth_png"], colourise_depth(published_depth))
+    camera_name = None
+    from sensorkit.model.frames import ros_plugin
+
+    plugin = ros_plugin(sensor)
+    if plugin is not None:
+        camera_name = plugin.param("camera_name") or plugin.param("cameraName")
+    out.files["camera_info"] = folder / "camera_info.yaml"
+    write_text_atomic(
+        out.files["camera_info"],
+        camera_info_yaml(published, camera_name=camera_name or sensor.name),
+    )
+
+    frames = run.frames(sensor)
+    out.info["frames"] = run.frame_info(frames, T_render)
+    out.info["intrinsics"] = camera_dict(
+        published,
+        pixel_origin=PIXEL_ORIGIN[published.convention],
+        rendered={
+            "fx": rc.fx,
+            "fy": rc.fy,
+            "cx": rc.cx,
+            "cy": rc.cy,
+            "skew": rc.skew,
+            "near": rc.near,
+            "far": rc.far,
+            "coordinates": "0-based pixel centres",
+        },
+    )
+    out.info["topics"] = _topics(sensor, run.target)
+
+    robot_id = run.world.robot
+    out.checks.append(reprojection_check(rc, image, published, run.markers))
+    out.checks.append(depth_check(rc, image, depth, run.world.shape_of))
+    out.checks.append(
+        self_occlusion_check(image.body, image.link, robot_id, run.world.robot_links, "pixels")
+    )
+    out.checks.append(orb_check(image.rgb, sensor.kind))
+    if sensor.reference is not None:
+        out.checks.append(run.pose_check(sensor.reference))
+    frame = frames.camera_frame
+    T_frame = run.poses.get(frame) if frame is not None else None
+    fcheck = frame_check(
+        rc.T_world_optical, T_frame, frame, frames.image_how or frames.how, optical=True
+    )
+    out.checks.append(fcheck)
+
+    # overview: edge rays along the middle row, as far as they reach
+    origin, dirs, cos = rc.pixel_rays()
+    mid = rc.height // 2
+    reach = min(rc.far, run.scene.half_extent * 3)
+
+    def end(col: int) -> np.ndarray:
+        z = float(depth[mid, col])
+        dist = z / float(cos[mid, col]) if math.isfinite(z) else reach
+        out_end: np.ndarray = origin + dirs[mid, col] * dist
+        return out_end
+
+    centre_z = float(depth[mid, rc.width // 2])
+    axis_len = centre_z if math.isfinite(centre_z) else reach
+    drawing = SensorDrawing(
+        name,
+        run.colour(),
+        origin,
+        origin + rc.T_world_optical[:3, 2] * axis_len,
+        [end(0), end(rc.width - 1)],
+    )
+    if fcheck.status == "warn" and T_frame is not None:
+        drawing.published_origin = T_frame[:3, 3].copy()
+        drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 2] * axis_len
+    run.drawings.append(drawing)
+    out.info["colour"] = "#%02x%02x%02x" % drawing.colour
+    return out
+
+
+def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPreview:
+    from sensorkit.exporters import laser_scan_dict
+    from sensorkit.intrinsics import InvalidValue
+    from sensorkit.render._files import save_npy
+    from sensorkit.render.lidar import cast, lidar_beams, range_check
+    from sensorkit.render.overview import SensorDrawing, draw_scan
+    from sensorkit.render.png import write_png
+
+    out = SensorPreview(sensor.name, sensor.name, sensor.type, sensor.kind, sensor.reference)
+    T_render = run.T_world_render(sensor)
+    if T_render is None:
+        out.skipped = f"its reference link {sensor.reference!r} is not a link of the robot"
+        return out
+    if sensor.lidar is None:
+        out.skipped = "no <lidar> or <ray> block"
+        return out
+    try:
+        beams = lidar_beams(sensor.lidar)
+    except InvalidValue as exc:
+        out.skipped = f"its scan cannot be cast: {exc}"
+        return out
+    V, H = beams.shape
+    _say(
+        progress,
+        f"casting {sensor.name} ({V} x {H} beams)"
+        if V > 1
+        else f"casting {sensor.name} ({H} beams)",
+    )
+    scan = cast(run.world, T_render, beams)
+    folder = run.out_dir / _folder_name(sensor.name, run.taken)
+    folder.mkdir(parents=True, exist_ok=True)
+    out.directory = folder
+    out.files["ranges"] = folder / "ranges.npy"
+    save_npy(out.files["ranges"], scan.ranges if beams.vertical is not None else scan.ranges[0])
+    if beams.vertical is not None:
+        out.files["points"] = folder / "points.npy"
+        save_npy(out.files["points"], scan.points)
+    rows = np.repeat(np.arange(V), H)
+    self_hit = scan.hits.body == (run.world.robot if run.world.robot is not None else -2)
+    out.files["scan_png"] = folder / "scan.png"
+    write_png(
+        out.files["scan_png"],
+        draw_scan(scan.points.reshape(-1, 3).astype(np.float64), rows, self_hit, beams.range_max),
+    )
+
+    frames = run.frames(sensor)
+    out.info["frames"] = run.frame_info(frames, T_render)
+    out.info["scan"] = laser_scan_dict(beams.horizontal)
+    if beams.vertical is not None:
+        out.info["vertical"] = laser_scan_dict(beams.vertical)
+    out.info["shape"] = [V, H]
+    out.info["topics"] = _topics(sensor, run.target)
+    out.checks.append(range_check(scan, run.world.shape_of))
+    out.checks.append(
+        self_occlusion_check(
+            scan.hits.body, scan.hits.link, run.world.robot, run.world.robot_links, "beams"
+        )
+    )
+    if sensor.reference is not None:
+        out.checks.append(run.pose_check(sensor.reference))
+    frame = frames.published
+    T_frame = run.poses.get(frame) if frame is not None else None
+    fcheck = frame_check(T_render, T_frame, frame, frames.how, optical=False)
+    out.checks.append(fcheck)
+
+    pts = scan.points.reshape(-1, 3).astype(np.float64)
+    world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
+    finite = np.isfinite(scan.ranges.reshape(-1))
+    fwd = (
+        float(np.nanmedian(scan.ranges[np.isfinite(scan.ranges)]))
+        if finite.any()
+        else beams.range_max
+    )
+    origin = T_render[:3, 3].copy()
+    drawing = SensorDrawing(
+        sensor.name,
+        run.colour(),
+        origin,
+        origin + T_render[:3, 0] * min(fwd, 1.0),
+        [],
+        world_pts[finite],
+    )
+    if fcheck.status == "warn" and T_frame is not None:
+        drawing.published_origin = T_frame[:3, 3].copy()
+        drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 0] * min(fwd, 1.0)
+    run.drawings.append(drawing)
+    out.info["colour"] = "#%02x%02x%02x" % drawing.colour
+    return out
+
+
+def _robot_shapes(robot: Robot, poses: dict[str, Mat]) -> list[Shape]:
+    from sensorkit.render.scene import scene_shapes_from_robot
+
+    return [s for s in scene_shapes_from_robot(robot, poses) if s.visual and s.kind != "mesh"]
+
+
+def _reach(robot_shapes: list[Shape], poses: dict[str, Mat]) -> float:
+    pts = [T[:2, 3] for T in poses.values()]
+    for s in robot_shapes:
+        pts.extend(s.footprint())
+    return max((float(np.hypot(*p)) for p in pts), default=0.5)
+
+
+def _validate(
+    path: Path, target: str, args: Mapping[str, str], package_paths: Sequence[str]
+) -> tuple[list[Finding] | None, str | None]:
+    try:
+        from sensorkit.engine import Options, validate_file
+    except ImportError as exc:
+        return None, f"validate is not available ({exc})"
+    report = validate_file(
+        path, Options(target=target, args=dict(args), package_paths=tuple(package_paths))
+    )
+    if report.error:
+        return None, report.error
+    return list(report.findings), None
+
+
+def render_preview(
+    path: Path,
+    out_dir: Path,
+    *,
+    scene: Path | None = None,
+    sensors: Sequence[str] = (),
+    joints: Mapping[str, float] | None = None,
+    args: Mapping[str, str] | None = None,
+    package_paths: Sequence[str] = (),
+    target: str = "auto",
+    progress: Progress | None = None,
+) -> PreviewResult:
+    """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
+
+    Args:
+        path: the URDF or xacro file.
+        out_dir: where the files go (created if needed; files in it are replaced).
+        scene: a URDF of static objects to use instead of the default room (the ground
+            plane stays).
+        sensors: only these sensors (by ``<sensor name>``); all when empty.
+        joints: joint positions (radians or metres) by joint name; others stay at zero.
+        args: xacro arguments.
+        package_paths: where ROS packages live (``DIR`` or ``NAME=DIR``).
+        target: ``auto`` or a simulator target (decides camera_info's convention and the
+            published frames).
+        progress: called with a short message before each step.
+
+    Raises:
+        InputError: the robot or the scene cannot be read or loaded.
+        UsageError: an unknown sensor or joint, a bad joint value or target.
+    """
+    from sensorkit.loading import PackageResolver
+    from sensorkit.model.targets import TARGETS, detect_target
+    from sensorkit.render.poses import joint_positions, link_poses
+    from sensorkit.render.scene import Scene, default_scene, scene_shapes_from_robot
+    from sensorkit.render.urdf_out import prepare_urdf
+
+    started = time.perf_counter()
+    args = dict(args or {})
+    _say(progress, f"loading {path}")
+    robot = _load_robot(path, args, package_paths, "")
+    known = [s.name for s in robot.sensors]
+    for name in sensors:
+        if name not in known:
+            listing = ", ".join(known) if known else "the robot has no <sensor>"
+            msg = f"--sensor {name}: no sensor called {name!r} (sensors: {listing})"
+            raise UsageError(msg)
+    if target == "auto":
+        target, target_reason = detect_target(robot)
+    elif target in TARGETS:
+        target_reason = "chosen with --target"
+    else:
+        msg = f"unknown target {target!r}: use auto, " + ", ".join(TARGETS)
+        raise UsageError(msg)
+    positions = joint_positions(robot, dict(joints or {}))
+    poses = link_poses(robot, positions)
+    robot_shapes = _robot_shapes(robot, poses)
+
+    resolver = PackageResolver.from_options(list(package_paths), near=path)
+    prepared = prepare_urdf(robot, resolver)
+    notes = list(prepared.notes)
+    if len(robot.roots()) != 1:
+        msg = f"{robot.document.display}: the robot has {len(robot.roots())} root links ({', '.join(robot.roots()) or 'a cycle'}); pybullet needs one tree"
+        raise InputError(msg)
+
+    scene_robot: Robot | None = None
+    if scene is not None:
+        _say(progress, f"loading scene {scene}")
+        scene_robot = _load_robot(scene, {}, package_paths, "scene:")
+        shapes = scene_shapes_from_robot(scene_robot)
+        extent = max(
+            (float(np.abs(s.footprint()).max()) for s in shapes if len(s.footprint())), default=3.0
+        )
+        world_scene = Scene(
+            shapes, str(scene), max(extent, _reach(robot_shapes, poses)) + 0.5, scene
+        )
+    else:
+        world_scene = default_scene(_reach(robot_shapes, poses))
+
+    if out_dir.exists() and not out_dir.is_dir():
+        msg = f"{out_dir}: exists and is not a folder"
+        raise InputError(msg)
+    out_dir.mkdir(parents=True, exist_ok=True)
+
+    from sensorkit.render.sim import World
+
+    _say(progress, "starting pybullet (DIRECT, TinyRenderer)")
+    with World() as world:
+        ground_half = max(world_scene.half_extent + 1.0, 10.0 if scene is not None else 0.0)
+        if scene is not None and scene_robot is not None:
+            from sensorkit.render.scene import GROUND, Shape
+
+            ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
+            world.add_ground(ground_half, world_scene, ground)
+            scene_urdf = prepare_urdf(
+                scene_robot,
+                PackageResolver.from_options(list(package_paths), near=scene),
+                what="scene",
+            )
+            notes += scene_urdf.notes
+            world.add_scene_urdf(scene_urdf.text, world_scene.shapes)
+            world_scene.shapes.insert(0, ground)
+        else:
+            world.add_default_shapes(world_scene, world_scene.half_extent)
+        _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
+        world.add_robot(prepared.text)
+        world.set_joints(positions)
+
+        run = _Run(robot, world, world_scene, poses, target, out_dir)
+        previews: list[SensorPreview] = []
+        for sensor in robot.sensors:
+            if sensors and sensor.name not in sensors:
+                continue
+            if sensor.is_camera and sensor.cameras:
+                cams = sensor.cameras if sensor.kind == "multicamera" else sensor.cameras[:1]
+                for cam in cams:
+                    label = (
+                        f"{sensor.name}/{cam.name}" if sensor.kind == "multicamera" else sensor.name
+                    )
+                    previews.append(_camera(run, sensor, cam, label, progress))
+            elif sensor.kind == "lidar":
+                previews.append(_lidar(run, sensor, progress))
+            else:
+                what = (
+                    "has no <camera> block"
+                    if sensor.is_camera
+                    else f"is a {sensor.type or 'untyped'} sensor"
+                )
+                previews.append(
+                    SensorPreview(
+                        sensor.name,
+                        sensor.name,
+                        sensor.type,
+                        sensor.kind,
+                        sensor.reference,
+                        skipped=f"not rendered: it {what}",
+                    )
+                )
+        robot_boxes = []
+        if world.robot is not None:
+            for _, lo, hi in world.aabbs(world.robot):
+                if float(np.max(hi - lo)) > 0.005:
+                    robot_boxes.append((lo, hi))
+
+    _say(progress, "running validate")
+    findings, findings_error = _validate(path, target, args, package_paths)
+
+    result = PreviewResult(
+        out_dir=out_dir,
+        robot=robot.name,
+        source=path,
+        target=target,
+        target_reason=target_reason,
+        scene=world_scene.source,
+        joints=positions,
+        sensors=previews,
+        findings=findings,
+        findings_error=findings_error,
+        notes=notes,
+    )
+    from sensorkit.render.overview import draw_overview
+    from sensorkit.render.png import write_png
+    from sensorkit.render.report import write_index, write_summary
+
+    _say(progress, "writing overview, summary and index")
+    half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
+    overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, run.drawings, half)
+    result.files["overview"] = out_dir / "overview.png"
+    write_png(result.files["overview"], overview)
+    result.seconds = time.perf_counter() - started
+    result.files["summary"] = out_dir / "summary.json"
+    result.files["index"] = out_dir / "index.html"
+    write_summary(result)
+    write_index(result)
+    return result

@@ -1,0 +1,213 @@
+"""A tiny numpy canvas for the top-down pictures, and the depth colour map.
+
+Coordinates are pixels, x to the right and y down, as floats; shapes outside the canvas
+are clipped. Nothing here knows about robots.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["Canvas", "colourise_depth", "convex_hull"]
+
+Colour = tuple[int, int, int]
+Points = npt.NDArray[np.float64]
+
+# Near (warm, bright) to far (cool, dark); +inf and -inf get their own greys.
+_DEPTH_STOPS = np.array(
+    [
+        [255, 236, 64],
+        [246, 150, 40],
+        [214, 72, 72],
+        [140, 40, 130],
+        [60, 40, 140],
+        [16, 24, 72],
+    ],
+    dtype=np.float64,
+)
+
+
+class Canvas:
+    """An RGB image with line, polygon, circle and point drawing."""
+
+    def __init__(self, width: int, height: int, background: Colour = (255, 255, 255)) -> None:
+        self.width = width
+        self.height = height
+        self.image = np.empty((height, width, 3), dtype=np.uint8)
+        self.image[:] = background
+
+    def _stamp(
+        self,
+        xs: npt.NDArray[np.float64],
+        ys: npt.NDArray[np.float64],
+        colour: Colour,
+        radius: float,
+    ) -> None:
+        r = max(0, int(np.ceil(radius - 0.5)))
+        ix = np.rint(xs).astype(np.int64)
+        iy = np.rint(ys).astype(np.int64)
+        offsets = [
+            (dx, dy)
+            for dx in range(-r, r + 1)
+            for dy in range(-r, r + 1)
+            if dx * dx + dy * dy <= radius * radius + 0.25
+        ]
+        for dx, dy in offsets or [(0, 0)]:
+            x, y = ix + dx, iy + dy
+            ok = (x >= 0) & (x < self.width) & (y >= 0) & (y < self.height)
+            self.image[y[ok], x[ok]] = colour
+
+    def line(
+        self,
+        p0: Sequence[float],
+        p1: Sequence[float],
+        colour: Colour,
+        *,
+        width: float = 1.0,
+        dash: float | None = None,
+    ) -> None:
+        """A segment; ``dash`` (pixels) draws it dashed."""
+        x0, y0 = float(p0[0]), float(p0[1])
+        x1, y1 = float(p1[0]), float(p1[1])
+        if not all(np.isfinite(v) for v in (x0, y0, x1, y1)):
+            return
+        length = float(np.hypot(x1 - x0, y1 - y0))
+        if length > 20 * (self.width + self.height):  # clip absurd segments cheaply
+            return
+        n = max(2, int(np.ceil(length * 2)) + 1)
+        s = np.linspace(0.0, 1.0, n)
+        xs = x0 + (x1 - x0) * s
+        ys = y0 + (y1 - y0) * s
+        if dash:
+            keep = (np.floor(s * length / dash) % 2) == 0
+            xs, ys = xs[keep], ys[keep]
+        self._stamp(xs, ys, colour, width / 2.0)
+
+    def lines(self, starts: Points, ends: Points, colour: Colour, *, width: float = 1.0) -> None:
+        """Many segments at once (``(N, 2)`` arrays)."""
+        if len(starts) == 0:
+            return
+        lengths = np.hypot(*(ends - starts).T)
+        n = int(max(2, np.ceil(np.nanmax(lengths) * 2) + 1)) if np.isfinite(lengths).any() else 2
+        n = min(n, 4 * (self.width + self.height))
+        s = np.linspace(0.0, 1.0, n)[None, :]
+        xs = starts[:, :1] + (ends[:, :1] - starts[:, :1]) * s
+        ys = starts[:, 1:2] + (ends[:, 1:2] - starts[:, 1:2]) * s
+        ok = np.isfinite(xs) & np.isfinite(ys)
+        self._stamp(xs[ok], ys[ok], colour, width / 2.0)
+
+    def polygon(self, points: Points, fill: Colour | None, outline: Colour | None = None) -> None:
+        """A filled polygon (even-odd rule) with an optional outline."""
+        pts = np.asarray(points, dtype=np.float64)
+        if len(pts) < 3 or not np.isfinite(pts).all():
+            return
+        if fill is not None:
+            x_lo = max(0, int(np.floor(pts[:, 0].min())))
+            x_hi = min(self.width - 1, int(np.ceil(pts[:, 0].max())))
+            y_lo = max(0, int(np.floor(pts[:, 1].min())))
+            y_hi = min(self.height - 1, int(np.ceil(pts[:, 1].max())))
+            if x_lo <= x_hi and y_lo <= y_hi:
+                gx, gy = np.meshgrid(np.arange(x_lo, x_hi + 1), np.arange(y_lo, y_hi + 1))
+                inside = np.zeros(gx.shape, dtype=bool)
+                for (ax, ay), (bx, by) in zip(pts, np.roll(pts, -1, axis=0), strict=True):
+                    crosses = (ay > gy) != (by > gy)
+                    with np.errstate(divide="ignore", invalid="ignore"):
+                        xcross = ax + (gy - ay) * (bx - ax) / (by - ay)
+                    inside ^= crosses & (gx < xcross)
+                self.image[gy[inside], gx[inside]] = fill
+        if outline is not None:
+            for a, b in zip(pts, np.roll(pts, -1, axis=0), strict=True):
+                self.line(a, b, outline)
+
+    def circle(
+        self,
+        centre: Sequence[float],
+        radius: float,
+        fill: Colour | None,
+        outline: Colour | None = None,
+    ) -> None:
+        angles = np.linspace(0.0, 2 * np.pi, max(12, int(radius * 4)), endpoint=False)
+        pts = np.stack(
+            [centre[0] + radius * np.cos(angles), centre[1] + radius * np.sin(angles)], axis=1
+        )
+        if radius < 1.5 and fill is not None:
+            self._stamp(np.array([centre[0]]), np.array([centre[1]]), fill, radius)
+            return
+        self.polygon(pts, fill, outline)
+
+    def points(
+        self, pts: Points, colour: Colour | npt.NDArray[np.uint8], *, radius: float = 0.5
+    ) -> None:
+        """Dots; ``colour`` may be one colour or one per point (``(N, 3)`` uint8)."""
+        pts = np.asarray(pts, dtype=np.float64)
+        if len(pts) == 0:
+            return
+        ok = np.isfinite(pts).all(axis=1)
+        pts = pts[ok]
+        if isinstance(colour, np.ndarray) and colour.ndim == 2:
+            cols = colour[ok]
+            ix = np.rint(pts[:, 0]).astype(np.int64)
+            iy = np.rint(pts[:, 1]).astype(np.int64)
+            r = max(0, int(np.ceil(radius - 0.5)))
+            for dx in range(-r, r + 1):
+                for dy in range(-r, r + 1):
+                    x, y = ix + dx, iy + dy
+                    inside = (x >= 0) & (x < self.width) & (y >= 0) & (y < self.height)
+                    self.image[y[inside], x[inside]] = cols[inside]
+            return
+        c = (int(colour[0]), int(colour[1]), int(colour[2]))
+        self._stamp(pts[:, 0], pts[:, 1], c, radius)
+
+
+def convex_hull(points: Points) -> Points:
+    """The 2D convex hull (Andrew's monotone chain), counter-clockwise."""
+    pts = np.unique(np.asarray(points, dtype=np.float64).round(9), axis=0)
+    if len(pts) < 3:
+        return pts
+
+    def cross(
+        o: npt.NDArray[np.float64], a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]
+    ) -> float:
+        return float((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]))
+
+    lower: list[npt.NDArray[np.float64]] = []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    upper: list[npt.NDArray[np.float64]] = []
+    for p in pts[::-1]:
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def colourise_depth(
+    depth: npt.NDArray[np.floating], *, lo: float | None = None, hi: float | None = None
+) -> npt.NDArray[np.uint8]:
+    """An RGB picture of a depth image: near warm and bright, far dark blue.
+
+    The scale runs from ``lo`` to ``hi`` (default: the 1st and 99th percentiles of the
+    finite values); +inf (nothing within range) is light grey, -inf (closer than the
+    minimum) and NaN are black.
+    """
+    d = np.asarray(depth, dtype=np.float64)
+    out = np.zeros((*d.shape, 3), dtype=np.uint8)
+    finite = np.isfinite(d)
+    out[np.isposinf(d)] = (225, 225, 225)
+    if finite.any():
+        values = d[finite]
+        lo = float(np.percentile(values, 1)) if lo is None else lo
+        hi = float(np.percentile(values, 99)) if hi is None else hi
+        if hi <= lo:
+            hi = lo + 1e-6
+        t = np.clip((values - lo) / (hi - lo), 0.0, 1.0) * (len(_DEPTH_STOPS) - 1)
+        i = np.minimum(t.astype(np.int64), len(_DEPTH_STOPS) - 2)
+        f = (t - i)[:, None]
+        rgb = _DEPTH_STOPS[i] * (1.0 - f) + _DEPTH_STOPS[i + 1] * f
+        out[finite] = np.rint(rgb).astype(np.uint8)
+    return out

@@ -1,0 +1,290 @@
+"""summary.json and index.html for a preview.
+
+index.html is self-contained: every picture is inlined as a base64 data URI, so the
+file can be attached to a CI run or mailed on its own. Nothing is fetched from the
+network. Depth and range arrays stay beside it as .npy files.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+from typing import TYPE_CHECKING, Any
+
+from sensorkit import __version__
+from sensorkit.exporters import write_text_atomic
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from sensorkit.render.preview import PreviewResult, SensorPreview
+
+__all__ = ["summary_dict", "write_index", "write_summary"]
+
+CONVENTIONS = {
+    "pixels": "0-based pixel centres: pixel (i, r) covers [i-0.5, i+0.5] x [r-0.5, r+0.5] (OpenCV, image_geometry)",
+    "rendered_principal_point": (
+        "Gazebo renders a symmetric frustum, optical axis at ((W-1)/2, (H-1)/2); with gz "
+        "<lens><intrinsics>, at (cx-0.5, cy-0.5). The preview reproduces that exactly "
+        "(pybullet's own projection would put it at (W/2, H/2-1))."
+    ),
+    "camera_info": "classic cx=(W+1)/2 (first pixel centre 1), gz cx=W/2 (first pixel centre 0.5); reprojection compares after that offset and reports the 0-based bias",
+    "depth": "depth.npy: float32 H x W, metres along the optical axis (32FC1); +inf nothing within range, -inf nearer than the near clip",
+    "ranges": "ranges.npy: float32 from angle_min to angle_max (vertical x horizontal for 3D lidars, lowest row first); +inf no return",
+    "points": "points.npy: float32 V x H x 3 in the sensor's frame (x forward, y left, z up); NaN no return",
+    "render_pose": "x forward, y left, z up, in the frame of the robot's root link (at the origin)",
+}
+
+
+def _rel(path: Path, base: Path) -> str:
+    try:
+        return path.relative_to(base).as_posix()
+    except ValueError:
+        return str(path)
+
+
+def _clean(value: Any) -> Any:
+    """JSON-safe: non-finite floats become strings ("inf", "-inf", "nan")."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else str(value)
+    if isinstance(value, dict):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    return value
+
+
+def _sensor_dict(s: SensorPreview, base: Path) -> dict[str, Any]:
+    return {
+        "name": s.name,
+        "sensor": s.sensor,
+        "type": s.type,
+        "kind": s.kind,
+        "link": s.link,
+        "status": s.status,
+        "skipped": s.skipped,
+        "folder": _rel(s.directory, base) if s.directory else None,
+        "files": {k: _rel(v, base) for k, v in s.files.items()},
+        **{k: v for k, v in s.info.items() if k != "colour"},
+        "checks": [c.to_dict() for c in s.checks],
+        "notes": s.notes,
+    }
+
+
+def summary_dict(result: PreviewResult) -> dict[str, Any]:
+    base = result.out_dir
+    findings = None if result.findings is None else [f.to_dict() for f in result.findings]
+    return _clean(
+        {
+            "sensorkit": __version__,
+            "robot": result.robot,
+            "file": str(result.source),
+            "target": result.target,
+            "target_reason": result.target_reason,
+            "scene": result.scene,
+            "joints": result.joints,
+            "status": result.status,
+            "seconds": round(result.seconds, 3),
+            "files": {k: _rel(v, base) for k, v in result.files.items()},
+            "conventions": CONVENTIONS,
+            "sensors": [_sensor_dict(s, base) for s in result.sensors],
+            "validate": {"findings": findings, "error": result.findings_error},
+            "notes": result.notes,
+        }
+    )
+
+
+def write_summary(result: PreviewResult) -> None:
+    text = json.dumps(summary_dict(result), indent=2, allow_nan=False) + "\n"
+    write_text_atomic(result.files["summary"], text)
+
+
+# ---- index.html ----------------------------------------------------------------------
+_CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:24px;color:#222;background:#fafafa;max-width:1400px}
+h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:28px 0 8px;border-bottom:1px solid #ddd}
+h3{font-size:15px;margin:16px 0 6px}
+table{border-collapse:collapse;margin:6px 0;font-size:13px;background:#fff}
+td,th{border:1px solid #ddd;padding:4px 8px;text-align:left;vertical-align:top}
+th{background:#f0f0f0} .meta{color:#555;font-size:13px}
+.ok{color:#17702a;font-weight:600} .warn{color:#a05a00;font-weight:600}
+.fail,.error{color:#b3171b;font-weight:600} .skipped,.info{color:#777}
+.warning{color:#a05a00;font-weight:600}
+.imgs{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
+.imgs figure{margin:0;background:#fff;border:1px solid #ddd;padding:6px}
+.imgs img{max-width:640px;image-rendering:pixelated;display:block}
+figcaption{font-size:12px;color:#555;margin-top:4px}
+.swatch{display:inline-block;width:12px;height:12px;border-radius:2px;margin-right:6px;vertical-align:middle}
+code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
+"""
+
+
+def _img(path: Path, alt: str, width: int | None = None) -> str:
+    data = base64.b64encode(path.read_bytes()).decode("ascii")
+    size = f' width="{width}"' if width else ""
+    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{data}"{size}>'
+
+
+def _status(text: str) -> str:
+    return f'<span class="{html.escape(text)}">{html.escape(text)}</span>'
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}" if math.isfinite(value) else str(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    return html.escape(str(value))
+
+
+def _sensor_html(s: SensorPreview, base: Path) -> str:
+    e = html.escape
+    colour = s.info.get("colour")
+    swatch = f'<span class="swatch" style="background:{colour}"></span>' if colour else ""
+    parts = [
+        f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}</h3>'
+    ]
+    if s.skipped:
+        parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
+        return "\n".join(parts)
+    figures = []
+    for key, caption in (
+        ("rgb", "rgb.png"),
+        ("depth_png", "depth.png (near warm, far blue; grey: nothing in range)"),
+        ("scan_png", "scan.png (top-down, forward up)"),
+    ):
+        if key in s.files:
+            figures.append(
+                f"<figure>{_img(s.files[key], caption)}<figcaption>{e(caption)}</figcaption></figure>"
+            )
+    if figures:
+        parts.append('<div class="imgs">' + "".join(figures) + "</div>")
+    rows = "".join(
+        f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_fmt(c.value) if c.value is not None else ''} {e(c.unit)}</td>"
+        f"<td>{_fmt(c.limit) if c.limit is not None else ''}</td><td>{e(c.message)}</td></tr>"
+        for c in s.checks
+    )
+    parts.append(
+        f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
+    )
+    facts: list[tuple[str, str]] = []
+    frames = s.info.get("frames", {})
+    if frames:
+        pose = frames.get("render_pose", {})
+        facts.append(
+            ("render pose (xyz, rpy)", f"{_fmt(pose.get('xyz'))}, {_fmt(pose.get('rpy'))}")
+        )
+        facts.append(
+            (
+                "published frame",
+                f"{_fmt(frames.get('published_frame'))} ({_fmt(frames.get('published_how'))})",
+            )
+        )
+        if frames.get("camera_frame") != frames.get("published_frame"):
+            facts.append(("image frame", _fmt(frames.get("camera_frame"))))
+    intr = s.info.get("intrinsics")
+    if intr:
+        facts.append(
+            (
+                "camera_info K",
+                f"fx {_fmt(intr['fx'])}, fy {_fmt(intr['fy'])}, cx {_fmt(intr['cx'])}, cy {_fmt(intr['cy'])} ({e(str(intr['convention']))})",
+            )
+        )
+        r = intr["rendered"]
+        facts.append(
+            (
+                "rendered",
+                f"fx {_fmt(r['fx'])}, fy {_fmt(r['fy'])}, principal point ({_fmt(r['cx'])}, {_fmt(r['cy'])}) 0-based; clip {_fmt(r['near'])}..{_fmt(r['far'])} m",
+            )
+        )
+    scan = s.info.get("scan")
+    if scan:
+        facts.append(
+            (
+                "scan",
+                f"{scan['samples']} beams, {_fmt(scan['angle_min'])}..{_fmt(scan['angle_max'])} rad, step {_fmt(scan['angle_increment'])}, range {_fmt(scan['range_min'])}..{_fmt(scan['range_max'])} m",
+            )
+        )
+        if "vertical" in s.info:
+            v = s.info["vertical"]
+            facts.append(
+                (
+                    "vertical",
+                    f"{v['samples']} rows, {_fmt(v['angle_min'])}..{_fmt(v['angle_max'])} rad",
+                )
+            )
+    if s.info.get("topics"):
+        facts.append(("topics", ", ".join(f"<code>{e(t)}</code>" for t in s.info["topics"])))
+    files = ", ".join(
+        f'<a href="{e(_rel(p, base))}">{e(_rel(p, base))}</a>' for p in s.files.values()
+    )
+    facts.append(("files", files))
+    parts.append(
+        "<table>" + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts) + "</table>"
+    )
+    if s.notes:
+        parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
+    return "\n".join(parts)
+
+
+def _findings_html(result: PreviewResult) -> str:
+    e = html.escape
+    if result.findings is None:
+        return (
+            f"<p class='meta'>validate did not run: {e(result.findings_error or 'unavailable')}</p>"
+        )
+    if not result.findings:
+        return "<p class='ok'>validate found nothing to report.</p>"
+    rows = []
+    for f in result.findings:
+        where = f"{f.file}:{f.line}" if f.line else (f.file or "")
+        fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
+        rows.append(
+            f"<tr><td>{e(f.rule)}</td><td>{_status(f.severity.label)}</td><td>{e(where)}</td><td>{e(f.message)}{fix}</td></tr>"
+        )
+    return (
+        "<table><tr><th>rule</th><th>severity</th><th>where</th><th>finding</th></tr>"
+        + "".join(rows)
+        + "</table>"
+    )
+
+
+def write_index(result: PreviewResult) -> None:
+    e = html.escape
+    base = result.out_dir
+    legend = "".join(
+        f"<tr><td><span class='swatch' style='background:{s.info['colour']}'></span><a href='#{e(s.name)}'>{e(s.name)}</a></td>"
+        f"<td>{e(s.type)}</td><td>{_status(s.status)}</td></tr>"
+        for s in result.sensors
+        if "colour" in s.info
+    )
+    skipped = "".join(
+        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status('skipped')}</td></tr>"
+        for s in result.sensors
+        if "colour" not in s.info
+    )
+    joints = ", ".join(f"{e(k)}={v:g}" for k, v in result.joints.items()) or "all at zero"
+    notes = "".join(f"<li>{e(n)}</li>" for n in result.notes)
+    page = f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>sensorkit preview: {e(result.robot)}</title>
+<style>{_CSS}</style></head><body>
+<h1>sensorkit preview: {e(result.robot)} {_status(result.status)}</h1>
+<p class="meta">{e(str(result.source))} &middot; target {e(result.target)} ({e(result.target_reason)}) &middot; scene {e(result.scene)}
+&middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
+<h2>Overview</h2>
+<div class="imgs"><figure>{_img(result.files["overview"], "overview")}
+<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Dashed magenta: the forward axis of the frame its data is stamped with, when that differs.</figcaption></figure>
+<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
+<h2>Sensors</h2>
+{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
+<h2>validate's findings</h2>
+{_findings_html(result)}
+<h2>Conventions</h2>
+<table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table>
+{f"<h2>Notes</h2><ul class='meta'>{notes}</ul>" if notes else ""}
+<p class="meta">Files: <a href="summary.json">summary.json</a> &middot; <a href="overview.png">overview.png</a></p>
+</body></html>
+"""
+    write_text_atomic(result.files["index"], page)
