@@ -130,9 +130,10 @@ def _parse(data: bytes, where: str) -> etree._Element:
 
 
 def _node_key(node: etree._Element) -> str:
+    """``link|name`` for an element (namespace ignored), ``#comment`` for a comment."""
     if isinstance(node, etree._Comment):
         return "#comment"
-    return f"{node.tag}|{node.get('name', '')}"
+    return f"{etree.QName(node).localname}|{node.get('name', '')}"
 
 
 def _resolve_kind(kind: str) -> SensorKind:
