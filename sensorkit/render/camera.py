@@ -325,7 +325,8 @@ def reprojection_check(
     err = np.hypot(du, dv)
     rms = float(np.sqrt(np.mean(err**2)))
     worst_px = float(err.max())
-    bias = (float(np.mean(du)) + origin, float(np.mean(dv)) + origin)
+    # where K, read 0-based as is, puts the markers, minus where they are
+    bias = (origin - float(np.mean(du)), origin - float(np.mean(dv)))
     details = {
         "markers": len(rows),
         "rms_px": rms,

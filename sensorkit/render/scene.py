@@ -167,8 +167,8 @@ def _cylinder(o: Array, d: Array, r: float, h: float) -> tuple[Array, Array]:
     for cap in (-h, h):
         with np.errstate(divide="ignore", invalid="ignore"):
             tc = (cap - o[:, 2]) / d[:, 2]
-        x = o[:, 0] + tc * d[:, 0]
-        y = o[:, 1] + tc * d[:, 1]
+            x = o[:, 0] + tc * d[:, 0]
+            y = o[:, 1] + tc * d[:, 1]
         ok = (d[:, 2] != 0) & (tc > 0) & (x * x + y * y <= r * r) & (tc < best)
         best = np.where(ok, tc, best)
         n[ok] = (0.0, 0.0, 1.0 if cap > 0 else -1.0)

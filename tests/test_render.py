@@ -1,0 +1,386 @@
+"""``sensorkit render preview`` against scenes whose geometry is known exactly.
+
+Expected values are computed here from the robots' and scenes' numbers with plain
+trigonometry, not with sensorkit's own helpers. Robots and scenes live in
+``tests/render_robots/``. Images are kept small (160x120, 161x121) so the file runs fast.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from sensorkit.cli import app
+from sensorkit.render import render_preview
+from sensorkit.render.png import read_png
+
+HERE = Path(__file__).parent / "render_robots"
+WALL_BOT = HERE / "wall_bot.urdf"
+WALL_SCENE = HERE / "wall_scene.urdf"
+MOUNTS_BOT = HERE / "mounts_bot.urdf"
+GZ_BOT = HERE / "gz_bot.urdf"
+OCCLUDED_BOT = HERE / "occluded_bot.urdf"
+CM = 0.01
+
+# marker centres of wall_scene.urdf (world = scene root), all radius 0.06
+WALL_MARKERS = np.array([[2.8, 0.6, 0.9], [2.8, -0.7, 0.3], [2.8, 0.25, 0.2], [2.8, -0.3, 1.0]])
+
+
+def summary(out: Path) -> dict[str, Any]:
+    data: dict[str, Any] = json.loads((out / "summary.json").read_text())
+    return data
+
+
+def sensor(data: dict[str, Any], name: str) -> dict[str, Any]:
+    return next(s for s in data["sensors"] if s["name"] == name)
+
+
+def check(data: dict[str, Any], name: str, check_name: str) -> dict[str, Any]:
+    return next(c for c in sensor(data, name)["checks"] if c["name"] == check_name)
+
+
+def camera_info(path: Path) -> dict[str, Any]:
+    import yaml
+
+    data: dict[str, Any] = yaml.safe_load(path.read_text())
+    return data
+
+
+@pytest.fixture(scope="module")
+def wall(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("wall")
+    render_preview(WALL_BOT, out, scene=WALL_SCENE)
+    return out
+
+
+@pytest.fixture(scope="module")
+def gz_wall(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("gz")
+    render_preview(GZ_BOT, out, scene=WALL_SCENE)
+    return out
+
+
+@pytest.fixture(scope="module")
+def mounts(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("mounts")
+    render_preview(MOUNTS_BOT, out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def occluded(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("occluded")
+    render_preview(OCCLUDED_BOT, out)
+    return out
+
+
+# ---- depth and ranges against a wall -----------------------------------------------------
+def test_centre_depth_and_forward_beam_hit_the_wall_at_3_m(wall: Path) -> None:
+    depth = np.load(wall / "depth_cam" / "depth.npy")
+    assert depth.dtype == np.float32 and depth.shape == (120, 160)
+    # camera at x = 0.25 looking along +x; the wall's face is x = 3 and fills the centre
+    assert np.abs(depth[59:61, 79:81] - 2.75).max() < CM
+    ranges = np.load(wall / "laser" / "ranges.npy")
+    assert ranges.dtype == np.float32 and ranges.shape == (360,)
+    angles = -3.14159 + np.arange(360) * (2 * 3.14159 / 359)
+    i = int(np.argmin(np.abs(angles)))
+    assert abs(ranges[i] - (3.0 - 0.1) / math.cos(angles[i])) < CM  # laser at x = 0.1
+    behind = int(np.argmin(np.abs(np.abs(angles) - math.pi)))
+    assert np.isinf(ranges[behind])  # nothing behind the robot in this scene
+    data = summary(wall)
+    assert check(data, "depth_cam", "depth")["status"] == "ok"
+    assert check(data, "laser", "ranges")["status"] == "ok"
+
+
+def _magenta_centroids(rgb: np.ndarray, predicted: np.ndarray, window: float = 8.0) -> np.ndarray:
+    """Centroid of the magenta pixels near each predicted position (NaN if none)."""
+    img = rgb.astype(np.int64)
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    magenta = (r > 2 * g + 20) & (b > 2 * g + 20)
+    ys, xs = np.nonzero(magenta)
+    out = np.full(predicted.shape, np.nan)
+    for k, (u, v) in enumerate(predicted):
+        near = np.hypot(xs - u, ys - v) < window
+        if near.sum() >= 12:
+            out[k] = (xs[near].mean(), ys[near].mean())
+    return out
+
+
+def _optical(points: np.ndarray, position: tuple[float, float, float], pitch: float = 0.0) -> np.ndarray:
+    """World points in the optical frame of a camera at ``position`` looking along +x,
+    pitched down by ``pitch`` (no yaw, no roll)."""
+    d = points - np.array(position)
+    c, s = math.cos(pitch), math.sin(pitch)
+    forward = d[:, 0] * c - d[:, 2] * s  # along the pitched axis
+    down = d[:, 0] * s + d[:, 2] * c  # up, in the pitched frame
+    return np.stack([-d[:, 1], -down, forward], axis=1)
+
+
+@pytest.mark.parametrize(
+    ("folder", "sensor_name", "position", "pitch", "origin"),
+    [
+        ("wall", "depth_cam", (0.25, 0.0, 0.5), 0.0, 1.0),  # classic: first pixel centre at 1
+        ("gz_wall", "gz_cam", (0.2, 0.0, 0.7), 0.1, 0.5),  # gz: first pixel centre at 0.5
+        ("gz_wall", "lens_cam", (0.2, 0.0, 0.7), 0.1, 0.5),  # gz <lens><intrinsics>, off centre
+    ],
+)
+def test_markers_land_within_half_a_pixel_of_camera_info(
+    request: pytest.FixtureRequest, folder: str, sensor_name: str, position: tuple[float, float, float], pitch: float, origin: float
+) -> None:
+    """Project the scene's markers through the K written to camera_info.yaml and find them
+    in rgb.png by colour. pybullet's image, as the preview renders it, has Gazebo's
+    geometry: pixel centres at integers, so a K in the classic convention lands one
+    pixel off and a gz K half a pixel off when read 0-based; after that documented
+    offset every marker is within 0.5 px."""
+    out: Path = request.getfixturevalue(folder)
+    info = camera_info(out / sensor_name / "camera_info.yaml")
+    K = np.array(info["camera_matrix"]["data"]).reshape(3, 3)
+    p = _optical(WALL_MARKERS, position, pitch)
+    uv = (K @ (p / p[:, 2:3]).T).T[:, :2] - origin
+    rgb = read_png((out / sensor_name / "rgb.png").read_bytes())
+    found = _magenta_centroids(rgb, uv)
+    ok = np.isfinite(found).all(axis=1)
+    assert ok.sum() >= 3
+    error = np.hypot(*(found[ok] - uv[ok]).T)
+    assert error.max() < 0.5, error
+    c = check(summary(out), sensor_name, "reprojection")
+    assert c["status"] == "ok" and c["value"] < 0.5 and c["details"]["markers"] >= 3
+    bias = c["details"]["zero_based_bias_px"]
+    assert abs(bias[0] - origin) < 0.3 and abs(bias[1] - origin) < 0.3
+
+
+def test_reprojection_check_catches_a_principal_point_gazebo_does_not_render(occluded: Path) -> None:
+    """bad_cx_cam's plugin says <cx>60</cx>; Gazebo still renders a centred image."""
+    c = check(summary(occluded), "bad_cx_cam", "reprojection")
+    assert c["status"] == "fail"
+    # rendered principal point 79.5 (0-based), camera_info's 60 read 0-based: 19.5 px left
+    assert c["details"]["zero_based_bias_px"][0] == pytest.approx(-19.5, abs=0.3)
+    assert c["details"]["zero_based_bias_predicted_px"][0] == pytest.approx(-19.5)
+
+
+# ---- mounts ----------------------------------------------------------------------------
+def test_pitched_mount_sees_the_floor_where_trigonometry_says(mounts: Path) -> None:
+    depth = np.load(mounts / "pitch_cam" / "depth.npy")
+    assert depth.shape == (121, 161)
+    # 1 m up, pitched 0.4 rad down: the optical axis (pixel 80, 60) meets the floor here
+    assert abs(depth[60, 80] - 1.0 / math.sin(0.4)) < CM
+    data = summary(mounts)
+    for name in ("pitch_cam", "yaw_cam"):
+        assert check(data, name, "reprojection")["status"] == "ok"
+        assert check(data, name, "depth")["status"] == "ok"
+        assert check(data, name, "render_pose")["status"] == "ok"
+        assert check(data, name, "published_frame")["status"] == "ok"
+    assert sensor(data, "pitch_cam")["frames"]["render_pose"]["rpy"] == pytest.approx([0.0, 0.4, 0.0], abs=1e-9)
+
+
+def test_yawed_mount_on_a_pan_joint(mounts: Path, tmp_path: Path) -> None:
+    # default: pan = 0, yaw from the sensor <pose> 0.5; camera at (0.1, 0, 0.5)
+    depth = np.load(mounts / "yaw_cam" / "depth.npy")
+    assert abs(depth[60, 80] - (3.0 - 0.1) / math.cos(0.5)) < CM
+    result = render_preview(MOUNTS_BOT, tmp_path, sensors=["yaw_cam"], joints={"pan": -0.3})
+    assert [s.name for s in result.sensors] == ["yaw_cam"]
+    depth = np.load(tmp_path / "yaw_cam" / "depth.npy")
+    x = 0.1 * math.cos(-0.3)
+    assert abs(depth[60, 80] - (3.0 - x) / math.cos(0.2)) < CM
+    data = summary(tmp_path)
+    assert data["joints"] == {"pan": -0.3}
+    assert sensor(data, "yaw_cam")["frames"]["render_pose"]["rpy"][2] == pytest.approx(0.2)
+    assert check(data, "yaw_cam", "render_pose")["status"] == "ok"  # pybullet agrees
+    assert check(data, "yaw_cam", "reprojection")["status"] == "ok"
+
+
+def test_a_camera_stamped_with_its_body_frame_is_still_rendered(mounts: Path) -> None:
+    data = summary(mounts)
+    c = check(data, "body_cam", "published_frame")
+    assert c["status"] == "warn" and c["details"]["frame"] == "body_cam_link"
+    assert c["value"] == pytest.approx(120.0, abs=0.1)
+    assert (mounts / "body_cam" / "rgb.png").stat().st_size > 1000
+    assert check(data, "body_cam", "reprojection")["status"] == "ok"
+    overview = read_png((mounts / "overview.png").read_bytes()).astype(np.int64)
+    magenta = (np.abs(overview - [230, 0, 200]).sum(axis=2) == 0).sum()
+    assert magenta > 20  # the stamped frame is drawn beside the true one
+
+
+# ---- 3D lidar ----------------------------------------------------------------------------
+def test_3d_lidar_ranges_to_floor_and_wall(gz_wall: Path) -> None:
+    ranges = np.load(gz_wall / "velo" / "ranges.npy")
+    points = np.load(gz_wall / "velo" / "points.npy")
+    assert ranges.shape == (16, 1800) and ranges.dtype == np.float32
+    assert points.shape == (16, 1800, 3) and points.dtype == np.float32
+    e = np.linspace(-math.radians(20), math.radians(10), 16)[:, None]
+    a = np.linspace(-math.pi, math.pi, 1800)[None, :]
+    e, a = np.broadcast_arrays(e, a)
+    h = 0.8  # lidar height; the wall's face is x = 3 for |y| < 3, 0 < z < 3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_floor = np.where(e < 0, h / np.sin(-e), np.inf)
+        t_wall = np.where(np.cos(a) > 0, 3.0 / (np.cos(e) * np.cos(a)), np.inf)
+        y = t_wall * np.cos(e) * np.sin(a)
+        z = h + t_wall * np.sin(e)
+        on_wall = (np.abs(y) < 3.0) & (z > 0) & (z < 3.0)
+        # leave out beams within 5 cm of the wall's edges
+        near_edge = (np.abs(np.abs(y) - 3.0) < 0.05) | (np.abs(z - 3.0) < 0.05) | (np.abs(t_floor - t_wall) < 0.05)
+    t_wall = np.where(on_wall, t_wall, np.inf)
+    expected = np.minimum(t_floor, t_wall)
+    expected[expected > 30] = np.inf
+    sel = ~near_edge
+    assert (np.isinf(expected[sel]) == np.isinf(ranges[sel])).all()
+    finite = sel & np.isfinite(expected)
+    assert finite.sum() > 10000
+    assert np.abs(ranges[finite] - expected[finite]).max() < CM
+    # points are ranges along the beam directions, in the sensor frame
+    norm = np.linalg.norm(points, axis=-1)
+    assert np.allclose(norm[np.isfinite(ranges)], ranges[np.isfinite(ranges)], atol=1e-4)
+    c = check(summary(gz_wall), "velo", "ranges")
+    assert c["status"] == "ok"
+    assert c["details"]["rays"] == 28800
+    assert c["details"]["batch_calls"] == 2  # pybullet takes at most 16383 rays per call
+
+
+# ---- self-occlusion ------------------------------------------------------------------------
+def test_self_occlusion_when_looking_through_the_robots_own_mast(occluded: Path, mounts: Path) -> None:
+    data = summary(occluded)
+    cam = check(data, "mast_cam", "self_occlusion")
+    assert cam["status"] == "warn" and cam["value"] > 1.0 and "mast" in cam["details"]["links"]
+    laser = check(data, "mast_laser", "self_occlusion")
+    assert laser["status"] == "warn" and laser["value"] > 1.0 and "mast" in laser["details"]["links"]
+    assert check(summary(mounts), "pitch_cam", "self_occlusion")["status"] == "ok"
+
+
+# ---- the command ---------------------------------------------------------------------------
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "COLUMNS": "200"}
+    env.pop("SENSORKIT_DEBUG", None)
+    return subprocess.run(
+        [sys.executable, "-c", "from sensorkit.cli import main; main()", *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
+
+
+def test_command_writes_every_file_and_keeps_pybullet_quiet(tmp_path: Path) -> None:
+    out = tmp_path / "preview"
+    proc = run_cli("render", "preview", str(WALL_BOT), "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    for noise in ("pybullet build time", "b3Printf", "argv[0]", "Warning", "startThreads"):
+        assert noise not in proc.stdout and noise not in proc.stderr
+    assert "depth_cam: ok" in proc.stdout and "laser: ok" in proc.stdout
+    for rel in (
+        "summary.json",
+        "overview.png",
+        "index.html",
+        "depth_cam/rgb.png",
+        "depth_cam/depth.npy",
+        "depth_cam/depth.png",
+        "depth_cam/camera_info.yaml",
+        "laser/ranges.npy",
+        "laser/scan.png",
+    ):
+        assert (out / rel).is_file(), rel
+    for png in out.rglob("*.png"):
+        assert read_png(png.read_bytes()).size > 0
+    assert not list(out.rglob(".*.tmp"))
+    data = summary(out)
+    assert data["target"] == "classic" and data["scene"] == "default"
+    cam = sensor(data, "depth_cam")
+    assert cam["type"] == "depth"
+    assert cam["frames"]["published_frame"] == "camera_optical_frame"
+    assert cam["frames"]["render_pose"]["xyz"] == pytest.approx([0.25, 0.0, 0.5])
+    assert cam["intrinsics"]["cx"] == 80.5 and cam["intrinsics"]["rendered"]["cx"] == 79.5
+    assert "/depth_cam/image_raw" in cam["topics"]
+    assert set(cam["files"]) == {"rgb", "depth", "depth_png", "camera_info"}
+    names = {c["name"] for c in cam["checks"]}
+    assert {"reprojection", "depth", "self_occlusion", "orb_features", "published_frame"} <= names
+    assert sensor(data, "laser")["topics"] == ["/scan"]
+    assert sensor(data, "laser")["scan"]["samples"] == 360
+    assert data["validate"]["findings"] is not None
+    info = camera_info(out / "depth_cam" / "camera_info.yaml")
+    assert info["image_width"] == 160 and info["camera_matrix"]["data"][2] == 80.5
+    page = (out / "index.html").read_text()
+    assert page.count("data:image/png;base64,") == 4  # overview, rgb, depth, scan
+    assert "validate&#x27;s findings" in page or "validate's findings" in page
+    for f in data["validate"]["findings"]:
+        assert f["rule"] in page
+
+
+def test_sensor_filter(tmp_path: Path) -> None:
+    result = CliRunner().invoke(app, ["render", "preview", str(WALL_BOT), "--out", str(tmp_path), "--sensor", "laser"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "laser" / "ranges.npy").is_file()
+    assert not (tmp_path / "depth_cam").exists()
+    assert [s["name"] for s in summary(tmp_path)["sensors"]] == ["laser"]
+
+
+def test_failed_check_exits_1(tmp_path: Path) -> None:
+    result = CliRunner().invoke(app, ["render", "preview", str(OCCLUDED_BOT), "--out", str(tmp_path), "--sensor", "bad_cx_cam"])
+    assert result.exit_code == 1
+    assert "fail: reprojection" in result.output
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (["--sensor", "nope"], "no sensor called 'nope'"),
+        (["--joint", "nope=1"], "no joint called 'nope'"),
+        (["--joint", "pan"], "expected NAME=VALUE"),
+        (["--joint", "pan=fast"], "not a finite number"),
+        (["--joint", "pitch_cam_joint=0.1"], "is fixed"),
+        (["--scene", "MISSING"], "no such file"),
+        (["--scene", "GARBAGE"], "scene:"),
+        (["--target", "gazebo9"], "unknown target"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, extra: list[str], message: str) -> None:
+    garbage = tmp_path / "garbage.urdf"
+    garbage.write_text("<robot name='x'><link name='a'></robot>")
+    extra = [str(tmp_path / "missing.urdf") if e == "MISSING" else str(garbage) if e == "GARBAGE" else e for e in extra]
+    result = CliRunner().invoke(app, ["render", "preview", str(MOUNTS_BOT), "--out", str(tmp_path / "o"), *extra])
+    assert result.exit_code == 2
+    lines = [line for line in result.output.splitlines() if line.startswith("sensorkit:")]
+    assert len(lines) == 1 and message in lines[0], result.output
+    assert "Traceback" not in result.output
+
+
+def test_unreadable_robot_exits_2(tmp_path: Path) -> None:
+    proc = run_cli("render", "preview", str(tmp_path / "nothing.urdf"), "--out", str(tmp_path / "o"))
+    assert proc.returncode == 2
+    assert proc.stderr.strip().splitlines()[-1].startswith("sensorkit:")
+    assert "Traceback" not in proc.stderr
+
+
+def test_importing_the_cli_does_not_import_pybullet() -> None:
+    code = (
+        "import sys, sensorkit.cli, sensorkit.render, sensorkit.render.preview;"
+        "bad = [m for m in ('pybullet', 'sensorkit.render.sim') if m in sys.modules];"
+        "assert not bad, bad"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("Chromium is not installed: the headless screenshot of index.html cannot be taken")
+    shot = tmp_path / "shot.png"
+    subprocess.run(
+        [browser, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={shot}", "--window-size=1280,2000", (wall / "index.html").as_uri()],
+        capture_output=True,
+        timeout=120,
+        check=False,
+    )
+    data = shot.read_bytes()
+    assert data.startswith(b"\x89PNG")
+    # a blank page compresses to a few kilobytes; the preview's pictures do not
+    assert len(data) > 50_000

@@ -1,0 +1,257 @@
+"""The preview's parts: PNG files, the TinyRenderer projection, exact shapes, kinematics at
+given joints, the URDF handed to pybullet, and keeping pybullet quiet."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sensorkit.errors import UsageError
+from sensorkit.loading import PackageResolver
+from sensorkit.model import load_robot
+from sensorkit.model.transforms import transform
+from sensorkit.render.camera import RenderCamera, depth_from_buffer
+from sensorkit.render.png import encode_png, read_png
+from sensorkit.render.poses import joint_positions, link_poses
+from sensorkit.render.scene import GROUND, Shape, default_scene
+from sensorkit.render.urdf_out import prepare_urdf
+
+HERE = Path(__file__).parent / "render_robots"
+
+
+# ---- PNG -------------------------------------------------------------------------------
+@settings(max_examples=30, deadline=None)
+@given(
+    st.integers(1, 17),
+    st.integers(1, 17),
+    st.sampled_from([1, 3, 4]),
+    st.integers(0, 2**32 - 1),
+)
+def test_png_round_trip(height: int, width: int, channels: int, seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    image = rng.integers(0, 256, (height, width, channels), dtype=np.uint8)
+    data = encode_png(image[:, :, 0] if channels == 1 else image)
+    assert data.startswith(b"\x89PNG\r\n\x1a\n")
+    assert np.array_equal(read_png(data), image)
+
+
+def test_png_chunks_carry_valid_crcs() -> None:
+    data = encode_png(np.zeros((2, 3, 3), dtype=np.uint8))
+    pos = 8
+    while pos < len(data):
+        length = int.from_bytes(data[pos : pos + 4], "big")
+        body = data[pos + 4 : pos + 8 + length]
+        assert int.from_bytes(data[pos + 8 + length : pos + 12 + length], "big") == zlib.crc32(body)
+        pos += 12 + length
+
+
+def test_png_refuses_what_it_cannot_write() -> None:
+    with pytest.raises(ValueError, match="uint8"):
+        encode_png(np.zeros((2, 2), dtype=np.float32))
+    with pytest.raises(ValueError, match="H, W"):
+        encode_png(np.zeros((2, 2, 2), dtype=np.uint8))
+
+
+# ---- projection --------------------------------------------------------------------------
+def _camera(**kw: float) -> RenderCamera:
+    base = {"width": 160, "height": 120, "fx": 100.0, "fy": 90.0, "cx": 79.5, "cy": 59.5, "skew": 0.0, "near": 0.1, "far": 50.0}
+    base.update(kw)
+    return RenderCamera(T_world_render=np.eye(4), **base)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("kw", [{}, {"cx": 70.0, "cy": 52.0}, {"skew": 3.0}])
+def test_projection_sends_each_pixel_ray_to_the_point_tinyrenderer_samples(kw: dict[str, float]) -> None:
+    """TinyRenderer fills pixel (i, r) from NDC (2i/W - 1, 1 - 2(r+1)/H)."""
+    cam = _camera(**kw)
+    P = np.array(cam.projection_matrix()).reshape(4, 4).T  # column-major
+    origin, dirs, cos = cam.pixel_rays()
+    assert np.allclose(origin, 0.0)
+    for i, r in ((0, 0), (159, 119), (80, 60), (17, 101)):
+        d = dirs[r, i]
+        # render pose = identity: eye x = -world y (right), eye y = world z, eye z = -world x
+        eye = np.array([-d[1], d[2], -d[0], 1.0])
+        clip = P @ eye
+        ndc = clip[:3] / clip[3]
+        assert ndc[0] == pytest.approx(2 * i / 160 - 1, abs=1e-9)
+        assert ndc[1] == pytest.approx(1 - 2 * (r + 1) / 120, abs=1e-9)
+        assert cos[r, i] == pytest.approx(d[0])
+
+
+def test_view_matrix_maps_the_render_pose_to_the_eye_frame() -> None:
+    T = transform((1.0, 2.0, 0.5), (0.0, 0.3, 1.0))
+    cam = _camera()
+    cam.T_world_render = T
+    V = np.array(cam.view_matrix()).reshape(4, 4).T
+    ahead = T @ np.array([2.0, 0.0, 0.0, 1.0])  # 2 m along the render x axis
+    left = T @ np.array([0.0, 1.0, 0.0, 1.0])
+    up = T @ np.array([0.0, 0.0, 1.0, 1.0])
+    assert V @ ahead == pytest.approx([0, 0, -2, 1])
+    assert V @ left == pytest.approx([-1, 0, 0, 1])
+    assert V @ up == pytest.approx([0, 1, 0, 1])
+
+
+def test_depth_buffer_to_metres() -> None:
+    near, far = 0.1, 100.0
+    z = np.array([0.1, 1.0, 3.0, 99.0])
+    d = (1 / near - 1 / z) / (1 / near - 1 / far)  # OpenGL depth of those distances
+    out = depth_from_buffer(np.append(d, 1.0).astype(np.float32), near, far)
+    assert out[:4] == pytest.approx(z, rel=1e-4)
+    assert np.isposinf(out[4])
+
+
+def _plate_centroid(projection: list[float], width: int = 160, height: int = 120) -> tuple[float, float]:
+    """Centroid of a square plate centred on the optical axis, 5 m ahead."""
+    from sensorkit.render.sim import World
+
+    with World() as world:
+        p = world.p
+        vis = world._call("createVisualShape", p.GEOM_BOX, halfExtents=[0.01, 0.6, 0.6])
+        body = world._call("createMultiBody", 0, -1, vis, [5.0, 0.0, 0.0])
+        cam = _camera()
+        image = world.render(width, height, cam.view_matrix(), projection)
+    ys, xs = np.nonzero(image.body == body)
+    return float(xs.mean()), float(ys.mean())
+
+
+def test_tinyrenderer_puts_its_own_axis_half_a_pixel_off_and_ours_on_the_pixel_grid_centre() -> None:
+    """pybullet's own symmetric projection lands the axis on (W/2, H/2 - 1); the preview's
+    lands it on ((W-1)/2, (H-1)/2), where Gazebo's rasteriser puts it."""
+    from sensorkit.render.sim import _pybullet
+
+    p = _pybullet()
+    vfov = math.degrees(2 * math.atan(60 / 90.0))
+    own = p.computeProjectionMatrixFOV(vfov, 160 / 120, 0.1, 50.0)
+    assert _plate_centroid(list(own)) == pytest.approx((80.0, 59.0), abs=0.05)
+    assert _plate_centroid(_camera(fx=90.0, fy=90.0).projection_matrix()) == pytest.approx((79.5, 59.5), abs=0.05)
+
+
+# ---- shapes --------------------------------------------------------------------------------
+def test_shape_intersections() -> None:
+    o = np.array([[0.0, 0.0, 1.0]] * 4)
+    d = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    box = Shape("b", "box", transform((3.0, 0.0, 1.0), (0, 0, math.pi / 4)), (0.5, 0.5, 0.5))
+    t, n = box.hit(o, d)
+    assert t[0] == pytest.approx(3.0 - 0.5 * math.sqrt(2)) and np.isnan(t[1:]).all()
+    assert n[0] == pytest.approx([-math.sqrt(0.5), -math.sqrt(0.5), 0.0]) or n[0] == pytest.approx([-math.sqrt(0.5), math.sqrt(0.5), 0.0])
+    sphere = Shape("s", "sphere", transform((-2.0, 0.0, 1.0)), (0.5,))
+    assert sphere.intersect(o, d)[1] == pytest.approx(1.5) and np.isnan(sphere.intersect(o, d)[0])
+    ground = Shape("g", GROUND, np.eye(4))
+    assert ground.intersect(o, d)[2] == pytest.approx(1.0) and np.isnan(ground.intersect(o, d)[3])
+    cyl = Shape("c", "cylinder", transform((0.0, 0.0, 3.0)), (0.2, 0.5))
+    assert cyl.intersect(o, d)[3] == pytest.approx(1.5)  # bottom cap at z = 2.5
+    side = cyl.hit(np.array([[-2.0, 0.0, 3.0]]), np.array([[1.0, 0.0, 0.0]]))
+    assert side[0][0] == pytest.approx(1.8) and side[1][0] == pytest.approx([-1, 0, 0])
+    inside = np.array([[3.0, 0.0, 1.0]])
+    assert np.isnan(box.intersect(inside, np.array([[1.0, 0.0, 0.0]])))[0]
+
+
+def test_default_scene_keeps_the_axes_clear_and_grows_with_the_robot() -> None:
+    scene = default_scene(0.4)
+    walls = [s for s in scene.shapes if s.role == "wall"]
+    assert len(walls) == 4 and len(scene.markers) == 72
+    faces = sorted(abs(s.centre[0]) - s.size[0] for s in walls if abs(s.centre[0]) > 1)
+    assert faces == pytest.approx([3.0, 3.0])
+    axis = np.array([[0.0, 0.0, h] for h in (0.3, 0.5, 1.0, 1.5)])
+    for direction in ([1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]):
+        d = np.tile(direction, (len(axis), 1)).astype(float)
+        firsts = np.fmin.reduce([s.intersect(axis, d) for s in scene.shapes if s.kind != GROUND])
+        assert firsts == pytest.approx([3.0] * len(axis))  # nothing before the wall
+    assert default_scene(4.0).half_extent > 5.5
+
+
+# ---- kinematics ------------------------------------------------------------------------------
+def test_link_poses_follow_the_joints() -> None:
+    robot = load_robot(HERE / "mounts_bot.urdf").robot
+    assert robot is not None
+    poses = link_poses(robot, joint_positions(robot, {"pan": 0.5}))
+    T = poses["yaw_cam_link"]
+    assert T[:3, 3] == pytest.approx([0.1 * math.cos(0.5), 0.1 * math.sin(0.5), 0.5])
+    zero = link_poses(robot, {})
+    for name, T0 in zero.items():
+        assert T0 == pytest.approx(robot.T_world_link(name))
+    with pytest.raises(UsageError, match="movable joints: pan"):
+        joint_positions(robot, {"tilt": 1.0})
+    with pytest.raises(UsageError, match="fixed"):
+        joint_positions(robot, {"pitch_cam_joint": 1.0})
+
+
+# ---- the URDF pybullet loads -------------------------------------------------------------------
+ASCII_STL = """solid t
+facet normal 0 0 1
+ outer loop
+  vertex 0 0 0
+  vertex 0.1 0 0
+  vertex 0 0.1 0
+ endloop
+endfacet
+endsolid t
+"""
+
+
+def test_prepared_urdf_drops_what_pybullet_cannot_load(tmp_path: Path) -> None:
+    pkg = tmp_path / "src" / "my_robot"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>my_robot</name></package>")
+    (pkg / "meshes" / "part.stl").write_text(ASCII_STL)
+    (pkg / "urdf").mkdir()
+    xacro = pkg / "urdf" / "r.urdf.xacro"
+    xacro.write_text(
+        """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="s" value="0.2"/>
+  <link name="base">
+    <visual><geometry><mesh filename="package://my_robot/meshes/part.stl"/></geometry></visual>
+    <visual><geometry><mesh filename="package://my_robot/meshes/missing.dae"/></geometry></visual>
+    <collision><geometry><mesh filename="package://nowhere/meshes/x.stl"/></geometry></collision>
+    <collision><geometry><box size="${s} ${s} ${s}"/></geometry></collision>
+  </link>
+  <gazebo reference="base"><material>Gazebo/Red</material></gazebo>
+</robot>"""
+    )
+    robot = load_robot(xacro).robot
+    assert robot is not None
+    prepared = prepare_urdf(robot, PackageResolver.from_options([], near=xacro))
+    text = prepared.text.decode()
+    assert "sk_loc_" not in text and "<gazebo" not in text
+    assert str((pkg / "meshes" / "part.stl").resolve()) in text
+    assert prepared.dropped == 2 and len(prepared.notes) == 2
+    assert any("missing.dae" in n for n in prepared.notes)
+    assert any("package 'nowhere' not found" in n for n in prepared.notes)
+
+    from sensorkit.render.sim import World
+
+    with World() as world:
+        body = world.add_robot(prepared.text)
+        assert world.robot_links == {-1: "base"} and body >= 0
+
+
+def test_pybullet_failure_is_an_input_error() -> None:
+    from sensorkit.errors import InputError
+    from sensorkit.render.sim import World
+
+    with World() as world, pytest.raises(InputError, match="pybullet could not load"):
+        world.add_robot(b"<robot name='x'><link name='a'/><joint name='j' type='fixed'><parent link='a'/><child link='zz'/></joint></robot>")
+
+
+def test_captured_output_keeps_c_level_writes_off_the_terminal() -> None:
+    code = (
+        "import os, ctypes\n"
+        "from sensorkit.render.sim import captured_output\n"
+        "log = []\n"
+        "with captured_output(log):\n"
+        "    os.write(1, b'fd one\\n'); os.write(2, b'fd two\\n')\n"
+        "    ctypes.CDLL(None).printf(b'from C\\n')\n"
+        "print('after', sorted(log))\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env=dict(os.environ))
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert proc.stdout == "after ['fd one', 'fd two', 'from C']\n"
