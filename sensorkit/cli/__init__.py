@@ -35,7 +35,7 @@ def _root(
 def _register() -> None:
     import importlib
 
-    for name in ("validate", "edit", "new", "render"):
+    for name in ("validate", "edit", "new", "render", "export"):
         try:
             module = importlib.import_module(f"sensorkit.cli.{name}")
         except ModuleNotFoundError as exc:

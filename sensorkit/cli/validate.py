@@ -33,8 +33,12 @@ def validate(
 
     Exit status: 0 nothing at or above --fail-on, 1 findings, 2 could not run.
     """
+    import gc
+
     from sensorkit.config import load_config
     from sensorkit.engine import Options, validate_paths
+
+    gc.disable()  # a short-lived process building many small acyclic objects
     from sensorkit.errors import UsageError
     from sensorkit.findings import Severity
     from sensorkit.report import FORMATS, render

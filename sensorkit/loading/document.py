@@ -57,9 +57,14 @@ class Document:
     expanded: bool = False
     includes: list[str] = field(default_factory=list)
 
+    _display: str | None = field(default=None, repr=False)
+    _file_display: dict[int, str] = field(default_factory=dict, repr=False)
+
     @property
     def display(self) -> str:
-        return display_path(self.path)
+        if self._display is None:
+            self._display = display_path(self.path)
+        return self._display
 
     def locate(self, el: etree._Element | None) -> SourceRef:
         """File and line an element was written at (nearest stamped ancestor for xacro)."""
@@ -73,7 +78,10 @@ class Document:
             if loc:
                 idx, _, line = loc.partition(":")
                 if idx.isdigit() and int(idx) < len(self.files) and line.isdigit():
-                    return SourceRef(display_path(self.files[int(idx)]), int(line))
+                    i = int(idx)
+                    if i not in self._file_display:
+                        self._file_display[i] = display_path(self.files[i])
+                    return SourceRef(self._file_display[i], int(line))
             cur = cur.getparent()
         return SourceRef(self.display)
 
@@ -132,6 +140,18 @@ def _xml_finding(file: str, message: str, line: int | None, column: int | None) 
     )
 
 
+def drop_default_namespace(root: etree._Element) -> etree._Element:
+    """Remove a default xmlns from element tags, as urdfdom (TinyXML) ignores it too."""
+    ns = root.nsmap.get(None)
+    if ns:
+        prefix = "{" + ns + "}"
+        for el in root.iter():
+            tag = el.tag
+            if isinstance(tag, str) and tag.startswith(prefix):
+                el.tag = tag[len(prefix):]
+    return root
+
+
 def _check_root(root: etree._Element, where: str) -> None:
     tag = root.tag if isinstance(root.tag, str) else ""
     local = etree.QName(root).localname if tag else ""
@@ -160,7 +180,7 @@ def parse_plain(path: Path, data: bytes) -> LoadResult:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
         return LoadResult(None, [_xml_finding(where, str(exc.msg), line, col)])
     _check_root(root, where)
-    return LoadResult(Document(path=path, root=root))
+    return LoadResult(Document(path=path, root=drop_default_namespace(root)))
 
 
 def load_description(
@@ -195,7 +215,7 @@ def load_description(
         return LoadResult(None, [_xml_finding(where, f"xacro output: {exc.msg}", None, None)])
     _check_root(root, where)
     doc = Document(
-        path=path, root=root, files=outcome.files, expanded=True, includes=outcome.includes
+        path=path, root=drop_default_namespace(root), files=outcome.files, expanded=True, includes=outcome.includes
     )
     return LoadResult(doc)
 

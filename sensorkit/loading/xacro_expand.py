@@ -155,7 +155,7 @@ def expand_in_process(
     sa._eval_dict["find"] = find
     sys.stderr = io.StringIO()
     try:
-        doc = xacro.process_file(str(path.resolve()), mappings=dict(args), verbosity=0)
+        doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
         out.xml = doc.documentElement.toxml()
         out.includes = [os.path.abspath(p) for p in xacro.all_includes]
     except BaseException as exc:  # classify everything; never let xacro escape

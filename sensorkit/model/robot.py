@@ -32,10 +32,10 @@ def parse_vec(text: str | None, n: int = 3) -> tuple[tuple[float, ...] | None, s
     if len(parts) != n:
         return None, f"{text!r} is not {n} numbers"
     try:
-        values = tuple(float(p) for p in parts)
+        values = tuple(map(float, parts))
     except ValueError:
         return None, f"{text!r} is not {n} numbers"
-    if not all(math.isfinite(v) for v in values):
+    if sum(values) - sum(values) != 0.0:  # any NaN or inf makes this NaN
         return None, f"{text!r} is not finite"
     return values, None
 
@@ -45,10 +45,10 @@ def parse_float(text: str | None) -> tuple[float | None, str | None]:
     if text is None:
         return None, None
     try:
-        value = float(text.strip())
+        value = float(text)
     except ValueError:
         return None, f"{text!r} is not a number"
-    if not math.isfinite(value):
+    if value - value != 0.0:
         return None, f"{text!r} is not finite"
     return value, None
 
@@ -58,20 +58,20 @@ def local(el: etree._Element) -> str:
     tag = el.tag
     if not isinstance(tag, str):
         return ""
-    return tag.rsplit("}", 1)[-1]
+    if tag[0] == "{":
+        return tag.rsplit("}", 1)[-1]
+    return tag
 
 
 def children(el: etree._Element, name: str) -> list[etree._Element]:
-    return [c for c in el if local(c) == name]
+    """Child elements called ``name`` (documents are namespace-free after loading)."""
+    return el.findall(name)
 
 
 def child(el: etree._Element | None, name: str) -> etree._Element | None:
     if el is None:
         return None
-    for c in el:
-        if local(c) == name:
-            return c
-    return None
+    return el.find(name)
 
 
 def text_of(el: etree._Element | None, *path: str) -> str | None:
@@ -86,7 +86,7 @@ def text_of(el: etree._Element | None, *path: str) -> str | None:
     return cur.text.strip()
 
 
-@dataclass
+@dataclass(slots=True)
 class Origin:
     """A URDF ``<origin>``: xyz and rpy, zeros when absent; notes when unreadable."""
 
@@ -119,20 +119,33 @@ class Origin:
         return transform(self.xyz, self.rpy)
 
 
-@dataclass
-class Inertial:
+class _Located:
+    """Mixin: ``source`` is computed on first use (most elements never need it)."""
+
+    __slots__ = ()
+    element: etree._Element
+    doc: Document
+
+    @property
+    def source(self) -> SourceRef:
+        return self.doc.locate(self.element)
+
+
+@dataclass(slots=True)
+class Inertial(_Located):
     mass: float | None
     inertia: dict[str, float | None]
     origin: Origin
-    source: SourceRef
+    element: etree._Element
+    doc: Document
     problems: list[str] = field(default_factory=list)
 
 
-@dataclass
-class Link:
+@dataclass(slots=True)
+class Link(_Located):
     name: str
     element: etree._Element
-    source: SourceRef
+    doc: Document
     inertial: Inertial | None = None
     meshes: list[tuple[str, SourceRef]] = field(default_factory=list)
 
@@ -144,15 +157,15 @@ class Link:
         return self.inertial.mass
 
 
-@dataclass
-class Joint:
+@dataclass(slots=True)
+class Joint(_Located):
     name: str
     type: str
     parent: str | None
     child: str | None
     origin: Origin
     element: etree._Element
-    source: SourceRef
+    doc: Document
     axis: Vec3 | None = None
     axis_problem: str | None = None
     limit: dict[str, float | None] | None = None
@@ -285,73 +298,106 @@ class Robot:
         return invert(Ta) @ Tb
 
 
+_INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_LIMIT_KEYS = ("lower", "upper", "effort", "velocity")
+
+
 def _read_inertial(el: etree._Element, doc: Document) -> Inertial:
-    src = doc.locate(el)
     problems: list[str] = []
-    mass_el = child(el, "mass")
+    mass_el = in_el = origin_el = None
+    for c in el:  # one pass: lxml's find() costs more per call than this loop
+        tag = c.tag
+        if tag == "mass" and mass_el is None:
+            mass_el = c
+        elif tag == "inertia" and in_el is None:
+            in_el = c
+        elif tag == "origin" and origin_el is None:
+            origin_el = c
     mass: float | None = None
     if mass_el is None:
         problems.append("no <mass>")
     else:
-        mass, why = parse_float(mass_el.get("value"))
-        if why:
-            problems.append(f"mass {why}")
-        elif mass_el.get("value") is None:
+        text = mass_el.get("value")
+        if text is None:
             problems.append("<mass> has no value attribute")
+        else:
+            mass, why = parse_float(text)
+            if why:
+                problems.append(f"mass {why}")
     inertia: dict[str, float | None] = {}
-    in_el = child(el, "inertia")
-    for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
-        value, why = parse_float(in_el.get(key) if in_el is not None else None)
-        if why:
-            problems.append(f"{key} {why}")
+    get = in_el.get if in_el is not None else (lambda _k: None)
+    for key in _INERTIA_KEYS:
+        text = get(key)
+        if text is None:
+            inertia[key] = None
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            value = None
+        if value is None or value - value != 0.0:
+            problems.append(f"{key} {text!r} is not a finite number")
+            value = None
         inertia[key] = value
-    origin = Origin.read(child(el, "origin"), src)
-    return Inertial(mass=mass, inertia=inertia, origin=origin, source=src, problems=problems)
+    origin = Origin.read(origin_el) if origin_el is not None else Origin()
+    return Inertial(mass=mass, inertia=inertia, origin=origin, element=el, doc=doc, problems=problems)
 
 
 def _read_link(el: etree._Element, doc: Document) -> Link:
-    src = doc.locate(el)
-    link = Link(name=el.get("name", ""), element=el, source=src)
-    inertial_el = child(el, "inertial")
-    if inertial_el is not None:
-        link.inertial = _read_inertial(inertial_el, doc)
-    for kind in ("visual", "collision"):
-        for part in children(el, kind):
-            mesh = child(child(part, "geometry"), "mesh")
-            if mesh is not None and mesh.get("filename"):
-                link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
+    link = Link(name=el.get("name", ""), element=el, doc=doc)
+    for part in el:
+        tag = part.tag
+        if tag == "inertial":
+            if link.inertial is None:
+                link.inertial = _read_inertial(part, doc)
+        elif tag == "visual" or tag == "collision":
+            for geometry in part.iterchildren("geometry"):
+                for mesh in geometry.iterchildren("mesh"):
+                    if mesh.get("filename"):
+                        link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
     return link
 
 
 def _read_joint(el: etree._Element, doc: Document) -> Joint:
-    src = doc.locate(el)
-    parent_el, child_el = child(el, "parent"), child(el, "child")
+    parent_el = child_el = origin_el = axis_el = limit_el = mimic_el = None
+    for c in el:
+        tag = c.tag
+        if tag == "parent":
+            parent_el = parent_el if parent_el is not None else c
+        elif tag == "child":
+            child_el = child_el if child_el is not None else c
+        elif tag == "origin":
+            origin_el = origin_el if origin_el is not None else c
+        elif tag == "axis":
+            axis_el = axis_el if axis_el is not None else c
+        elif tag == "limit":
+            limit_el = limit_el if limit_el is not None else c
+        elif tag == "mimic":
+            mimic_el = mimic_el if mimic_el is not None else c
     joint = Joint(
         name=el.get("name", ""),
         type=el.get("type", ""),
         parent=parent_el.get("link") if parent_el is not None else None,
         child=child_el.get("link") if child_el is not None else None,
-        origin=Origin.read(child(el, "origin"), src),
+        origin=Origin.read(origin_el) if origin_el is not None else Origin(),
         element=el,
-        source=src,
+        doc=doc,
     )
-    axis_el = child(el, "axis")
     if axis_el is not None:
         axis, why = parse_vec(axis_el.get("xyz"))
         joint.axis_problem = why
         if axis is not None:
             joint.axis = (axis[0], axis[1], axis[2])
-            if all(v == 0.0 for v in axis):
+            if axis[0] == 0.0 and axis[1] == 0.0 and axis[2] == 0.0:
                 joint.axis_problem = "axis is zero"
-    limit_el = child(el, "limit")
     if limit_el is not None:
-        joint.limit = {}
-        for key in ("lower", "upper", "effort", "velocity"):
+        limit: dict[str, float | None] = {}
+        for key in _LIMIT_KEYS:
             value, why = parse_float(limit_el.get(key))
             if why:
                 joint.limit_problems.append(f"{key} {why}")
-            joint.limit[key] = value
-    mimic_el = child(el, "mimic")
+            limit[key] = value
+        joint.limit = limit
     if mimic_el is not None:
         joint.has_mimic = True
         joint.mimic = mimic_el.get("joint")
@@ -360,6 +406,18 @@ def _read_joint(el: etree._Element, doc: Document) -> Joint:
 
 def build_robot(doc: Document) -> Robot:
     """Read the model from a loaded document. Never raises on bad content."""
+    import gc
+
+    enabled = gc.isenabled()
+    gc.disable()  # tens of thousands of small acyclic objects: collection only costs time
+    try:
+        return _build_robot(doc)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _build_robot(doc: Document) -> Robot:
     from sensorkit.model.sensors import read_gazebo
 
     root = doc.root

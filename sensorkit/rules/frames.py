@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
-from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, angle_between, rotation_angle
 from sensorkit.rules.base import Context, rule
+
+if TYPE_CHECKING:
+    from sensorkit.model.transforms import Mat
 
 ANGLE_TOL = math.radians(0.5)
 EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
@@ -19,11 +20,24 @@ POSITION_TOL = 1e-3
 OPTICAL_RPY = '${-pi/2} 0 ${-pi/2}'
 
 
+def _np():  # type: ignore[no-untyped-def]
+    import numpy as np
+
+    return np
+
+
+def _tf():  # type: ignore[no-untyped-def]
+    from sensorkit.model import transforms
+
+    return transforms
+
+
 def _describe_axis(v: Mat) -> str:
     names = {
         (1, 0, 0): "forward", (-1, 0, 0): "backwards", (0, 1, 0): "to the left",
         (0, -1, 0): "to the right", (0, 0, 1): "up", (0, 0, -1): "down",
     }
+    np = _np()
     i = int(np.argmax(np.abs(v)))
     key = [0, 0, 0]
     key[i] = 1 if v[i] > 0 else -1
@@ -32,10 +46,11 @@ def _describe_axis(v: Mat) -> str:
 
 def optical_consequence(R_render_frame: Mat) -> str:
     """What consumers will see when optical data is stamped with this frame."""
+    np, tf = _np(), _tf()
     forward = R_render_frame @ np.array([0.0, 0.0, 1.0])
     right = R_render_frame @ np.array([1.0, 0.0, 0.0])
     fwd = _describe_axis(forward)
-    if rotation_angle(R_render_frame) < ANGLE_TOL:
+    if tf.rotation_angle(R_render_frame) < ANGLE_TOL:
         return (
             "the frame is x-forward (a body frame), so the camera's viewing axis (optical z) "
             "lands on z: the point cloud points up at the sky and images are rotated in RViz"
@@ -109,8 +124,9 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         T_frame = _frame_pose(robot, fr, frame)
         if fr.T_world_render is None or T_frame is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
             continue
+        tf = _tf()
         R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
-        err = angle_between(R, R_BODY_OPTICAL)
+        err = tf.angle_between(R, tf.R_BODY_OPTICAL)
         if err <= ANGLE_TOL:
             continue
         existing = optical_frame_at(robot, fr.T_world_render)
@@ -148,7 +164,7 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
         if fr.T_world_render is None or T_frame is None:
             continue
         offset_world = T_frame[:3, 3] - fr.T_world_render[:3, 3]
-        dist = float(np.linalg.norm(offset_world))
+        dist = float(_np().linalg.norm(offset_world))
         if dist <= POSITION_TOL:
             continue
         off = fr.T_world_render[:3, :3].T @ offset_world
@@ -179,12 +195,13 @@ def body_frame(ctx: Context) -> Iterator[Finding]:
         T_frame = _frame_pose(robot, fr, fr.published)
         if fr.T_world_render is None or T_frame is None:
             continue
+        tf = _tf()
         R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
-        err = rotation_angle(R)
+        err = tf.rotation_angle(R)
         if err <= ANGLE_TOL:
             continue
         what = "scan" if s.kind == "lidar" else "IMU data"
-        optical = angle_between(R, R_BODY_OPTICAL) <= ANGLE_TOL
+        optical = tf.angle_between(R, tf.R_BODY_OPTICAL) <= ANGLE_TOL
         yield ctx.finding(
             "SK504",
             Severity.ERROR,
@@ -221,8 +238,9 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
             if len(rotated) != 1:
                 continue
             joint = rotated[0]
+        tf = _tf()
         R = joint.origin.matrix()[:3, :3]
-        err = angle_between(R, R_BODY_OPTICAL)
+        err = tf.angle_between(R, tf.R_BODY_OPTICAL)
         if EXACT_TOL < err <= ANGLE_TOL and joint.name not in seen:
             seen.add(joint.name)
             yield joint, err, frame
@@ -256,8 +274,9 @@ def optical_naming(ctx: Context) -> Iterator[Finding]:
         T_frame = _frame_pose(robot, fr, frame)
         if frame is None or frame in seen or "optical" in frame or fr.T_world_render is None or T_frame is None:
             continue
+        tf = _tf()
         R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
-        if angle_between(R, R_BODY_OPTICAL) <= ANGLE_TOL:
+        if tf.angle_between(R, tf.R_BODY_OPTICAL) <= ANGLE_TOL:
             seen.add(frame)
             yield ctx.finding(
                 "SK506",

@@ -72,18 +72,6 @@ def missing_files(ctx: Context) -> Iterator[Finding]:
         )
 
 
-def _walk(root: etree._Element) -> Iterator[tuple[etree._Element, str | None]]:
-    """(element, enclosing link name) for every element of links and joints."""
-    for top in root:
-        tag = local(top)
-        if tag not in ("link", "joint"):
-            continue
-        name = top.get("name")
-        for el in top.iter():
-            if isinstance(el.tag, str):
-                yield el, name if tag == "link" else None
-
-
 @rule(
     "SK105",
     "warning",
@@ -91,19 +79,31 @@ def _walk(root: etree._Element) -> Iterator[tuple[etree._Element, str | None]]:
     "(`<joint>` inside `<link>`, `<intertial>`, `<mass values=...>`, `<gazebo>` inside `<link>`)",
 )
 def unknown_elements(ctx: Context) -> Iterator[Finding]:
-    for el, link in _walk(ctx.robot.document.root):
-        tag = local(el)
-        parent = el.getparent()
-        ptag = local(parent) if parent is not None else ""
-        # Only check inside elements whose content urdfdom defines.
-        if ptag in ALLOWED_CHILDREN and tag not in ALLOWED_CHILDREN[ptag]:
+    for top in ctx.robot.document.root.iterchildren("link", "joint"):
+        name = top.get("name")
+        link = name if top.tag == "link" else None
+        if not ALLOWED_ATTRS[top.tag].issuperset(top.keys()):  # type: ignore[index]
+            yield from _attrs(ctx, top, link)
+        yield from _children(ctx, top, link)
+
+
+def _children(ctx: Context, parent: etree._Element, link: str | None) -> Iterator[Finding]:
+    """Findings for the children of ``parent``, an element whose content urdfdom defines."""
+    ptag = parent.tag
+    allowed = ALLOWED_CHILDREN[ptag]  # type: ignore[index]
+    for el in parent:
+        tag = el.tag
+        if not isinstance(tag, str):
+            continue
+        if tag not in allowed:
+            tag = local(el)
             hint = HINTS.get(tag)
             if hint is None:
-                close = difflib.get_close_matches(tag, sorted(ALLOWED_CHILDREN[ptag]), n=1, cutoff=0.7)
+                close = difflib.get_close_matches(tag, sorted(allowed), n=1, cutoff=0.7)
                 hint = (
                     f"did you mean <{close[0]}>?"
                     if close
-                    else f"<{ptag}> takes only " + ", ".join(f"<{c}>" for c in sorted(ALLOWED_CHILDREN[ptag]))
+                    else f"<{ptag}> takes only " + ", ".join(f"<{c}>" for c in sorted(allowed))
                 )
             yield ctx.finding(
                 "SK105",
@@ -114,19 +114,25 @@ def unknown_elements(ctx: Context) -> Iterator[Finding]:
                 fix=hint,
             )
             continue
-        allowed = ALLOWED_ATTRS.get(tag)
-        if allowed is None or (ptag not in ALLOWED_CHILDREN and tag not in ("link", "joint")):
+        allowed_attrs = ALLOWED_ATTRS.get(tag)
+        if allowed_attrs is not None and not allowed_attrs.issuperset(el.keys()):
+            yield from _attrs(ctx, el, link)
+        if tag in ALLOWED_CHILDREN:
+            yield from _children(ctx, el, link)
+
+
+def _attrs(ctx: Context, el: etree._Element, link: str | None) -> Iterator[Finding]:
+    tag = el.tag
+    allowed = ALLOWED_ATTRS[tag]  # type: ignore[index]
+    for attr in el.attrib:
+        if attr in allowed or attr == LOC_ATTR or attr.startswith("{"):
             continue
-        for attr in el.attrib:
-            if attr == LOC_ATTR or attr.startswith("{"):
-                continue
-            if attr not in allowed:
-                close = difflib.get_close_matches(attr, sorted(allowed), n=1, cutoff=0.6)
-                yield ctx.finding(
-                    "SK105",
-                    Severity.WARNING,
-                    f"attribute {attr}=\"{el.get(attr)}\" on <{tag}> is silently ignored",
-                    el,
-                    link=link,
-                    fix=f"write {close[0]}=\"...\"" if close else f"<{tag}> takes " + ", ".join(sorted(allowed)),
-                )
+        close = difflib.get_close_matches(attr, sorted(allowed), n=1, cutoff=0.6)
+        yield ctx.finding(
+            "SK105",
+            Severity.WARNING,
+            f"attribute {attr}=\"{el.get(attr)}\" on <{tag}> is silently ignored",
+            el,
+            link=link,
+            fix=f"write {close[0]}=\"...\"" if close else f"<{tag}> takes " + ", ".join(sorted(allowed)),
+        )

@@ -85,9 +85,9 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
         else:
             where = f"link {name!r} (joined by {joint.type} joint {joint.name!r}) {what}"
             loss = "Gazebo drops it and everything below it"
-        detail = f"links: {', '.join(lost)}"
+        detail = f"{len(lost)} links: {_few(lost)}"
         if sensors:
-            detail += f"; sensors: {', '.join(sensors)}"
+            detail += f"; sensors: {_few(sensors)}"
         yield ctx.finding(
             "SK301",
             Severity.ERROR,
@@ -101,6 +101,10 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
                 "(e.g. a box: ixx = m/12 (y²+z²), iyy = m/12 (x²+z²), izz = m/12 (x²+y²))"
             ),
         )
+
+
+def _few(names: list[str], n: int = 8) -> str:
+    return ", ".join(names[:n]) + (f" and {len(names) - n} more" if len(names) > n else "")
 
 
 @rule(

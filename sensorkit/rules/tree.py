@@ -129,6 +129,17 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 fix="a URDF is a tree: keep one parent joint (model closed chains with a plugin)",
             )
     # Cycles over every joint (a second parent can close a loop too): iterative DFS.
+    # Fast path: with one parent per link, a walk from the roots that reaches every child
+    # proves there is no cycle.
+    if not any(len(js) > 1 for js in parents.values()):
+        reached: set[str] = set()
+        stack = robot.roots()
+        while stack:
+            cur = stack.pop()
+            reached.add(cur)
+            stack.extend(j.child for j in robot.child_joints.get(cur, ()) if j.child is not None and j.child not in reached and j.parent != j.child)
+        if all(c in reached for c in parents):
+            return
     edges: dict[str, list[tuple[str, str]]] = {}
     for j in robot.joints:
         if j.parent is not None and j.child is not None and j.parent != j.child:
