@@ -90,24 +90,28 @@ class Report:
         return 1 if any(f.severity >= fail_on for f in self.findings) else 0
 
 
-def _mesh_path(uri: str, base: Path, resolver: PackageResolver) -> tuple[Path | None, str | None, str | None]:
+def _mesh_path(
+    uri: str, base: Path, resolver: PackageResolver
+) -> tuple[Path | None, str | None, str | None]:
     """(path, reason-if-unresolvable, missing package) for a mesh/texture reference."""
     if uri.startswith("package://"):
-        rest = uri[len("package://"):]
+        rest = uri[len("package://") :]
         pkg, _, rel = rest.partition("/")
         folder = resolver.find(pkg)
         if folder is None:
             return None, f"package {pkg!r} not found", pkg
         return folder / rel, None, None
     if uri.startswith("file://"):
-        return Path(uri[len("file://"):]), None, None
+        return Path(uri[len("file://") :]), None, None
     if "://" in uri:  # model://, http:// ...: resolved by the simulator, not by us
         return None, None, None
     p = Path(uri)
     return (p if p.is_absolute() else base / p), None, None
 
 
-def find_missing_files(robot: Robot, resolver: PackageResolver) -> tuple[list[MissingFile], list[Finding]]:
+def find_missing_files(
+    robot: Robot, resolver: PackageResolver
+) -> tuple[list[MissingFile], list[Finding]]:
     """SK104 data (missing files) and SK103 findings (unknown packages in package:// URIs)."""
     base = robot.document.path.resolve().parent
     missing: list[MissingFile] = []
@@ -120,12 +124,17 @@ def find_missing_files(robot: Robot, resolver: PackageResolver) -> tuple[list[Mi
             if pkg is not None:
                 if pkg not in seen_pkg:
                     seen_pkg.add(pkg)
-                    findings.append(Finding(
-                        "SK103", Severity.ERROR,
-                        f"{uri!r}: package {pkg!r} not found; searched: " + "; ".join(resolver.searched()),
-                        src, link=link.name,
-                        fix=f"pass --package-path {pkg}=DIR (the folder holding its package.xml) or --package-path WORKSPACE/src",
-                    ))
+                    findings.append(
+                        Finding(
+                            "SK103",
+                            Severity.ERROR,
+                            f"{uri!r}: package {pkg!r} not found; searched: "
+                            + "; ".join(resolver.searched()),
+                            src,
+                            link=link.name,
+                            fix=f"pass --package-path {pkg}=DIR (the folder holding its package.xml) or --package-path WORKSPACE/src",
+                        )
+                    )
                 continue
             if path is None:
                 continue
@@ -136,7 +145,9 @@ def find_missing_files(robot: Robot, resolver: PackageResolver) -> tuple[list[Mi
     return missing, findings
 
 
-def check_robot(robot: Robot, options: Options, resolver: PackageResolver | None = None) -> FileReport:
+def check_robot(
+    robot: Robot, options: Options, resolver: PackageResolver | None = None
+) -> FileReport:
     """Run every selected rule on an already loaded robot."""
     report = FileReport(path=robot.document.path, robot=robot)
     if options.target == "auto":
@@ -149,7 +160,9 @@ def check_robot(robot: Robot, options: Options, resolver: PackageResolver | None
         ctx.frames[id(s)] = sensor_frames(robot, s, report.target, conv)
     findings: list[Finding] = []
     if options.wants("SK104") or options.wants("SK103"):
-        resolver = resolver or PackageResolver.from_options(list(options.package_paths), near=robot.document.path)
+        resolver = resolver or PackageResolver.from_options(
+            list(options.package_paths), near=robot.document.path
+        )
         ctx.missing_files, pkg_findings = find_missing_files(robot, resolver)
         findings.extend(pkg_findings)
     for info in RULES.values():
@@ -158,8 +171,14 @@ def check_robot(robot: Robot, options: Options, resolver: PackageResolver | None
         try:
             findings.extend(info.func(ctx))
         except Exception as exc:  # a bug of ours must not hide the other findings
-            detail = "".join(traceback.format_exception(exc)) if os.environ.get("SENSORKIT_DEBUG") else repr(exc)
-            report.internal_errors.append(f"rule {info.id} failed on {robot.document.display}: {detail}")
+            detail = (
+                "".join(traceback.format_exception(exc))
+                if os.environ.get("SENSORKIT_DEBUG")
+                else repr(exc)
+            )
+            report.internal_errors.append(
+                f"rule {info.id} failed on {robot.document.display}: {detail}"
+            )
     report.findings = findings
     return report
 
@@ -168,11 +187,15 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
     """Load, model and check one file. Unreadable input becomes ``FileReport.error``."""
     options = options or Options()
     try:
-        loaded = load_robot(path, args=options.args, package_paths=options.package_paths, timeout=options.timeout)
+        loaded = load_robot(
+            path, args=options.args, package_paths=options.package_paths, timeout=options.timeout
+        )
     except InputError as exc:
         return FileReport(path=path, error=str(exc))
     except RecursionError:
-        return FileReport(path=path, error=f"{display_path(path)}: the document nests too deeply to read")
+        return FileReport(
+            path=path, error=f"{display_path(path)}: the document nests too deeply to read"
+        )
     if loaded.robot is None:
         report = FileReport(path=path, findings=list(loaded.findings))
     else:

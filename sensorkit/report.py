@@ -61,7 +61,9 @@ def format_text(report: Report, *, color: bool = False) -> str:
         for err in fr.internal_errors:
             lines.append(f"  internal error: {err}")
     s = report.summary()
-    lines.append(f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {len(report.files)} files")
+    lines.append(
+        f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {len(report.files)} files"
+    )
     return "\n".join(lines) + "\n"
 
 
@@ -91,14 +93,16 @@ def to_sarif(report: Report) -> dict[str, Any]:
     for rid in ids:
         info = RULES[rid]
         level = "note" if info.severity == "info" else info.severity.split("/")[0]
-        rules.append({
-            "id": rid,
-            "name": rid,
-            "shortDescription": {"text": info.title},
-            "fullDescription": {"text": f"{info.title} (existing tool: {info.existing})"},
-            "defaultConfiguration": {"level": level},
-            "helpUri": f"{HOME}#rules",
-        })
+        rules.append(
+            {
+                "id": rid,
+                "name": rid,
+                "shortDescription": {"text": info.title},
+                "fullDescription": {"text": f"{info.title} (existing tool: {info.existing})"},
+                "defaultConfiguration": {"level": level},
+                "helpUri": f"{HOME}#rules",
+            }
+        )
     results = []
     for f in report.findings:
         text = f.message + (f" Fix: {f.fix}" if f.fix else "")
@@ -115,17 +119,35 @@ def to_sarif(report: Report) -> dict[str, Any]:
                 if f.column:
                     phys["region"]["startColumn"] = f.column
             result["locations"] = [{"physicalLocation": phys}]
-        props = {k: v for k, v in (("link", f.link), ("joint", f.joint), ("sensor", f.sensor), ("frame", f.frame)) if v}
+        props = {
+            k: v
+            for k, v in (
+                ("link", f.link),
+                ("joint", f.joint),
+                ("sensor", f.sensor),
+                ("frame", f.frame),
+            )
+            if v
+        }
         if props:
             result["properties"] = props
         results.append(result)
     return {
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
         "version": "2.1.0",
-        "runs": [{
-            "tool": {"driver": {"name": "sensorkit", "version": __version__, "informationUri": HOME, "rules": rules}},
-            "results": results,
-        }],
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "sensorkit",
+                        "version": __version__,
+                        "informationUri": HOME,
+                        "rules": rules,
+                    }
+                },
+                "results": results,
+            }
+        ],
     }
 
 
@@ -146,7 +168,9 @@ def format_github(report: Report) -> str:
     lines = []
     for fr in report.files:
         if fr.error:
-            lines.append(f"::error file={_gh_escape(fr.display, True)},title=sensorkit::{_gh_escape(fr.error)}")
+            lines.append(
+                f"::error file={_gh_escape(fr.display, True)},title=sensorkit::{_gh_escape(fr.error)}"
+            )
     for f in report.findings:
         props = []
         if f.file:
@@ -178,4 +202,3 @@ def rule_table() -> str:
         info = RULES[rid]
         lines.append(f"| {rid} | {info.severity} | {info.title} | {info.existing} |")
     return "\n".join(lines) + "\n"
-

@@ -20,14 +20,28 @@ def register(app: typer.Typer) -> None:
 @handle_errors
 def validate(
     files: FilesArg,
-    target: Annotated[str | None, typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty")] = None,
+    target: Annotated[
+        str | None,
+        typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
+    ] = None,
     fmt: Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)] = "text",
-    fail_on: Annotated[str | None, typer.Option("--fail-on", help="lowest severity that fails: error | warning | info")] = None,
-    select: Annotated[list[str] | None, typer.Option("--select", help="only these rules (ids or prefixes, repeatable)")] = None,
-    ignore: Annotated[list[str] | None, typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)")] = None,
+    fail_on: Annotated[
+        str | None,
+        typer.Option("--fail-on", help="lowest severity that fails: error | warning | info"),
+    ] = None,
+    select: Annotated[
+        list[str] | None,
+        typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
+    ] = None,
+    ignore: Annotated[
+        list[str] | None,
+        typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)"),
+    ] = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
-    timeout: Annotated[float, typer.Option("--timeout", help="seconds one xacro expansion may take")] = 60.0,
+    timeout: Annotated[
+        float, typer.Option("--timeout", help="seconds one xacro expansion may take")
+    ] = 60.0,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 

@@ -104,7 +104,9 @@ def looks_like_xacro(path: Path, data: bytes) -> bool:
     """True for .xacro files and for .urdf files that really contain xacro markup."""
     if path.name.endswith(".xacro"):
         return True
-    return bool(_XACRO_MARKERS.search(data))
+    if b"${" in data or b"$(" in data:  # plain substring tests: much faster than a regex on MBs
+        return True
+    return b"xacro" in data and bool(_XACRO_MARKERS.search(data))
 
 
 def read_input(path: Path) -> bytes:
@@ -148,7 +150,7 @@ def drop_default_namespace(root: etree._Element) -> etree._Element:
         for el in root.iter():
             tag = el.tag
             if isinstance(tag, str) and tag.startswith(prefix):
-                el.tag = tag[len(prefix):]
+                el.tag = tag[len(prefix) :]
     return root
 
 
@@ -215,7 +217,11 @@ def load_description(
         return LoadResult(None, [_xml_finding(where, f"xacro output: {exc.msg}", None, None)])
     _check_root(root, where)
     doc = Document(
-        path=path, root=drop_default_namespace(root), files=outcome.files, expanded=True, includes=outcome.includes
+        path=path,
+        root=drop_default_namespace(root),
+        files=outcome.files,
+        expanded=True,
+        includes=outcome.includes,
     )
     return LoadResult(doc)
 
@@ -244,7 +250,7 @@ def _expansion_finding(path: Path, outcome: object) -> Finding:
     fix = "fix the xacro error above"
     m = re.search(r"Undefined substitution argument (\S+)", msg)
     if m:
-        fix = f"declare <xacro:arg name=\"{m.group(1)}\" default=\"...\"/> or pass --arg {m.group(1)}:=VALUE"
+        fix = f'declare <xacro:arg name="{m.group(1)}" default="..."/> or pass --arg {m.group(1)}:=VALUE'
     elif "include loop" in msg:
         fix = "remove the include that brings a file back into itself"
     elif outcome.error_kind == "timeout":

@@ -84,9 +84,7 @@ def _loc_parser(files: list[str], orig_parse: Any) -> Any:
             node = self.curNode
             tag = node.tagName
             if not tag.startswith("xacro:") or tag in ("xacro:macro", "xacro:include"):
-                node.setAttribute(
-                    LOC_ATTR, f"{self.file_index}:{self._parser.CurrentLineNumber}"
-                )
+                node.setAttribute(LOC_ATTR, f"{self.file_index}:{self._parser.CurrentLineNumber}")
 
     def parse(inp: Any, filename: str | None = None) -> Any:
         if inp is not None or filename is None:
@@ -94,7 +92,7 @@ def _loc_parser(files: list[str], orig_parse: Any) -> Any:
         full = os.path.abspath(os.path.join(xacro.root_dir, filename))
         stack = [os.path.abspath(f) for f in (xacro.filestack or []) if f]
         if stack.count(full) > 1:
-            chain = " -> ".join(stack[stack.index(full):])
+            chain = " -> ".join(stack[stack.index(full) :])
             raise xacro.XacroException(f"include loop: {chain}")
         if len(stack) > MAX_INCLUDE_DEPTH:
             raise xacro.XacroException(f"includes nested deeper than {MAX_INCLUDE_DEPTH}")
@@ -103,9 +101,7 @@ def _loc_parser(files: list[str], orig_parse: Any) -> Any:
         except OSError as exc:
             if xacro.filestack:
                 xacro.filestack.pop()
-            raise xacro.XacroException(
-                f"{exc.strerror}: {exc.filename}", exc=exc
-            ) from None
+            raise xacro.XacroException(f"{exc.strerror}: {exc.filename}", exc=exc) from None
         reason = forbid_entities(data)
         if reason:
             raise xacro.XacroException(reason)
@@ -129,9 +125,7 @@ def _reset_xacro() -> None:
     xacro.verbosity = 0
 
 
-def expand_in_process(
-    path: Path, args: dict[str, str], resolver: PackageResolver
-) -> ExpandOutcome:
+def expand_in_process(path: Path, args: dict[str, str], resolver: PackageResolver) -> ExpandOutcome:
     """Expand ``path`` with xacro in this process (resets xacro's globals first)."""
     import xacro
     import xacro.substitution_args as sa
@@ -295,7 +289,9 @@ def _child(path: Path, args: dict[str, str], resolver: PackageResolver, send: An
     try:
         send.send_bytes(pickle.dumps(outcome))
     except BaseException:
-        send.send_bytes(pickle.dumps(ExpandOutcome(error_kind="memory", message="result too large")))
+        send.send_bytes(
+            pickle.dumps(ExpandOutcome(error_kind="memory", message="result too large"))
+        )
     finally:
         send.close()
         os._exit(0)

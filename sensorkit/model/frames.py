@@ -73,7 +73,9 @@ class SensorFrames:
         return robot.T_world_link(frame)
 
 
-def optical_frame_at(robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087) -> str | None:
+def optical_frame_at(
+    robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087
+) -> str | None:
     """A link already placed as the optical frame of a camera rendering from T_world_render."""
     if T_world_render is None:
         return None
@@ -120,7 +122,7 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
         published: str | None = None
         how = "default"
         for tag in GZ_FRAME_TAGS[target]:
-            if tag in sensor.frame_tags and sensor.frame_tags[tag]:
+            if sensor.frame_tags.get(tag):
                 published, how = sensor.frame_tags[tag], tag
                 break
         is_default = published is None

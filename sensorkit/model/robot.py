@@ -7,7 +7,6 @@ model never raises on bad input.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -15,6 +14,7 @@ from lxml import etree
 
 from sensorkit.findings import SourceRef
 from sensorkit.loading.document import Document
+from sensorkit.loading.xacro_expand import LOC_ATTR
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor
@@ -22,6 +22,43 @@ if TYPE_CHECKING:
 
 Vec3 = tuple[float, float, float]
 JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
+# What urdfdom reads inside each element; anything else it silently ignores (SK105).
+URDF_CHILDREN: dict[str, frozenset[str]] = {
+    "link": frozenset({"inertial", "visual", "collision"}),
+    "inertial": frozenset({"origin", "mass", "inertia"}),
+    "visual": frozenset({"origin", "geometry", "material"}),
+    "collision": frozenset({"origin", "geometry"}),
+    "joint": frozenset(
+        {
+            "origin",
+            "parent",
+            "child",
+            "axis",
+            "calibration",
+            "dynamics",
+            "limit",
+            "safety_controller",
+            "mimic",
+        }
+    ),
+}
+URDF_ATTRS: dict[str, frozenset[str]] = {
+    "mass": frozenset({"value"}),
+    "inertia": frozenset({"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}),
+    "origin": frozenset({"xyz", "rpy"}),
+    "limit": frozenset({"lower", "upper", "effort", "velocity"}),
+    "axis": frozenset({"xyz"}),
+    "parent": frozenset({"link"}),
+    "child": frozenset({"link"}),
+    "link": frozenset({"name", "type"}),
+    "joint": frozenset({"name", "type"}),
+    "dynamics": frozenset({"damping", "friction"}),
+    "mimic": frozenset({"joint", "multiplier", "offset"}),
+    "safety_controller": frozenset(
+        {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}
+    ),
+    "calibration": frozenset({"rising", "falling", "reference_position"}),
+}
 
 
 def parse_vec(text: str | None, n: int = 3) -> tuple[tuple[float, ...] | None, str | None]:
@@ -174,6 +211,44 @@ class Joint(_Located):
     has_mimic: bool = False
 
 
+@dataclass(slots=True)
+class Stray:
+    """Something urdfdom silently ignores: an unknown child element, or attribute if ``attr``."""
+
+    element: etree._Element
+    parent_tag: str
+    attr: str | None
+    link: str | None
+
+
+def _check_attrs(el: etree._Element, tag: str, link: str | None, strays: list[Stray]) -> None:
+    allowed = URDF_ATTRS.get(tag)
+    if allowed is None:
+        return
+    keys = el.keys()
+    if allowed.issuperset(keys):
+        return
+    _stray_attrs(el, tag, keys, allowed, link, strays)
+
+
+def _stray_attrs(
+    el: etree._Element,
+    tag: str,
+    keys: list[str],
+    allowed: frozenset[str],
+    link: str | None,
+    strays: list[Stray],
+) -> None:
+    for key in keys:
+        if key not in allowed and key != LOC_ATTR and not key.startswith("{"):
+            strays.append(Stray(el, tag, key, link))
+
+
+def _stray_child(c: etree._Element, parent_tag: str, link: str | None, strays: list[Stray]) -> None:
+    if isinstance(c.tag, str):
+        strays.append(Stray(c, parent_tag, None, link))
+
+
 @dataclass
 class GazeboBlock:
     """A ``<gazebo>`` extension; ``reference`` is None for model-level blocks."""
@@ -194,6 +269,7 @@ class Robot:
     gazebo: list[GazeboBlock] = field(default_factory=list)
     sensors: list[Sensor] = field(default_factory=list)
     model_plugins: list[Plugin] = field(default_factory=list)
+    strays: list[Stray] = field(default_factory=list)
     link_map: dict[str, Link] = field(default_factory=dict)
     joint_map: dict[str, Joint] = field(default_factory=dict)
     parent_joint: dict[str, Joint] = field(default_factory=dict)
@@ -299,20 +375,31 @@ class Robot:
 
 
 _INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_MASS_ATTRS = URDF_ATTRS["mass"] | {LOC_ATTR}
+_INERTIA_ATTRS = URDF_ATTRS["inertia"] | {LOC_ATTR}
+_ORIGIN_ATTRS = URDF_ATTRS["origin"] | {LOC_ATTR}
 _LIMIT_KEYS = ("lower", "upper", "effort", "velocity")
 
 
-def _read_inertial(el: etree._Element, doc: Document) -> Inertial:
+def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[Stray]) -> Inertial:
     problems: list[str] = []
     mass_el = in_el = origin_el = None
     for c in el:  # one pass: lxml's find() costs more per call than this loop
         tag = c.tag
-        if tag == "mass" and mass_el is None:
-            mass_el = c
-        elif tag == "inertia" and in_el is None:
-            in_el = c
-        elif tag == "origin" and origin_el is None:
-            origin_el = c
+        if tag == "mass":
+            mass_el = c if mass_el is None else mass_el
+            if not _MASS_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "mass", link, strays)
+        elif tag == "inertia":
+            in_el = c if in_el is None else in_el
+            if not _INERTIA_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "inertia", link, strays)
+        elif tag == "origin":
+            origin_el = c if origin_el is None else origin_el
+            if not _ORIGIN_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "origin", link, strays)
+        else:
+            _stray_child(c, "inertial", link, strays)
     mass: float | None = None
     if mass_el is None:
         problems.append("no <mass>")
@@ -340,28 +427,48 @@ def _read_inertial(el: etree._Element, doc: Document) -> Inertial:
             value = None
         inertia[key] = value
     origin = Origin.read(origin_el) if origin_el is not None else Origin()
-    return Inertial(mass=mass, inertia=inertia, origin=origin, element=el, doc=doc, problems=problems)
+    return Inertial(
+        mass=mass, inertia=inertia, origin=origin, element=el, doc=doc, problems=problems
+    )
 
 
-def _read_link(el: etree._Element, doc: Document) -> Link:
-    link = Link(name=el.get("name", ""), element=el, doc=doc)
+def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
+    name = el.get("name", "")
+    link = Link(name=name, element=el, doc=doc)
+    _check_attrs(el, "link", name, strays)
     for part in el:
         tag = part.tag
         if tag == "inertial":
             if link.inertial is None:
-                link.inertial = _read_inertial(part, doc)
-        elif tag == "visual" or tag == "collision":
-            for geometry in part.iterchildren("geometry"):
-                for mesh in geometry.iterchildren("mesh"):
-                    if mesh.get("filename"):
-                        link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
+                link.inertial = _read_inertial(part, doc, name, strays)
+        elif tag in {"visual", "collision"}:
+            allowed = URDF_CHILDREN[tag]
+            for c in part:
+                ctag = c.tag
+                if ctag == "geometry":
+                    for mesh in c.iterchildren("mesh"):
+                        if mesh.get("filename"):
+                            link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
+                elif ctag == "origin":
+                    _check_attrs(c, "origin", name, strays)
+                elif ctag not in allowed:
+                    _stray_child(c, tag, name, strays)
+        else:
+            _stray_child(part, "link", name, strays)
     return link
 
 
-def _read_joint(el: etree._Element, doc: Document) -> Joint:
+def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint:
     parent_el = child_el = origin_el = axis_el = limit_el = mimic_el = None
+    _check_attrs(el, "joint", None, strays)
+    allowed = URDF_CHILDREN["joint"]
     for c in el:
         tag = c.tag
+        if tag not in allowed:
+            _stray_child(c, "joint", None, strays)
+            continue
+        if not URDF_ATTRS[tag].issuperset(c.keys()):  # type: ignore[index]
+            _check_attrs(c, tag, None, strays)  # type: ignore[arg-type]
         if tag == "parent":
             parent_el = parent_el if parent_el is not None else c
         elif tag == "child":
@@ -425,9 +532,9 @@ def _build_robot(doc: Document) -> Robot:
     for el in root:
         name = local(el)
         if name == "link":
-            robot.links.append(_read_link(el, doc))
+            robot.links.append(_read_link(el, doc, robot.strays))
         elif name == "joint":
-            robot.joints.append(_read_joint(el, doc))
+            robot.joints.append(_read_joint(el, doc, robot.strays))
         elif name == "gazebo":
             robot.gazebo.append(GazeboBlock(el.get("reference"), el, doc.locate(el)))
     for lk in robot.links:

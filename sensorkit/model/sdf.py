@@ -102,4 +102,3 @@ def convert(robot: Robot) -> Conversion:
         if target != name and target in conv.dropped:
             conv.dropped[name] = conv.dropped[target]
     return conv
-

@@ -129,7 +129,7 @@ class Plugin:
             text = (el.text or "").strip()
             for prefix in ("--remap ", "-r "):
                 if text.startswith(prefix):
-                    text = text[len(prefix):].strip()
+                    text = text[len(prefix) :].strip()
             if ":=" in text:
                 src, dst = text.split(":=", 1)
                 out.append((src.strip(), dst.strip(), el))
@@ -228,7 +228,9 @@ def read_camera(el: etree._Element, locate: object) -> CameraSpec:
     cam.depth_far = _num(text_of(el, "depth_camera", "clip", "far"), "depth clip far", p)
     intr = child(child(el, "lens"), "intrinsics")
     if intr is not None:
-        vals = [_num(text_of(intr, k), f"lens intrinsics {k}", p) for k in ("fx", "fy", "cx", "cy", "s")]
+        vals = [
+            _num(text_of(intr, k), f"lens intrinsics {k}", p) for k in ("fx", "fy", "cx", "cy", "s")
+        ]
         if all(v is not None for v in vals[:4]):
             fx, fy, cx, cy = (float(v) for v in vals[:4])  # type: ignore[arg-type]
             cam.lens_intrinsics = (fx, fy, cx, cy, float(vals[4] or 0.0))
@@ -298,7 +300,9 @@ def _sdf_pose(el: etree._Element, locate: object) -> Origin:
 FRAME_TAGS = ("gz_frame_id", "ignition_frame_id", "frame_id")
 
 
-def read_sensor(el: etree._Element, block: etree._Element, reference: str | None, robot: Robot) -> Sensor:
+def read_sensor(
+    el: etree._Element, block: etree._Element, reference: str | None, robot: Robot
+) -> Sensor:
     locate = robot.document.locate
     stype = el.get("type", "")
     if stype in CAMERA_TYPES:

@@ -9,7 +9,14 @@ if TYPE_CHECKING:
 
 TARGETS = ("classic", "ros1", "fortress", "harmonic", "jetty")
 GZ_TARGETS = ("fortress", "harmonic", "jetty")
-GZ_SENSOR_TYPES = {"gpu_lidar", "lidar", "rgbd_camera", "depth_camera", "boundingbox_camera", "segmentation_camera"}
+GZ_SENSOR_TYPES = {
+    "gpu_lidar",
+    "lidar",
+    "rgbd_camera",
+    "depth_camera",
+    "boundingbox_camera",
+    "segmentation_camera",
+}
 
 
 def is_gz(target: str) -> bool:
@@ -18,7 +25,18 @@ def is_gz(target: str) -> bool:
 
 def is_gz_plugin(filename: str) -> bool:
     base = filename.rsplit("/", 1)[-1]
-    return base.startswith(("gz-sim", "libgz-sim", "ignition-gazebo", "libignition-gazebo", "gz_ros2_control", "libgz_ros2_control", "ign_ros2_control", "libign_ros2_control"))
+    return base.startswith(
+        (
+            "gz-sim",
+            "libgz-sim",
+            "ignition-gazebo",
+            "libignition-gazebo",
+            "gz_ros2_control",
+            "libgz_ros2_control",
+            "ign_ros2_control",
+            "libign_ros2_control",
+        )
+    )
 
 
 def is_classic_plugin(filename: str) -> bool:

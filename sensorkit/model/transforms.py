@@ -53,7 +53,9 @@ def matrix_to_rpy(R: Mat) -> Vec3:
     return (roll, pitch, yaw)
 
 
-def transform(xyz: Sequence[float] = (0.0, 0.0, 0.0), rpy: Sequence[float] = (0.0, 0.0, 0.0)) -> Mat:
+def transform(
+    xyz: Sequence[float] = (0.0, 0.0, 0.0), rpy: Sequence[float] = (0.0, 0.0, 0.0)
+) -> Mat:
     """4x4 homogeneous transform from a URDF origin."""
     T = np.eye(4)
     T[:3, :3] = rpy_to_matrix(rpy)

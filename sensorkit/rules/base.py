@@ -40,7 +40,9 @@ class RuleInfo:
 RULES: dict[str, RuleInfo] = {}
 
 
-def rule(id: str, severity: str, title: str, existing: str = "none") -> Callable[[RuleFunc], RuleFunc]:
+def rule(
+    id: str, severity: str, title: str, existing: str = "none"
+) -> Callable[[RuleFunc], RuleFunc]:
     """Register a rule function under its public id."""
 
     def deco(func: RuleFunc) -> RuleFunc:

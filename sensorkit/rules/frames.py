@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 ANGLE_TOL = math.radians(0.5)
 EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
 POSITION_TOL = 1e-3
-OPTICAL_RPY = '${-pi/2} 0 ${-pi/2}'
+OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
 
 
 def _np():  # type: ignore[no-untyped-def]
@@ -34,8 +34,12 @@ def _tf():  # type: ignore[no-untyped-def]
 
 def _describe_axis(v: Mat) -> str:
     names = {
-        (1, 0, 0): "forward", (-1, 0, 0): "backwards", (0, 1, 0): "to the left",
-        (0, -1, 0): "to the right", (0, 0, 1): "up", (0, 0, -1): "down",
+        (1, 0, 0): "forward",
+        (-1, 0, 0): "backwards",
+        (0, 1, 0): "to the left",
+        (0, -1, 0): "to the right",
+        (0, 0, 1): "up",
+        (0, 0, -1): "down",
     }
     np = _np()
     i = int(np.argmax(np.abs(v)))
@@ -85,13 +89,17 @@ def _exists(robot: Robot, name: str) -> bool:
     return name in robot.link_map
 
 
-@rule("SK501", "error", "the published frame names an existing link (or is not one at all, for gz defaults)")
+@rule(
+    "SK501",
+    "error",
+    "the published frame names an existing link (or is not one at all, for gz defaults)",
+)
 def frame_exists(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     for s in robot.sensors:
         fr = ctx.frames_of(s)
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
-            if frame is None or fr.is_default and how == fr.how or _exists(robot, frame):
+            if frame is None or (fr.is_default and how == fr.how) or _exists(robot, frame):
                 continue
             import difflib
 
@@ -104,7 +112,9 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
                 s.source,
                 sensor=s.name,
                 frame=frame,
-                fix=f"did you mean {close[0]!r}?" if close else f"add a link {frame!r} or name an existing one",
+                fix=f"did you mean {close[0]!r}?"
+                if close
+                else f"add a link {frame!r} or name an existing one",
             )
 
 
@@ -122,7 +132,11 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         fr = ctx.frames_of(s)
         frame = fr.camera_frame
         T_frame = _frame_pose(robot, fr, frame)
-        if fr.T_world_render is None or T_frame is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
+        if (
+            fr.T_world_render is None
+            or T_frame is None
+            or (fr.is_default and fr.image_frame is None and not fr.plugin)
+        ):
             continue
         tf = _tf()
         R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
@@ -130,7 +144,9 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         if err <= ANGLE_TOL:
             continue
         existing = optical_frame_at(robot, fr.T_world_render)
-        where = "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
+        where = (
+            "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
+        )
         if fr.how == "default":
             where = "the plugin names no frame, so Gazebo uses the link it sits on after lumping"
         yield ctx.finding(
@@ -152,7 +168,11 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         )
 
 
-@rule("SK503", "error", "the published frame is co-located with the render origin (within 1 mm); report the offset")
+@rule(
+    "SK503",
+    "error",
+    "the published frame is co-located with the render origin (within 1 mm); report the offset",
+)
 def frame_position(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     for s in robot.sensors:
@@ -180,12 +200,16 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
             fix=(
                 f"name a frame at the sensor in the plugin (<frame_name>{optical_frame_at(robot, fr.T_world_render) or fr.link}</frame_name>)"
                 if fr.is_default
-                else f"move {frame!r} to the sensor's origin: xyz=\"0 0 0\" on its joint (and the same <pose> as the sensor)"
+                else f'move {frame!r} to the sensor\'s origin: xyz="0 0 0" on its joint (and the same <pose> as the sensor)'
             ),
         )
 
 
-@rule("SK504", "error", "lidar, IMU and other body sensors are published in a frame with identity rotation from the render pose (x forward, z up)")
+@rule(
+    "SK504",
+    "error",
+    "lidar, IMU and other body sensors are published in a frame with identity rotation from the render pose (x forward, z up)",
+)
 def body_frame(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     for s in robot.sensors:
@@ -246,14 +270,18 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
             yield joint, err, frame
 
 
-@rule("SK505", "info", "optical rotation written approximately (e.g. -1.57 for -pi/2): report the angular error and suggest `${-pi/2}`")
+@rule(
+    "SK505",
+    "info",
+    "optical rotation written approximately (e.g. -1.57 for -pi/2): report the angular error and suggest `${-pi/2}`",
+)
 def approximate_optical(ctx: Context) -> Iterator[Finding]:
     for joint, err, frame in _approx_joints(ctx):
         text = joint.origin.rpy_text or " ".join(f"{v:g}" for v in joint.origin.rpy)
         yield ctx.finding(
             "SK505",
             Severity.INFO,
-            f"joint {joint.name!r} into {frame!r} writes the optical rotation approximately (rpy \"{text}\"): "
+            f'joint {joint.name!r} into {frame!r} writes the optical rotation approximately (rpy "{text}"): '
             f"off by {math.degrees(err):.3f} degrees",
             joint.source,
             joint=joint.name,
@@ -272,7 +300,13 @@ def optical_naming(ctx: Context) -> Iterator[Finding]:
         fr = ctx.frames_of(s)
         frame = fr.camera_frame
         T_frame = _frame_pose(robot, fr, frame)
-        if frame is None or frame in seen or "optical" in frame or fr.T_world_render is None or T_frame is None:
+        if (
+            frame is None
+            or frame in seen
+            or "optical" in frame
+            or fr.T_world_render is None
+            or T_frame is None
+        ):
             continue
         tf = _tf()
         R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]

@@ -5,11 +5,8 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterator
 
-from lxml import etree
-
 from sensorkit.findings import Finding, Severity
-from sensorkit.loading.xacro_expand import LOC_ATTR
-from sensorkit.model.robot import local
+from sensorkit.model.robot import URDF_ATTRS, URDF_CHILDREN, local
 from sensorkit.rules.base import Context, declare, rule
 
 declare("SK101", "error", "XML is well-formed; report file:line:column", "all parsers")
@@ -26,36 +23,12 @@ declare(
     "xacro at run time",
 )
 
-# What urdfdom reads inside each element; anything else is silently ignored by it.
-ALLOWED_CHILDREN: dict[str, set[str]] = {
-    "link": {"inertial", "visual", "collision"},
-    "inertial": {"origin", "mass", "inertia"},
-    "visual": {"origin", "geometry", "material"},
-    "collision": {"origin", "geometry"},
-    "joint": {
-        "origin", "parent", "child", "axis", "calibration", "dynamics", "limit",
-        "safety_controller", "mimic",
-    },
-}
-ALLOWED_ATTRS: dict[str, set[str]] = {
-    "mass": {"value"},
-    "inertia": {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"},
-    "origin": {"xyz", "rpy"},
-    "limit": {"lower", "upper", "effort", "velocity"},
-    "axis": {"xyz"},
-    "parent": {"link"},
-    "child": {"link"},
-    "link": {"name", "type"},
-    "joint": {"name", "type"},
-    "dynamics": {"damping", "friction"},
-    "mimic": {"joint", "multiplier", "offset"},
-    "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
-    "calibration": {"rising", "falling", "reference_position"},
-}
+ALLOWED_CHILDREN = URDF_CHILDREN
+ALLOWED_ATTRS = URDF_ATTRS
 HINTS = {
-    "gazebo": "<gazebo> inside <link> is ignored: put it at robot level as <gazebo reference=\"LINK\">",
+    "gazebo": '<gazebo> inside <link> is ignored: put it at robot level as <gazebo reference="LINK">',
     "joint": "<joint> inside <link> is ignored: joints go directly under <robot>",
-    "sensor": "URDF <link> has no <sensor>: declare it in <gazebo reference=\"LINK\"><sensor ...>",
+    "sensor": 'URDF <link> has no <sensor>: declare it in <gazebo reference="LINK"><sensor ...>',
 }
 
 
@@ -79,60 +52,35 @@ def missing_files(ctx: Context) -> Iterator[Finding]:
     "(`<joint>` inside `<link>`, `<intertial>`, `<mass values=...>`, `<gazebo>` inside `<link>`)",
 )
 def unknown_elements(ctx: Context) -> Iterator[Finding]:
-    for top in ctx.robot.document.root.iterchildren("link", "joint"):
-        name = top.get("name")
-        link = name if top.tag == "link" else None
-        if not ALLOWED_ATTRS[top.tag].issuperset(top.keys()):  # type: ignore[index]
-            yield from _attrs(ctx, top, link)
-        yield from _children(ctx, top, link)
-
-
-def _children(ctx: Context, parent: etree._Element, link: str | None) -> Iterator[Finding]:
-    """Findings for the children of ``parent``, an element whose content urdfdom defines."""
-    ptag = parent.tag
-    allowed = ALLOWED_CHILDREN[ptag]  # type: ignore[index]
-    for el in parent:
-        tag = el.tag
-        if not isinstance(tag, str):
-            continue
-        if tag not in allowed:
+    for stray in ctx.robot.strays:
+        el, ptag = stray.element, stray.parent_tag
+        if stray.attr is None:
             tag = local(el)
+            allowed = sorted(ALLOWED_CHILDREN[ptag])
             hint = HINTS.get(tag)
             if hint is None:
-                close = difflib.get_close_matches(tag, sorted(allowed), n=1, cutoff=0.7)
+                close = difflib.get_close_matches(tag, allowed, n=1, cutoff=0.7)
                 hint = (
                     f"did you mean <{close[0]}>?"
                     if close
-                    else f"<{ptag}> takes only " + ", ".join(f"<{c}>" for c in sorted(allowed))
+                    else f"<{ptag}> takes only " + ", ".join(f"<{c}>" for c in allowed)
                 )
             yield ctx.finding(
                 "SK105",
                 Severity.WARNING,
                 f"<{tag}> inside <{ptag}> is silently ignored by URDF parsers",
                 el,
-                link=link,
+                link=stray.link,
                 fix=hint,
             )
             continue
-        allowed_attrs = ALLOWED_ATTRS.get(tag)
-        if allowed_attrs is not None and not allowed_attrs.issuperset(el.keys()):
-            yield from _attrs(ctx, el, link)
-        if tag in ALLOWED_CHILDREN:
-            yield from _children(ctx, el, link)
-
-
-def _attrs(ctx: Context, el: etree._Element, link: str | None) -> Iterator[Finding]:
-    tag = el.tag
-    allowed = ALLOWED_ATTRS[tag]  # type: ignore[index]
-    for attr in el.attrib:
-        if attr in allowed or attr == LOC_ATTR or attr.startswith("{"):
-            continue
-        close = difflib.get_close_matches(attr, sorted(allowed), n=1, cutoff=0.6)
+        allowed = sorted(ALLOWED_ATTRS[ptag])
+        close = difflib.get_close_matches(stray.attr, allowed, n=1, cutoff=0.6)
         yield ctx.finding(
             "SK105",
             Severity.WARNING,
-            f"attribute {attr}=\"{el.get(attr)}\" on <{tag}> is silently ignored",
+            f'attribute {stray.attr}="{el.get(stray.attr)}" on <{ptag}> is silently ignored',
             el,
-            link=link,
-            fix=f"write {close[0]}=\"...\"" if close else f"<{tag}> takes " + ", ".join(sorted(allowed)),
+            link=stray.link,
+            fix=f'write {close[0]}="..."' if close else f"<{ptag}> takes " + ", ".join(allowed),
         )

@@ -44,7 +44,7 @@ def inertia_problem(inertial: Inertial) -> str | None:
         return "<inertia> lacks " + ", ".join(missing)
     full = {k: float(v) for k, v in values.items() if v is not None}
     moments = principal_moments(full)
-    scale = max(1.0, max(abs(m) for m in moments))
+    scale = max(1.0, *(abs(m) for m in moments))
     if moments[0] < -_EPS * scale:
         return (
             f"inertia is not positive definite (principal moments {moments[0]:.3g}, "
@@ -97,7 +97,7 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
             joint=joint.name if joint else None,
             sensor=sensors[0] if sensors else None,
             fix=(
-                f"give {name!r} an <inertial> with <mass value=\"...\"/> > 0 and an <inertia> "
+                f'give {name!r} an <inertial> with <mass value="..."/> > 0 and an <inertia> '
                 "(e.g. a box: ixx = m/12 (y²+z²), iyy = m/12 (x²+z²), izz = m/12 (x²+y²))"
             ),
         )
@@ -160,11 +160,19 @@ def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
 
 def _frame_for(ctx: Context, sensor: Sensor, link: str) -> str:
     if sensor.is_camera:
-        return optical_frame_at(ctx.robot, ctx.frames_of(sensor).T_world_render) or f"{link}_optical_frame"
+        return (
+            optical_frame_at(ctx.robot, ctx.frames_of(sensor).T_world_render)
+            or f"{link}_optical_frame"
+        )
     return link
 
 
-@rule("SK304", "info", "root link carries inertia (KDL/robot_state_publisher ignores it)", "kdl_parser, at run time")
+@rule(
+    "SK304",
+    "info",
+    "root link carries inertia (KDL/robot_state_publisher ignores it)",
+    "kdl_parser, at run time",
+)
 def root_inertia(ctx: Context) -> Iterator[Finding]:
     root = ctx.robot.root()
     if root is None:

@@ -17,11 +17,34 @@ from sensorkit.rules.base import Context, rule
 
 # gazebo_plugins / gazebo_ros in ROS 2 (libgazebo_ros_<name>.so).
 ROS2_PLUGINS = {
-    "camera", "ray_sensor", "imu_sensor", "gps_sensor", "ft_sensor", "bumper", "p3d", "diff_drive",
-    "ackermann_drive", "tricycle_drive", "planar_move", "joint_state_publisher",
-    "joint_pose_trajectory", "force", "elevator", "hand_of_god", "harness", "projector", "template",
-    "vacuum_gripper", "video", "wheel_slip", "multi_camera", "init", "factory", "state",
-    "properties", "force_system",
+    "camera",
+    "ray_sensor",
+    "imu_sensor",
+    "gps_sensor",
+    "ft_sensor",
+    "bumper",
+    "p3d",
+    "diff_drive",
+    "ackermann_drive",
+    "tricycle_drive",
+    "planar_move",
+    "joint_state_publisher",
+    "joint_pose_trajectory",
+    "force",
+    "elevator",
+    "hand_of_god",
+    "harness",
+    "projector",
+    "template",
+    "vacuum_gripper",
+    "video",
+    "wheel_slip",
+    "multi_camera",
+    "init",
+    "factory",
+    "state",
+    "properties",
+    "force_system",
 }
 # ROS 1 only, with what replaces each in ROS 2.
 ROS1_ONLY: dict[str, str] = {
@@ -44,8 +67,18 @@ ROS1_ONLY: dict[str, str] = {
     "control": "gazebo_ros2_control (libgazebo_ros2_control.so)",
 }
 # ROS 2 gazebo_ros names that ROS 1 gazebo_plugins never had.
-ROS2_ONLY = {"ray_sensor", "gps_sensor", "ackermann_drive", "wheel_slip", "multi_camera", "init",
-             "factory", "state", "properties", "force_system"}
+ROS2_ONLY = {
+    "ray_sensor",
+    "gps_sensor",
+    "ackermann_drive",
+    "wheel_slip",
+    "multi_camera",
+    "init",
+    "factory",
+    "state",
+    "properties",
+    "force_system",
+}
 ROS1_TO_ROS2_PARAMS: dict[str, str] = {
     "frameName": "<frame_name>",
     "cameraName": "<camera_name>",
@@ -101,7 +134,12 @@ ROS1_TO_ROS2_PARAMS: dict[str, str] = {
     "odometrySource": "<odometry_source>",
     "rosDebugLevel": "nothing (use --ros-args --log-level)",
 }
-RAY_OUTPUT_TYPES = {"sensor_msgs/LaserScan", "sensor_msgs/PointCloud", "sensor_msgs/PointCloud2", "sensor_msgs/Range"}
+RAY_OUTPUT_TYPES = {
+    "sensor_msgs/LaserScan",
+    "sensor_msgs/PointCloud",
+    "sensor_msgs/PointCloud2",
+    "sensor_msgs/Range",
+}
 PLUGIN_SENSOR_KINDS: dict[str, set[str]] = {
     "gazebo_ros_camera": {"camera", "depth", "multicamera"},
     "gazebo_ros_ray_sensor": {"ray", "gpu_ray"},
@@ -123,7 +161,7 @@ def _ros_name(p: Plugin) -> str | None:
     """``gazebo_ros_camera`` -> ``camera`` for gazebo_ros plugins, else None."""
     lib = p.library
     if lib.startswith("gazebo_ros_") and lib not in ("gazebo_ros_control", "gazebo_ros2_control"):
-        return lib[len("gazebo_ros_"):]
+        return lib[len("gazebo_ros_") :]
     if lib == "gazebo_ros_control":
         return "control"
     return None
@@ -144,24 +182,35 @@ def plugin_exists(ctx: Context) -> Iterator[Finding]:
         if is_gz(target):
             if is_classic_plugin(p.filename):
                 yield ctx.finding(
-                    "SK601", Severity.ERROR,
+                    "SK601",
+                    Severity.ERROR,
                     f"{p.filename} is a Gazebo Classic plugin: Gazebo Sim ({target}) never loads it",
-                    p.source, sensor=sensor,
+                    p.source,
+                    sensor=sensor,
                     fix="remove it: Gazebo Sim sensors publish on <topic> by themselves; bridge them to ROS with ros_gz_bridge",
                 )
-            elif target == "fortress" and p.filename.rsplit("/", 1)[-1].startswith(("gz-sim", "libgz-sim")):
-                fixed = p.filename.replace("libgz-sim", "libignition-gazebo").replace("gz-sim", "ignition-gazebo")
+            elif target == "fortress" and p.filename.rsplit("/", 1)[-1].startswith(
+                ("gz-sim", "libgz-sim")
+            ):
+                fixed = p.filename.replace("libgz-sim", "libignition-gazebo").replace(
+                    "gz-sim", "ignition-gazebo"
+                )
                 yield ctx.finding(
-                    "SK601", Severity.ERROR,
+                    "SK601",
+                    Severity.ERROR,
                     f"{p.filename} does not exist in Fortress (gz-sim names start with Garden)",
-                    p.source, sensor=sensor, fix=f"use {fixed}",
+                    p.source,
+                    sensor=sensor,
+                    fix=f"use {fixed}",
                 )
             continue
         if is_gz_plugin(p.filename):
             yield ctx.finding(
-                "SK601", Severity.ERROR,
+                "SK601",
+                Severity.ERROR,
                 f"{p.filename} is a Gazebo Sim system: Gazebo Classic never loads it",
-                p.source, sensor=sensor,
+                p.source,
+                sensor=sensor,
                 fix="use the gazebo_ros plugin for Classic, or validate with --target harmonic/fortress/jetty",
             )
             continue
@@ -169,15 +218,21 @@ def plugin_exists(ctx: Context) -> Iterator[Finding]:
             continue
         if target == "classic" and name in ROS1_ONLY:
             yield ctx.finding(
-                "SK601", Severity.ERROR,
+                "SK601",
+                Severity.ERROR,
                 f"{p.filename} exists only in ROS 1: ROS 2 Gazebo Classic cannot load it and the sensor publishes nothing",
-                p.source, sensor=sensor, fix=f"use {ROS1_ONLY[name]}",
+                p.source,
+                sensor=sensor,
+                fix=f"use {ROS1_ONLY[name]}",
             )
         elif target == "ros1" and name in ROS2_ONLY:
             yield ctx.finding(
-                "SK601", Severity.ERROR,
+                "SK601",
+                Severity.ERROR,
                 f"{p.filename} exists only in ROS 2 gazebo_plugins",
-                p.source, sensor=sensor, fix="use the ROS 1 plugin (e.g. libgazebo_ros_laser.so), or --target classic",
+                p.source,
+                sensor=sensor,
+                fix="use the ROS 1 plugin (e.g. libgazebo_ros_laser.so), or --target classic",
             )
 
 
@@ -199,22 +254,32 @@ def ros1_params(ctx: Context) -> Iterator[Finding]:
             tag = local(el)
             if tag in ROS1_TO_ROS2_PARAMS:
                 yield ctx.finding(
-                    "SK602", Severity.ERROR,
+                    "SK602",
+                    Severity.ERROR,
                     f"<{tag}> is a ROS 1 parameter: the ROS 2 {p.filename} never reads it and says nothing",
-                    el, sensor=sensor, fix=f"use {ROS1_TO_ROS2_PARAMS[tag]}",
+                    el,
+                    sensor=sensor,
+                    fix=f"use {ROS1_TO_ROS2_PARAMS[tag]}",
                 )
         ros = p.ros_block()
         if ros is not None:
             for el in children(ros, "remap"):
                 src, dst = el.get("from", "FROM"), el.get("to", "TO")
                 yield ctx.finding(
-                    "SK602", Severity.ERROR,
-                    f"<remap from=\"{src}\" to=\"{dst}\"/> is ROS 1 launch syntax: gazebo_ros ignores it",
-                    el, sensor=sensor, fix=f"<remapping>{src}:={dst}</remapping>",
+                    "SK602",
+                    Severity.ERROR,
+                    f'<remap from="{src}" to="{dst}"/> is ROS 1 launch syntax: gazebo_ros ignores it',
+                    el,
+                    sensor=sensor,
+                    fix=f"<remapping>{src}:={dst}</remapping>",
                 )
 
 
-@rule("SK603", "error", "plugin matches the sensor type (camera plugin on camera/depth/multicamera; ray plugin on ray/gpu_ray; imu plugin on imu)")
+@rule(
+    "SK603",
+    "error",
+    "plugin matches the sensor type (camera plugin on camera/depth/multicamera; ray plugin on ray/gpu_ray; imu plugin on imu)",
+)
 def plugin_sensor_type(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
@@ -224,9 +289,12 @@ def plugin_sensor_type(ctx: Context) -> Iterator[Finding]:
             if kinds is None or s.type in kinds:
                 continue
             yield ctx.finding(
-                "SK603", Severity.ERROR,
-                f"{p.filename} on sensor {s.name!r} of type {s.type!r}: it only works on " + "/".join(sorted(kinds)),
-                p.source, sensor=s.name,
+                "SK603",
+                Severity.ERROR,
+                f"{p.filename} on sensor {s.name!r} of type {s.type!r}: it only works on "
+                + "/".join(sorted(kinds)),
+                p.source,
+                sensor=s.name,
                 fix=f"change the sensor type to {sorted(kinds)[0]} or use the plugin for {s.type}",
             )
 
@@ -267,10 +335,18 @@ def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
             names = []
             for c in s.cameras:
                 names += [f"{cam}/{c.name}/image_raw", f"{cam}/{c.name}/camera_info"]
-        if child(s.element, "camera") is not None and text_of(s.element, "camera", "triggered") in ("true", "1"):
+        if child(s.element, "camera") is not None and text_of(s.element, "camera", "triggered") in (
+            "true",
+            "1",
+        ):
             names.append(f"{cam}/image_trigger")
         return names
-    if lib in ("gazebo_ros_ray_sensor", "gazebo_ros_imu_sensor", "gazebo_ros_velodyne_laser", "gazebo_ros_gps_sensor"):
+    if lib in (
+        "gazebo_ros_ray_sensor",
+        "gazebo_ros_imu_sensor",
+        "gazebo_ros_velodyne_laser",
+        "gazebo_ros_gps_sensor",
+    ):
         return ["~/out"]
     return []
 
@@ -322,7 +398,12 @@ def _info_topic(s: Sensor, base: str) -> str:
     return f"{parent}/camera_info"
 
 
-@rule("SK604", "error", "two plugins resolve to the same ROS node name (gazebo_ros refuses the second)", "gazebo_ros, at run time")
+@rule(
+    "SK604",
+    "error",
+    "two plugins resolve to the same ROS node name (gazebo_ros refuses the second)",
+    "gazebo_ros, at run time",
+)
 def node_names(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
@@ -334,17 +415,23 @@ def node_names(ctx: Context) -> Iterator[Finding]:
         if full in seen:
             first = seen[full]
             yield ctx.finding(
-                "SK604", Severity.ERROR,
+                "SK604",
+                Severity.ERROR,
                 f"plugins {first.name!r} ({first.filename}, line {first.source.line}) and {p.name!r} ({p.filename}) "
                 f"are both ROS node {full!r}: gazebo_ros refuses the second",
-                p.source, sensor=p.sensor.name if p.sensor else None,
-                fix="give each plugin a unique name=\"...\" (e.g. the sensor name + _controller)",
+                p.source,
+                sensor=p.sensor.name if p.sensor else None,
+                fix='give each plugin a unique name="..." (e.g. the sensor name + _controller)',
             )
         else:
             seen[full] = p
 
 
-@rule("SK605", "error", "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)")
+@rule(
+    "SK605",
+    "error",
+    "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)",
+)
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
     owners: dict[str, list[tuple[Sensor, etree._Element]]] = defaultdict(list)
     for s in ctx.robot.sensors:
@@ -364,20 +451,32 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
         if first is second or key in reported:
             continue
         reported.add(key)
-        shared = [t for t, its in owners.items() if any(x is first for x, _ in its) and any(x is second for x, _ in its)]
+        shared = [
+            t
+            for t, its in owners.items()
+            if any(x is first for x, _ in its) and any(x is second for x, _ in its)
+        ]
         yield ctx.finding(
-            "SK605", Severity.ERROR,
+            "SK605",
+            Severity.ERROR,
             f"sensors {first.name!r} (on {first.reference!r}) and {second.name!r} (on {second.reference!r}) "
             f"both publish on {', '.join(shared)}: subscribers get both streams interleaved",
-            el, sensor=second.name,
+            el,
+            sensor=second.name,
             fix=(
-                "give each sensor its own <topic>" if is_gz(ctx.target)
+                "give each sensor its own <topic>"
+                if is_gz(ctx.target)
                 else "give each camera its own sensor name or <camera_name>, a <ros><namespace>, or a remapping"
             ),
         )
 
 
-@rule("SK606", "warning/error", "ray plugin output_type missing (defaults to PointCloud2: warning) or invalid (error)", "gazebo_ros, at run time")
+@rule(
+    "SK606",
+    "warning/error",
+    "ray plugin output_type missing (defaults to PointCloud2: warning) or invalid (error)",
+    "gazebo_ros, at run time",
+)
 def ray_output_type(ctx: Context) -> Iterator[Finding]:
     if ctx.target != "classic":
         return
@@ -388,44 +487,64 @@ def ray_output_type(ctx: Context) -> Iterator[Finding]:
             value = p.param("output_type")
             if value is None:
                 yield ctx.finding(
-                    "SK606", Severity.WARNING,
+                    "SK606",
+                    Severity.WARNING,
                     f"ray plugin {p.name!r} on {s.name!r} has no <output_type>: it publishes sensor_msgs/PointCloud2 "
                     "(a 2D lidar usually wants LaserScan)",
-                    p.source, sensor=s.name,
+                    p.source,
+                    sensor=s.name,
                     fix="add <output_type>sensor_msgs/LaserScan</output_type> (or PointCloud2 for a 3D lidar)",
                 )
             elif value not in RAY_OUTPUT_TYPES:
                 yield ctx.finding(
-                    "SK606", Severity.ERROR,
+                    "SK606",
+                    Severity.ERROR,
                     f"ray plugin {p.name!r}: <output_type>{value}</output_type> is not one gazebo_ros_ray_sensor knows; "
                     "it publishes nothing",
-                    p.source, sensor=s.name,
+                    p.source,
+                    sensor=s.name,
                     fix="use sensor_msgs/LaserScan, sensor_msgs/PointCloud2, sensor_msgs/PointCloud or sensor_msgs/Range"
-                    + (f" (without '/msg/': {value.replace('/msg/', '/')})" if "/msg/" in value else ""),
+                    + (
+                        f" (without '/msg/': {value.replace('/msg/', '/')})"
+                        if "/msg/" in value
+                        else ""
+                    ),
                 )
 
 
-@rule("SK607", "warning", "a sensor publishes nothing to ROS (no plugin on classic; no topic/bridge entry on gz)")
+@rule(
+    "SK607",
+    "warning",
+    "a sensor publishes nothing to ROS (no plugin on classic; no topic/bridge entry on gz)",
+)
 def publishes_nothing(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:
         if is_gz(ctx.target):
             if not s.topic:
                 yield ctx.finding(
-                    "SK607", Severity.WARNING,
+                    "SK607",
+                    Severity.WARNING,
                     f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes on a scoped default topic that no bridge entry names",
-                    s.source, sensor=s.name,
+                    s.source,
+                    sensor=s.name,
                     fix=f"add <topic>{s.name}</topic> and a ros_gz_bridge entry for it",
                 )
         elif not s.plugins:
             yield ctx.finding(
-                "SK607", Severity.WARNING,
+                "SK607",
+                Severity.WARNING,
                 f"sensor {s.name!r} has no plugin: Gazebo Classic simulates it but publishes nothing to ROS",
-                s.source, sensor=s.name,
+                s.source,
+                sensor=s.name,
                 fix="add the gazebo_ros plugin for its type (libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so, libgazebo_ros_imu_sensor.so)",
             )
 
 
-@rule("SK608", "warning", "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `gz_frame_id` on jetty, `optical_frame_id` on jetty)")
+@rule(
+    "SK608",
+    "warning",
+    "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `gz_frame_id` on jetty, `optical_frame_id` on jetty)",
+)
 def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
     target = ctx.target
     if not is_gz(target):
@@ -435,29 +554,42 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
         for tag in GZ_FRAME_TAG_NAMES:
             if tag in s.frame_tags and tag not in read:
                 yield ctx.finding(
-                    "SK608", Severity.WARNING,
+                    "SK608",
+                    Severity.WARNING,
                     f"sensor {s.name!r}: <{tag}> is ignored by {target}; it reads <{read[0]}>",
-                    child(s.element, tag), sensor=s.name, frame=s.frame_tags[tag],
+                    child(s.element, tag),
+                    sensor=s.name,
+                    frame=s.frame_tags[tag],
                     fix=f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
                 )
         for tag, value, el in s.misplaced_frame_tags:
             yield ctx.finding(
-                "SK608", Severity.WARNING,
+                "SK608",
+                Severity.WARNING,
                 f"sensor {s.name!r}: <{tag}> inside <camera> is never read (gz-sensors reads it from <sensor>)",
-                el, sensor=s.name, frame=value,
+                el,
+                sensor=s.name,
+                frame=value,
                 fix=f"move <{read[0]}>{value}</{read[0]}> directly under <sensor>",
             )
         cam = s.camera
         if cam is not None and cam.optical_frame_id and target not in GZ_OPTICAL_FRAME_ID:
             yield ctx.finding(
-                "SK608", Severity.WARNING,
+                "SK608",
+                Severity.WARNING,
                 f"sensor {s.name!r}: <optical_frame_id> is ignored by {target}",
-                child(cam.element, "optical_frame_id"), sensor=s.name, frame=cam.optical_frame_id,
+                child(cam.element, "optical_frame_id"),
+                sensor=s.name,
+                frame=cam.optical_frame_id,
                 fix=f"set <{read[0]}>{cam.optical_frame_id}</{read[0]}> on the sensor instead",
             )
 
 
-@rule("SK609", "warning", "a `<remapping>` whose source matches none of the topics the plugin publishes (it changes nothing: e.g. `scan:=...` on gazebo_ros_ray_sensor, which publishes `~/out`)")
+@rule(
+    "SK609",
+    "warning",
+    "a `<remapping>` whose source matches none of the topics the plugin publishes (it changes nothing: e.g. `scan:=...` on gazebo_ros_ray_sensor, which publishes `~/out`)",
+)
 def useless_remapping(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
@@ -474,9 +606,11 @@ def useless_remapping(ctx: Context) -> Iterator[Finding]:
                     continue
                 hint = "~/out" if "~/out" in names else names[0]
                 yield ctx.finding(
-                    "SK609", Severity.WARNING,
+                    "SK609",
+                    Severity.WARNING,
                     f"remapping {src}:={dst} on {p.filename} matches none of its topics "
                     f"({', '.join(sorted(published))}): it changes nothing",
-                    el, sensor=s.name,
+                    el,
+                    sensor=s.name,
                     fix=f"remap the name it publishes: <remapping>{hint}:={dst}</remapping>",
                 )

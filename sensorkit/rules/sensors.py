@@ -7,20 +7,42 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from sensorkit.findings import Finding, Severity
-from sensorkit.model.sensors import Noise, Sensor
+from sensorkit.model.sensors import LidarSpec, Noise, Sensor
 from sensorkit.rules.base import Context, rule
 
 # sdformat's <image><format> values and the gz-rendering spellings it also accepts.
 IMAGE_FORMATS = {
-    "L8", "L16", "L_INT8", "L_INT16", "R_FLOAT16", "R_FLOAT32", "R8G8B8", "B8G8R8",
-    "RGB_INT8", "BGR_INT8", "RGB_INT16", "RGB_FLOAT16", "RGB_FLOAT32", "R16G16B16",
-    "BAYER_RGGB8", "BAYER_BGGR8", "BAYER_GBRG8", "BAYER_GRBG8", "RGBA_INT8", "BGRA_INT8",
+    "L8",
+    "L16",
+    "L_INT8",
+    "L_INT16",
+    "R_FLOAT16",
+    "R_FLOAT32",
+    "R8G8B8",
+    "B8G8R8",
+    "RGB_INT8",
+    "BGR_INT8",
+    "RGB_INT16",
+    "RGB_FLOAT16",
+    "RGB_FLOAT32",
+    "R16G16B16",
+    "BAYER_RGGB8",
+    "BAYER_BGGR8",
+    "BAYER_GBRG8",
+    "BAYER_GRBG8",
+    "RGBA_INT8",
+    "BGRA_INT8",
 }
 NOISE_TYPES = {"none", "gaussian", "gaussian_quantized", "custom"}
 WIDE_ANGLE = {"wideanglecamera", "wide_angle_camera"}
 
 
-@rule("SK401", "error", '`<gazebo reference="X">`: X is an existing link or joint', "none (silently ignored)")
+@rule(
+    "SK401",
+    "error",
+    '`<gazebo reference="X">`: X is an existing link or joint',
+    "none (silently ignored)",
+)
 def gazebo_reference(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     for block in robot.gazebo:
@@ -34,7 +56,7 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
         yield ctx.finding(
             "SK401",
             Severity.ERROR,
-            f"<gazebo reference=\"{ref}\">: no link or joint is called {ref!r}; Gazebo silently "
+            f'<gazebo reference="{ref}">: no link or joint is called {ref!r}; Gazebo silently '
             f"ignores this block{' and its sensor' if has_sensor else ''}",
             block.source,
             link=ref,
@@ -50,8 +72,13 @@ def unique_sensors(ctx: Context) -> Iterator[Finding]:
     for name, items in by_name.items():
         if not name:
             for s in items:
-                yield ctx.finding("SK402", Severity.ERROR, "a <sensor> has no name", s.source,
-                                  fix="give every sensor a unique name")
+                yield ctx.finding(
+                    "SK402",
+                    Severity.ERROR,
+                    "a <sensor> has no name",
+                    s.source,
+                    fix="give every sensor a unique name",
+                )
             continue
         for s in items[1:]:
             yield ctx.finding(
@@ -71,48 +98,85 @@ def _cameras(ctx: Context) -> Iterator[Sensor]:
             yield s
 
 
-@rule("SK403", "error", "camera image width/height positive integers; format known", "sdformat (format)")
+@rule(
+    "SK403",
+    "error",
+    "camera image width/height positive integers; format known",
+    "sdformat (format)",
+)
 def camera_image(ctx: Context) -> Iterator[Finding]:
     for s in _cameras(ctx):
         for cam in s.cameras:
             for problem in cam.problems:
                 if problem.startswith("image"):
-                    yield ctx.finding("SK403", Severity.ERROR, f"sensor {s.name!r}: {problem}",
-                                      cam.source, sensor=s.name, fix="write a positive whole number")
+                    yield ctx.finding(
+                        "SK403",
+                        Severity.ERROR,
+                        f"sensor {s.name!r}: {problem}",
+                        cam.source,
+                        sensor=s.name,
+                        fix="write a positive whole number",
+                    )
             for what, value in (("width", cam.width), ("height", cam.height)):
                 if value is not None and value <= 0:
-                    yield ctx.finding("SK403", Severity.ERROR, f"sensor {s.name!r}: image {what} {value} is not positive",
-                                      cam.source, sensor=s.name, fix="write a positive whole number")
+                    yield ctx.finding(
+                        "SK403",
+                        Severity.ERROR,
+                        f"sensor {s.name!r}: image {what} {value} is not positive",
+                        cam.source,
+                        sensor=s.name,
+                        fix="write a positive whole number",
+                    )
             if cam.format is not None and cam.format not in IMAGE_FORMATS:
                 yield ctx.finding(
-                    "SK403", Severity.ERROR, f"sensor {s.name!r}: image format {cam.format!r} is unknown",
-                    cam.source, sensor=s.name, fix="use R8G8B8 (or B8G8R8, L8, L16, R_FLOAT32, BAYER_*)",
+                    "SK403",
+                    Severity.ERROR,
+                    f"sensor {s.name!r}: image format {cam.format!r} is unknown",
+                    cam.source,
+                    sensor=s.name,
+                    fix="use R8G8B8 (or B8G8R8, L8, L16, R_FLOAT32, BAYER_*)",
                 )
 
 
-@rule("SK404", "error", "horizontal_fov > 0 and < pi for pinhole cameras (warning above 2.6 rad)", "sdformat (bounds only)")
+@rule(
+    "SK404",
+    "error",
+    "horizontal_fov > 0 and < pi for pinhole cameras (warning above 2.6 rad)",
+    "sdformat (bounds only)",
+)
 def camera_fov(ctx: Context) -> Iterator[Finding]:
     for s in _cameras(ctx):
         for cam in s.cameras:
             if any(p.startswith("horizontal_fov") for p in cam.problems):
-                yield ctx.finding("SK404", Severity.ERROR, f"sensor {s.name!r}: {cam.problems[0]}",
-                                  cam.source, sensor=s.name, fix="write the field of view in radians")
+                yield ctx.finding(
+                    "SK404",
+                    Severity.ERROR,
+                    f"sensor {s.name!r}: {cam.problems[0]}",
+                    cam.source,
+                    sensor=s.name,
+                    fix="write the field of view in radians",
+                )
                 continue
             h = cam.hfov
             if h is None:
                 continue
             if h <= 0 or (h >= math.pi and s.type not in WIDE_ANGLE):
                 yield ctx.finding(
-                    "SK404", Severity.ERROR,
+                    "SK404",
+                    Severity.ERROR,
                     f"sensor {s.name!r}: horizontal_fov {h:g} rad is outside (0, pi): a pinhole camera cannot see that",
-                    cam.source, sensor=s.name,
+                    cam.source,
+                    sensor=s.name,
                     fix="horizontal_fov is in radians (1.047 = 60 degrees); use a wideanglecamera for more than 180 degrees",
                 )
             elif h > 2.6 and s.type not in WIDE_ANGLE:
                 yield ctx.finding(
-                    "SK404", Severity.WARNING,
+                    "SK404",
+                    Severity.WARNING,
                     f"sensor {s.name!r}: horizontal_fov {h:g} rad ({math.degrees(h):.0f} degrees) stretches a pinhole image badly at the edges",
-                    cam.source, sensor=s.name, fix="use at most about 2.6 rad, or a wideanglecamera",
+                    cam.source,
+                    sensor=s.name,
+                    fix="use at most about 2.6 rad, or a wideanglecamera",
                 )
 
 
@@ -127,28 +191,43 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
         for cam in s.cameras:
             for p in cam.problems:
                 if "clip" in p:
-                    yield ctx.finding("SK405", Severity.ERROR, f"sensor {s.name!r}: {p}", cam.source,
-                                      sensor=s.name, fix="write distances in metres")
+                    yield ctx.finding(
+                        "SK405",
+                        Severity.ERROR,
+                        f"sensor {s.name!r}: {p}",
+                        cam.source,
+                        sensor=s.name,
+                        fix="write distances in metres",
+                    )
             near, far = cam.near, cam.far
             if near is not None and far is not None:
                 if not 0 < near < far:
                     yield ctx.finding(
-                        "SK405", Severity.ERROR,
+                        "SK405",
+                        Severity.ERROR,
                         f"sensor {s.name!r}: clip near {near:g} / far {far:g} must satisfy 0 < near < far",
-                        cam.source, sensor=s.name, fix="e.g. <clip><near>0.05</near><far>50</far></clip>",
+                        cam.source,
+                        sensor=s.name,
+                        fix="e.g. <clip><near>0.05</near><far>50</far></clip>",
                     )
                     continue
                 if near < 0.01:
                     yield ctx.finding(
-                        "SK405", Severity.WARNING,
+                        "SK405",
+                        Severity.WARNING,
                         f"sensor {s.name!r}: clip near {near:g} m is below 1 cm: depth precision collapses",
-                        cam.source, sensor=s.name, fix="use near >= 0.01 m (0.05 is typical)",
+                        cam.source,
+                        sensor=s.name,
+                        fix="use near >= 0.01 m (0.05 is typical)",
                     )
                 elif far / near > 1e4:
                     yield ctx.finding(
-                        "SK405", Severity.WARNING,
+                        "SK405",
+                        Severity.WARNING,
                         f"sensor {s.name!r}: far/near = {far / near:.0f} exceeds 1e4: depth precision collapses",
-                        cam.source, sensor=s.name, fix="raise near or lower far",
+                        cam.source,
+                        sensor=s.name,
+                        fix="raise near or lower far",
                     )
             if not s.is_depth or near is None or far is None or not 0 < near < far:
                 continue
@@ -156,9 +235,12 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
             for what, value in (("min_depth", lo), ("max_depth", hi)):
                 if value is not None and not (near - 1e-9 <= value <= far + 1e-9):
                     yield ctx.finding(
-                        "SK405", Severity.WARNING,
+                        "SK405",
+                        Severity.WARNING,
                         f"sensor {s.name!r}: {what} {value:g} is outside the clip range [{near:g}, {far:g}]",
-                        cam.source, sensor=s.name, fix=f"keep {what} within the clip range",
+                        cam.source,
+                        sensor=s.name,
+                        fix=f"keep {what} within the clip range",
                     )
 
 
@@ -189,8 +271,15 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
         if s.kind != "lidar" or spec is None:
             continue
 
-        def err(msg: str, fix: str) -> Finding:
-            return ctx.finding("SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix)
+        def err(msg: str, fix: str, s: Sensor = s, spec: LidarSpec = spec) -> Finding:
+            return ctx.finding(
+                "SK406",
+                Severity.ERROR,
+                f"lidar {s.name!r}: {msg}",
+                spec.source,
+                sensor=s.name,
+                fix=fix,
+            )
 
         for p in spec.problems:
             yield err(p, "write numbers (angles in radians, ranges in metres)")
@@ -202,23 +291,31 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 continue
             if samples is not None and samples < 1:
                 yield err(f"{label} samples {samples} < 1", "use at least 1 sample")
-            if lo is not None and hi is not None:
-                if lo > hi or (lo == hi and (samples or 1) > 1):
-                    yield err(f"{label} min_angle {lo:g} must be below max_angle {hi:g}", "swap them or widen the range")
+            if lo is not None and hi is not None and (lo > hi or (lo == hi and (samples or 1) > 1)):
+                yield err(
+                    f"{label} min_angle {lo:g} must be below max_angle {hi:g}",
+                    "swap them or widen the range",
+                )
             if samples is not None and samples >= 1 and res is not None:
                 beams = samples * res
                 if res <= 0:
                     yield err(f"{label} resolution {res:g} must be > 0", "use 1")
                 elif abs(beams - round(beams)) > 1e-6:
                     yield ctx.finding(
-                        "SK406", Severity.WARNING,
+                        "SK406",
+                        Severity.WARNING,
                         f"lidar {s.name!r}: {label} samples {samples} x resolution {res:g} = {beams:g} is not a whole beam count "
                         f"(Gazebo publishes {math.floor(beams)})",
-                        spec.source, sensor=s.name, fix="pick samples and resolution whose product is whole",
+                        spec.source,
+                        sensor=s.name,
+                        fix="pick samples and resolution whose product is whole",
                     )
         rmin, rmax = spec.range_min, spec.range_max
         if rmin is not None and rmax is not None and not 0 < rmin < rmax:
-            yield err(f"range min {rmin:g} / max {rmax:g} must satisfy 0 < min < max", "e.g. <min>0.12</min><max>12</max>")
+            yield err(
+                f"range min {rmin:g} / max {rmax:g} must satisfy 0 < min < max",
+                "e.g. <min>0.12</min><max>12</max>",
+            )
 
 
 @rule("SK407", "warning", "update_rate present and > 0 for cameras and lidars")
@@ -228,15 +325,21 @@ def update_rate(ctx: Context) -> Iterator[Finding]:
             continue
         if s.update_rate_text is None:
             yield ctx.finding(
-                "SK407", Severity.WARNING,
+                "SK407",
+                Severity.WARNING,
                 f"sensor {s.name!r} has no <update_rate>: it renders as fast as the simulation allows",
-                s.source, sensor=s.name, fix="add <update_rate>30</update_rate> (cameras) or 10 (lidars)",
+                s.source,
+                sensor=s.name,
+                fix="add <update_rate>30</update_rate> (cameras) or 10 (lidars)",
             )
         elif s.update_rate is None or s.update_rate <= 0:
             yield ctx.finding(
-                "SK407", Severity.WARNING,
+                "SK407",
+                Severity.WARNING,
                 f"sensor {s.name!r}: update_rate {s.update_rate_text!r} is not > 0",
-                s.source, sensor=s.name, fix="write a positive rate in Hz",
+                s.source,
+                sensor=s.name,
+                fix="write a positive rate in Hz",
             )
 
 
@@ -253,21 +356,40 @@ def noise(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:
         for n in _noises(s):
             for p in n.problems:
-                yield ctx.finding("SK408", Severity.ERROR, f"sensor {s.name!r}: {p}", n.source,
-                                  sensor=s.name, fix="write numbers")
+                yield ctx.finding(
+                    "SK408",
+                    Severity.ERROR,
+                    f"sensor {s.name!r}: {p}",
+                    n.source,
+                    sensor=s.name,
+                    fix="write numbers",
+                )
             if n.type is not None and n.type not in NOISE_TYPES:
                 yield ctx.finding(
-                    "SK408", Severity.ERROR, f"sensor {s.name!r}: noise type {n.type!r} is unknown",
-                    n.source, sensor=s.name, fix="use gaussian, gaussian_quantized or none",
+                    "SK408",
+                    Severity.ERROR,
+                    f"sensor {s.name!r}: noise type {n.type!r} is unknown",
+                    n.source,
+                    sensor=s.name,
+                    fix="use gaussian, gaussian_quantized or none",
                 )
             if n.stddev is not None and n.stddev < 0:
                 yield ctx.finding(
-                    "SK408", Severity.ERROR, f"sensor {s.name!r}: noise stddev {n.stddev:g} is negative",
-                    n.source, sensor=s.name, fix="stddev is a standard deviation: >= 0",
+                    "SK408",
+                    Severity.ERROR,
+                    f"sensor {s.name!r}: noise stddev {n.stddev:g} is negative",
+                    n.source,
+                    sensor=s.name,
+                    fix="stddev is a standard deviation: >= 0",
                 )
 
 
-@rule("SK409", "warning", "focal_length / lens intrinsics disagree with horizontal_fov and width", "gazebo_ros_camera, at run time")
+@rule(
+    "SK409",
+    "warning",
+    "focal_length / lens intrinsics disagree with horizontal_fov and width",
+    "gazebo_ros_camera, at run time",
+)
 def focal_length(ctx: Context) -> Iterator[Finding]:
     from sensorkit.model.robot import parse_float
 
@@ -283,10 +405,12 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
             f, _ = parse_float(p.param("focal_length"))
             if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
                 yield ctx.finding(
-                    "SK409", Severity.WARNING,
+                    "SK409",
+                    Severity.WARNING,
                     f"camera {s.name!r}: focal_length {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
                     f"(which give {expected:.6f}); camera_info and the rendered image will not match",
-                    p.source, sensor=s.name,
+                    p.source,
+                    sensor=s.name,
                     fix=f"remove <focal_length> or write {expected!r}",
                 )
         if cam.lens_intrinsics is not None:
@@ -294,9 +418,11 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
             for label, value in (("fx", fx), ("fy", fy)):
                 if abs(value - expected) > 1e-3 * expected:
                     yield ctx.finding(
-                        "SK409", Severity.WARNING,
+                        "SK409",
+                        Severity.WARNING,
                         f"camera {s.name!r}: lens intrinsics {label} {value:g} disagrees with width {cam.width} and "
                         f"horizontal_fov {hfov:g} (which give {expected:.4f}): camera_info will not describe the image",
-                        cam.source, sensor=s.name,
+                        cam.source,
+                        sensor=s.name,
                         fix=f"set {label} to {expected:.6f} or fix horizontal_fov",
                     )

@@ -19,8 +19,11 @@ def unique_names(ctx: Context) -> Iterator[Finding]:
         for item in items:
             if not item.name:
                 yield ctx.finding(
-                    "SK201", Severity.ERROR, f"a <{kind}> has no name", item.source,
-                    fix=f"give the <{kind}> a unique name=\"...\"",
+                    "SK201",
+                    Severity.ERROR,
+                    f"a <{kind}> has no name",
+                    item.source,
+                    fix=f'give the <{kind}> a unique name="..."',
                 )
                 continue
             if counts[item.name] > 1:
@@ -43,8 +46,12 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
         for role, name in (("parent", j.parent), ("child", j.child)):
             if name is None:
                 yield ctx.finding(
-                    "SK202", Severity.ERROR, f"joint {j.name!r} has no <{role} link=\"...\"/>",
-                    j.source, joint=j.name, fix=f"add <{role} link=\"LINK\"/> to the joint",
+                    "SK202",
+                    Severity.ERROR,
+                    f'joint {j.name!r} has no <{role} link="..."/>',
+                    j.source,
+                    joint=j.name,
+                    fix=f'add <{role} link="LINK"/> to the joint',
                 )
             elif name not in links:
                 import difflib
@@ -57,7 +64,7 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
                     j.source,
                     joint=j.name,
                     link=name,
-                    fix=f"did you mean {close[0]!r}?" if close else f"define <link name=\"{name}\"/>",
+                    fix=f"did you mean {close[0]!r}?" if close else f'define <link name="{name}"/>',
                 )
 
 
@@ -97,7 +104,7 @@ def single_root(ctx: Context) -> Iterator[Finding]:
                 f"link {r!r}{extra} is not connected to the tree rooted at {main!r}",
                 robot.link_map[r].source,
                 link=r,
-                fix=f"add a joint with <child link=\"{r}\"/> from a link of the main tree",
+                fix=f'add a joint with <child link="{r}"/> from a link of the main tree',
             )
 
 
@@ -112,8 +119,13 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
     for j in robot.joints:
         if j.parent is not None and j.parent == j.child:
             yield ctx.finding(
-                "SK204", Severity.ERROR, f"joint {j.name!r} joins link {j.parent!r} to itself",
-                j.source, joint=j.name, link=j.parent, fix="a joint's parent and child must differ",
+                "SK204",
+                Severity.ERROR,
+                f"joint {j.name!r} joins link {j.parent!r} to itself",
+                j.source,
+                joint=j.name,
+                link=j.parent,
+                fix="a joint's parent and child must differ",
             )
         elif j.child is not None:
             parents.setdefault(j.child, []).append(j.name)
@@ -137,7 +149,11 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
         while stack:
             cur = stack.pop()
             reached.add(cur)
-            stack.extend(j.child for j in robot.child_joints.get(cur, ()) if j.child is not None and j.child not in reached and j.parent != j.child)
+            stack.extend(
+                j.child
+                for j in robot.child_joints.get(cur, ())
+                if j.child is not None and j.child not in reached and j.parent != j.child
+            )
         if all(c in reached for c in parents):
             return
     edges: dict[str, list[tuple[str, str]]] = {}
@@ -167,7 +183,7 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 iters.append(iter(edges.get(child, [])))
             elif state == 1:
                 names = [n for n, _ in path]
-                loop = path[names.index(child):]
+                loop = path[names.index(child) :]
                 key = frozenset(n for n, _ in loop)
                 if key in reported:
                     continue
@@ -177,7 +193,8 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 yield ctx.finding(
                     "SK204",
                     Severity.ERROR,
-                    "kinematic cycle: " + " -> ".join([*(n for n, _ in loop), child])
+                    "kinematic cycle: "
+                    + " -> ".join([*(n for n, _ in loop), child])
                     + f" (joints {', '.join(joints)}); check_urdf loops forever on this",
                     first.source if first else robot.document.locate(None),
                     link=child,
@@ -196,19 +213,30 @@ def joint_types(ctx: Context) -> Iterator[Finding]:
     for j in ctx.robot.joints:
         if j.type not in JOINT_TYPES:
             yield ctx.finding(
-                "SK205", Severity.ERROR, f"joint {j.name!r} has type {j.type!r}", j.source,
-                joint=j.name, fix="use one of: " + ", ".join(sorted(JOINT_TYPES)),
+                "SK205",
+                Severity.ERROR,
+                f"joint {j.name!r} has type {j.type!r}",
+                j.source,
+                joint=j.name,
+                fix="use one of: " + ", ".join(sorted(JOINT_TYPES)),
             )
             continue
         for problem in j.limit_problems:
             yield ctx.finding(
-                "SK205", Severity.ERROR, f"joint {j.name!r} <limit>: {problem}", j.source,
-                joint=j.name, fix="write finite numbers",
+                "SK205",
+                Severity.ERROR,
+                f"joint {j.name!r} <limit>: {problem}",
+                j.source,
+                joint=j.name,
+                fix="write finite numbers",
             )
         if j.type in ("revolute", "prismatic"):
             if j.limit is None:
                 yield ctx.finding(
-                    "SK205", Severity.ERROR, f"{j.type} joint {j.name!r} has no <limit>", j.source,
+                    "SK205",
+                    Severity.ERROR,
+                    f"{j.type} joint {j.name!r} has no <limit>",
+                    j.source,
                     joint=j.name,
                     fix='add <limit lower="..." upper="..." effort="..." velocity="..."/> (or use type="continuous")',
                 )
@@ -216,37 +244,62 @@ def joint_types(ctx: Context) -> Iterator[Finding]:
             for key in ("effort", "velocity"):
                 if j.limit.get(key) is None and not any(key in p for p in j.limit_problems):
                     yield ctx.finding(
-                        "SK205", Severity.ERROR, f"{j.type} joint {j.name!r}: <limit> has no {key}",
-                        j.source, joint=j.name, fix=f'add {key}="..." to <limit>',
+                        "SK205",
+                        Severity.ERROR,
+                        f"{j.type} joint {j.name!r}: <limit> has no {key}",
+                        j.source,
+                        joint=j.name,
+                        fix=f'add {key}="..." to <limit>',
                     )
             lo, hi = j.limit.get("lower"), j.limit.get("upper")
             if lo is not None and hi is not None and lo > hi:
                 yield ctx.finding(
-                    "SK205", Severity.ERROR, f"joint {j.name!r}: lower {lo:g} > upper {hi:g}",
-                    j.source, joint=j.name, fix="swap lower and upper",
+                    "SK205",
+                    Severity.ERROR,
+                    f"joint {j.name!r}: lower {lo:g} > upper {hi:g}",
+                    j.source,
+                    joint=j.name,
+                    fix="swap lower and upper",
                 )
 
 
-@rule("SK206", "error", "origin xyz/rpy and axis are three finite numbers; axis non-zero", "urdfdom (partly)")
+@rule(
+    "SK206",
+    "error",
+    "origin xyz/rpy and axis are three finite numbers; axis non-zero",
+    "urdfdom (partly)",
+)
 def numbers(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     for j in robot.joints:
         for problem in j.origin.problems:
             yield ctx.finding(
-                "SK206", Severity.ERROR, f"joint {j.name!r} <origin>: {problem}", j.source,
-                joint=j.name, fix="write three finite numbers separated by spaces",
+                "SK206",
+                Severity.ERROR,
+                f"joint {j.name!r} <origin>: {problem}",
+                j.source,
+                joint=j.name,
+                fix="write three finite numbers separated by spaces",
             )
         if j.axis_problem:
             yield ctx.finding(
-                "SK206", Severity.ERROR, f"joint {j.name!r} <axis>: {j.axis_problem}", j.source,
-                joint=j.name, fix='write a non-zero direction, e.g. <axis xyz="0 0 1"/>',
+                "SK206",
+                Severity.ERROR,
+                f"joint {j.name!r} <axis>: {j.axis_problem}",
+                j.source,
+                joint=j.name,
+                fix='write a non-zero direction, e.g. <axis xyz="0 0 1"/>',
             )
     for lk in robot.links:
         if lk.inertial is not None:
             for problem in lk.inertial.origin.problems:
                 yield ctx.finding(
-                    "SK206", Severity.ERROR, f"link {lk.name!r} inertial <origin>: {problem}",
-                    lk.inertial.source, link=lk.name, fix="write three finite numbers",
+                    "SK206",
+                    Severity.ERROR,
+                    f"link {lk.name!r} inertial <origin>: {problem}",
+                    lk.inertial.source,
+                    link=lk.name,
+                    fix="write three finite numbers",
                 )
 
 
@@ -259,16 +312,28 @@ def mimic(ctx: Context) -> Iterator[Finding]:
         target = joints.get(j.mimic or "")
         if not j.mimic or target is None:
             yield ctx.finding(
-                "SK207", Severity.ERROR, f"joint {j.name!r} mimics {j.mimic!r}, which does not exist",
-                j.source, joint=j.name, fix="name an existing joint in <mimic joint=\"...\"/>",
+                "SK207",
+                Severity.ERROR,
+                f"joint {j.name!r} mimics {j.mimic!r}, which does not exist",
+                j.source,
+                joint=j.name,
+                fix='name an existing joint in <mimic joint="..."/>',
             )
         elif target.type == "fixed":
             yield ctx.finding(
-                "SK207", Severity.ERROR, f"joint {j.name!r} mimics fixed joint {j.mimic!r}",
-                j.source, joint=j.name, fix="mimic a joint that moves",
+                "SK207",
+                Severity.ERROR,
+                f"joint {j.name!r} mimics fixed joint {j.mimic!r}",
+                j.source,
+                joint=j.name,
+                fix="mimic a joint that moves",
             )
         elif target.name == j.name:
             yield ctx.finding(
-                "SK207", Severity.ERROR, f"joint {j.name!r} mimics itself", j.source, joint=j.name,
+                "SK207",
+                Severity.ERROR,
+                f"joint {j.name!r} mimics itself",
+                j.source,
+                joint=j.name,
                 fix="mimic another joint",
             )
