@@ -67,10 +67,17 @@ class SensorFrames:
         """The frame image data is stamped with."""
         return self.image_frame or self.published
 
-    def T_world_frame(self, robot: Robot, frame: str | None) -> Mat | None:
-        if frame is None or frame not in robot.link_map:
+    def T_render_frame(self, robot: Robot, frame: str | None) -> Mat | None:
+        """Pose of link ``frame`` seen from the render pose (None if either is unknown)."""
+        if frame is None or frame not in robot.link_map or self.T_world_render is None:
             return None
-        return robot.T_world_link(frame)
+        T_world_frame = robot.T_world_link(frame)
+        if T_world_frame is None:
+            return None
+        from sensorkit.model.transforms import invert
+
+        out: Mat = invert(self.T_world_render) @ T_world_frame
+        return out
 
 
 def optical_frame_at(

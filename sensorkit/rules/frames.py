@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity
-from sensorkit.model.frames import SensorFrames, optical_frame_at
+from sensorkit.model.frames import optical_frame_at
 from sensorkit.model.robot import Joint, Robot
 from sensorkit.rules.base import Context, rule
 
@@ -68,12 +68,6 @@ def optical_consequence(R_render_frame: Mat) -> str:
     return f"the viewing axis lands pointing {fwd}: the point cloud is turned away from where the camera looks"
 
 
-def _frame_pose(robot: Robot, fr: SensorFrames, frame: str | None) -> Mat | None:
-    if frame is None or frame not in robot.link_map:
-        return None
-    return robot.T_world_link(frame)
-
-
 def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
     """Joints from ``top`` down to ``frame`` (empty unless ``top`` is an ancestor)."""
     chain = [frame, *robot.ancestors(frame)]
@@ -131,15 +125,11 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             continue
         fr = ctx.frames_of(s)
         frame = fr.camera_frame
-        T_frame = _frame_pose(robot, fr, frame)
-        if (
-            fr.T_world_render is None
-            or T_frame is None
-            or (fr.is_default and fr.image_frame is None and not fr.plugin)
-        ):
+        T = fr.T_render_frame(robot, frame)
+        if T is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
             continue
         tf = _tf()
-        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
+        R = T[:3, :3]
         err = tf.angle_between(R, tf.R_BODY_OPTICAL)
         if err <= ANGLE_TOL:
             continue
@@ -180,14 +170,13 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
             continue  # an IMU's frame position only matters through its lever arm
         fr = ctx.frames_of(s)
         frame = fr.camera_frame if s.is_camera else fr.published
-        T_frame = _frame_pose(robot, fr, frame)
-        if fr.T_world_render is None or T_frame is None:
+        T = fr.T_render_frame(robot, frame)
+        if T is None:
             continue
-        offset_world = T_frame[:3, 3] - fr.T_world_render[:3, 3]
-        dist = float(_np().linalg.norm(offset_world))
+        off = T[:3, 3]  # in the sensor's own frame
+        dist = float(_np().linalg.norm(off))
         if dist <= POSITION_TOL:
             continue
-        off = fr.T_world_render[:3, :3].T @ offset_world
         yield ctx.finding(
             "SK503",
             Severity.ERROR,
@@ -216,11 +205,11 @@ def body_frame(ctx: Context) -> Iterator[Finding]:
         if s.kind not in ("lidar", "imu"):
             continue
         fr = ctx.frames_of(s)
-        T_frame = _frame_pose(robot, fr, fr.published)
-        if fr.T_world_render is None or T_frame is None:
+        T = fr.T_render_frame(robot, fr.published)
+        if T is None:
             continue
         tf = _tf()
-        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
+        R = T[:3, :3]
         err = tf.rotation_angle(R)
         if err <= ANGLE_TOL:
             continue
@@ -299,18 +288,11 @@ def optical_naming(ctx: Context) -> Iterator[Finding]:
             continue
         fr = ctx.frames_of(s)
         frame = fr.camera_frame
-        T_frame = _frame_pose(robot, fr, frame)
-        if (
-            frame is None
-            or frame in seen
-            or "optical" in frame
-            or fr.T_world_render is None
-            or T_frame is None
-        ):
+        T = fr.T_render_frame(robot, frame)
+        if T is None or frame is None or frame in seen or "optical" in frame:
             continue
         tf = _tf()
-        R = fr.T_world_render[:3, :3].T @ T_frame[:3, :3]
-        if tf.angle_between(R, tf.R_BODY_OPTICAL) <= ANGLE_TOL:
+        if tf.angle_between(T[:3, :3], tf.R_BODY_OPTICAL) <= ANGLE_TOL:
             seen.add(frame)
             yield ctx.finding(
                 "SK506",
