@@ -1,0 +1,1204 @@
+"""What each sensor of a robot publishes: camera_info, LaserScan geometry, topics, frames.
+
+The facts behind ``sensorkit intrinsics`` and ``sensorkit export`` (and the camera_info
+the render preview compares against), without pybullet or any file written:
+
+- :func:`published_intrinsics`: the ``camera_info`` a simulator publishes for a camera
+  (Gazebo Classic reads ``cx``/``cy``/``focal_length``/``hack_baseline`` from the ROS 2
+  plugin, ROS 1 ``Cx``/``Cy``/``focalLength``/``hackBaseline`` with 0 meaning "computed";
+  Gazebo Sim uses ``<lens><intrinsics>`` verbatim); SDF defaults stand in for a missing
+  width, height or fov, with a note.
+- :func:`lidar_scans`: the LaserScan fields of a ``<lidar>``/``<ray>`` block.
+- :func:`sensor_topics`: the ROS topics a sensor's data reaches, by role (``image``,
+  ``camera_info``, ``depth_image``, ``scan``, ...): Classic from the plugin and its
+  remappings, Gazebo Sim from the gz ``<topic>`` through the ros_gz_bridge names
+  ``sensorkit new`` uses.
+- :func:`body_frame`: the x-forward link at a camera's pose (LaserScans built from a
+  depth image are stamped with it, never with the optical frame).
+- :func:`describe`: all of the above for every sensor, as :class:`RobotInfo`.
+- :func:`intrinsics_document` and :func:`export_files` / :func:`publish_export`: the two
+  commands' results as text, and the export published atomically.
+
+Errors are :class:`~sensorkit.errors.UsageError` (a bad request) or
+:class:`~sensorkit.errors.InputError` (a robot that cannot be read); a camera or lidar
+whose numbers cannot exist is kept with its ``error`` so that the other sensors still
+export.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import re
+import shutil
+import tempfile
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Literal, get_args
+
+from sensorkit.errors import InputError, UsageError
+from sensorkit.intrinsics import (
+    Convention,
+    Intrinsics,
+    InvalidValue,
+    LaserScanParams,
+    camera_intrinsics,
+    laser_scan,
+)
+
+if TYPE_CHECKING:
+    from sensorkit.exporters.bridge import BridgeEntry
+    from sensorkit.model.robot import Robot
+    from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
+    from sensorkit.model.transforms import Mat
+
+__all__ = [
+    "FORMATS",
+    "LIDAR_DEFAULTS",
+    "SDF_DEFAULTS",
+    "CameraView",
+    "ExportFiles",
+    "IntrinsicsFormat",
+    "RobotInfo",
+    "SensorInfo",
+    "body_frame",
+    "camera_size",
+    "convention_of",
+    "depth_range",
+    "describe",
+    "export_files",
+    "intrinsics_document",
+    "lidar_scans",
+    "load",
+    "plugin_number",
+    "publish_export",
+    "published_intrinsics",
+    "resolve_target",
+    "select_cameras",
+    "sensor_topics",
+]
+
+SDF_DEFAULTS: dict[str, float] = {
+    "width": 320,
+    "height": 240,
+    "hfov": 1.047,
+    "near": 0.1,
+    "far": 100.0,
+}
+"""sdformat's defaults for ``<camera>``: image 320 x 240, horizontal_fov 1.047 rad, clip
+0.1-100 m."""
+
+LIDAR_DEFAULTS: dict[str, float] = {
+    "samples": 640,
+    "resolution": 1.0,
+    "min_angle": 0.0,
+    "max_angle": 0.0,
+    "range_min": 0.0,
+}
+"""sdformat's defaults for ``<lidar>``/``<ray>`` (``<range><max>`` has none worth using)."""
+
+CLASSIC_MIN_DEPTH = 0.4
+"""gazebo_ros_camera's ``<min_depth>`` default; ``<max_depth>`` defaults to +inf."""
+
+DEFAULT_FPS = 30
+"""Frame rate written for ORB-SLAM3 when a camera's ``<update_rate>`` is 0 or missing."""
+
+IntrinsicsFormat = Literal["json", "camera-info", "orbslam3", "orbslam3-v1", "kalibr", "opencv"]
+FORMATS: tuple[str, ...] = get_args(IntrinsicsFormat)
+SINGLE_DOCUMENT_FORMATS = frozenset(FORMATS) - {"json"}
+
+_BGR_FORMATS = frozenset({"B8G8R8", "BGR_INT8"})
+_COLOUR_FORMATS = frozenset({"R8G8B8", "RGB_INT8", "R16G16B16", "RGB_INT16"}) | _BGR_FORMATS
+_POSE_TOL_M = 1e-4
+_POSE_TOL_RAD = 1e-3
+_TOP_LEVEL_NAMES = ("bridge.yaml",)
+
+
+def convention_of(target: str) -> Convention:
+    """The camera_info convention of a target: Gazebo Classic (ROS 1 and 2) or gz."""
+    return "classic" if target in ("classic", "ros1") else "gz"
+
+
+# --------------------------------------------------------------------------- cameras
+
+
+def plugin_number(sensor: Sensor, names: Sequence[str], notes: list[str]) -> float | None:
+    """The first of ``names`` the sensor's ROS plugin sets, as a finite number.
+
+    ``None`` when no plugin sets it; a value that is not a finite number is ignored with
+    a note (gazebo_ros reads it as its default).
+    """
+    from sensorkit.model.frames import ros_plugin
+
+    plugin = ros_plugin(sensor)
+    if plugin is None:
+        return None
+    for name in names:
+        text = plugin.param(name)
+        if text is None:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            notes.append(f"plugin <{name}> {text!r} is not a number; ignored")
+            return None
+        return value if math.isfinite(value) else None
+    return None
+
+
+def camera_size(cam: CameraSpec, notes: list[str]) -> tuple[int, int, float]:
+    """``(width, height, hfov)`` of ``cam``; sdformat's defaults (with a note) where the
+    value is missing or unusable."""
+    width = cam.width if cam.width and cam.width > 0 else None
+    height = cam.height if cam.height and cam.height > 0 else None
+    hfov = cam.hfov
+    if width is None:
+        width = int(SDF_DEFAULTS["width"])
+        notes.append(f"no usable image width: SDF's default {width}")
+    if height is None:
+        height = int(SDF_DEFAULTS["height"])
+        notes.append(f"no usable image height: SDF's default {height}")
+    if hfov is None:
+        hfov = SDF_DEFAULTS["hfov"]
+        notes.append(f"no horizontal_fov: SDF's default {hfov} rad")
+    return width, height, hfov
+
+
+def _distortion(cam: CameraSpec) -> tuple[float, float, float, float, float] | None:
+    """SDF ``<distortion>`` (k1 k2 k3 p1 p2) in camera_info order (k1 k2 p1 p2 k3)."""
+    dist = cam.distortion
+    if not any(dist.get(k, 0.0) for k in ("k1", "k2", "k3", "p1", "p2")):
+        return None
+    k1, k2, p1, p2, k3 = (float(dist.get(k, 0.0)) for k in ("k1", "k2", "p1", "p2", "k3"))
+    return (k1, k2, p1, p2, k3)
+
+
+def published_intrinsics(
+    sensor: Sensor, cam: CameraSpec, target: str, *, convention: Convention | None = None
+) -> tuple[Intrinsics, list[str]]:
+    """The camera_info a simulator publishes for ``cam`` under ``target``, and notes.
+
+    ``convention`` (default: the target's, see :func:`convention_of`) chooses whose
+    numbers to reproduce: ``classic`` reads the ROS plugin's principal point, focal
+    length and baseline (``target="ros1"``: ROS 1 names, where 0 means "computed"),
+    ``gz`` reads ``<lens><intrinsics>``, ``ideal`` reads neither.
+
+    Raises:
+        InvalidValue: the camera cannot be a pinhole (e.g. hfov >= pi) or a plugin
+            value is out of range.
+    """
+    notes: list[str] = []
+    width, height, hfov = camera_size(cam, notes)
+    distortion = _distortion(cam)
+    conv = convention if convention is not None else convention_of(target)
+    if conv == "classic":
+        ros1 = target == "ros1"
+        cx = plugin_number(sensor, ("Cx",) if ros1 else ("cx",), notes)
+        cy = plugin_number(sensor, ("Cy",) if ros1 else ("cy",), notes)
+        focal = plugin_number(sensor, ("focalLength",) if ros1 else ("focal_length",), notes)
+        baseline = plugin_number(sensor, ("hackBaseline",) if ros1 else ("hack_baseline",), notes)
+        if ros1:  # gazebo_ros_camera_utils (ROS 1) treats 0 as "compute it"
+            cx = cx or None
+            cy = cy or None
+        if cam.lens_intrinsics is not None:
+            notes.append(
+                "<lens><intrinsics> ignored: Gazebo Classic's camera_info does not read it"
+            )
+        return (
+            camera_intrinsics(
+                width,
+                height,
+                hfov,
+                "classic",
+                focal_length=focal,
+                cx=cx,
+                cy=cy,
+                distortion=distortion,
+                hack_baseline=baseline or 0.0,
+            ),
+            notes,
+        )
+    if conv == "gz":
+        return (
+            camera_intrinsics(
+                width,
+                height,
+                hfov,
+                "gz",
+                lens_intrinsics=cam.lens_intrinsics,
+                distortion=distortion,
+            ),
+            notes,
+        )
+    return camera_intrinsics(width, height, hfov, "ideal", distortion=distortion), notes
+
+
+def depth_range(sensor: Sensor, cam: CameraSpec, target: str) -> tuple[float, float, list[str]]:
+    """``(range_min, range_max, notes)``: the depths a depth image holds as numbers.
+
+    Gazebo Classic: gazebo_ros_camera turns depths outside ``(min_depth, max_depth)``
+    (defaults 0.4 m and +inf) into -inf/+inf, and nothing is rendered outside the clip
+    planes. Gazebo Sim: ``<depth_camera><clip>``, else the camera's ``<clip>``.
+    """
+    notes: list[str] = []
+    near = cam.near if cam.near is not None and cam.near > 0 else SDF_DEFAULTS["near"]
+    far = cam.far if cam.far is not None and cam.far > near else SDF_DEFAULTS["far"]
+    if convention_of(target) == "classic":
+        ros1 = target == "ros1"
+        lo = plugin_number(sensor, ("pointCloudCutoff",) if ros1 else ("min_depth",), notes)
+        hi = plugin_number(sensor, ("pointCloudCutoffMax",) if ros1 else ("max_depth",), notes)
+        lo = CLASSIC_MIN_DEPTH if lo is None else lo
+        return max(lo, near), min(hi, far) if hi is not None else far, notes
+    lo = cam.depth_near if cam.depth_near is not None and cam.depth_near > 0 else near
+    hi = cam.depth_far if cam.depth_far is not None and cam.depth_far > lo else far
+    return lo, hi, notes
+
+
+# --------------------------------------------------------------------------- lidars
+
+
+def lidar_scans(
+    spec: LidarSpec, notes: list[str] | None = None
+) -> tuple[LaserScanParams, LaserScanParams | None]:
+    """The horizontal LaserScan of a ``<lidar>``/``<ray>`` block and, for a 3D lidar, the
+    vertical fan described the same way (N = floor(samples * resolution), ...).
+
+    Missing values take sdformat's defaults (with a note); ``<range><max>`` is required.
+
+    Raises:
+        InvalidValue: no ``<range><max>``, or the scan cannot exist.
+    """
+    said = notes if notes is not None else []
+    if spec.range_max is None:
+        msg = "the lidar has no <range><max>"
+        raise InvalidValue(msg)
+
+    def pick(value: float | None, key: str, what: str) -> float:
+        if value is not None:
+            return value
+        default = LIDAR_DEFAULTS[key]
+        said.append(f"no {what}: SDF's default {default:g}")
+        return default
+
+    samples = spec.samples
+    if samples is None:
+        samples = int(pick(None, "samples", "horizontal samples"))
+    resolution = pick(spec.resolution, "resolution", "horizontal resolution")
+    lo = pick(spec.min_angle, "min_angle", "horizontal min_angle")
+    hi = pick(spec.max_angle, "max_angle", "horizontal max_angle")
+    rmin = pick(spec.range_min, "range_min", "range min")
+    horizontal = laser_scan(samples, resolution, lo, hi, rmin, spec.range_max)
+    vertical = None
+    if spec.has_vertical and (spec.v_samples or 1) * (spec.v_resolution or 1.0) >= 2:
+        vertical = laser_scan(
+            spec.v_samples if spec.v_samples is not None else 1,
+            spec.v_resolution if spec.v_resolution is not None else 1.0,
+            spec.v_min_angle if spec.v_min_angle is not None else 0.0,
+            spec.v_max_angle if spec.v_max_angle is not None else 0.0,
+            rmin,
+            spec.range_max,
+        )
+    return horizontal, vertical
+
+
+# --------------------------------------------------------------------------- topics
+
+
+def _abs(topic: str) -> str:
+    return "/" + topic.strip().strip("/")
+
+
+def _ros2_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
+    from sensorkit.model.frames import ros_plugin
+    from sensorkit.rules.plugins import resolved_topics
+
+    plugin = ros_plugin(sensor)
+    if plugin is None:
+        return {}, ["no ROS plugin: the sensor publishes nothing to ROS"]
+    topics: dict[str, str] = {}
+    pairs = resolved_topics(plugin, sensor)
+    if not pairs:
+        return {}, [f"plugin {plugin.filename!r} publishes no topic sensorkit knows on ROS 2"]
+    if plugin.library == "gazebo_ros_camera":
+        base = plugin.param("camera_name") or sensor.name
+        suffixes = {
+            "image_raw": "image",
+            "camera_info": "camera_info",
+            "depth/image_raw": "depth_image",
+            "depth/camera_info": "depth_camera_info",
+            "points": "points",
+            "image_trigger": "trigger",
+        }
+        for name, full in pairs:
+            rest = name[len(base) + 1 :] if name.startswith(base + "/") else name
+            if sensor.kind == "multicamera":
+                cam, _, leaf = rest.partition("/")
+                role = suffixes.get(leaf)
+                if role is not None:
+                    topics[f"{cam}/{role}"] = full
+            elif rest in suffixes:
+                topics[suffixes[rest]] = full
+        return topics, []
+    (_, full), *_ = pairs
+    if sensor.kind == "lidar":
+        output = plugin.param("output_type") or "sensor_msgs/PointCloud2"
+        role = {"sensor_msgs/LaserScan": "scan", "sensor_msgs/Range": "range"}.get(output, "points")
+        topics[role] = full
+    elif sensor.kind == "imu":
+        topics["imu"] = full
+    else:
+        topics["out"] = full
+    return topics, []
+
+
+def _ros1_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
+    """gazebo_ros_pkgs (ROS 1) names: ``/<robotNamespace>/<cameraName>/<...TopicName>``."""
+    from sensorkit.model.frames import ros_plugin
+
+    plugin = ros_plugin(sensor)
+    if plugin is None:
+        return {}, ["no ROS plugin: the sensor publishes nothing to ROS"]
+    ns = (plugin.param("robotNamespace") or "").strip("/")
+
+    def full(*parts: str) -> str:
+        return _abs("/".join(p.strip("/") for p in (ns, *parts) if p.strip("/")))
+
+    if sensor.is_camera:
+        cam = plugin.param("cameraName") or ""
+        topics = {
+            "image": full(cam, plugin.param("imageTopicName") or "image_raw"),
+            "camera_info": full(cam, plugin.param("cameraInfoTopicName") or "camera_info"),
+        }
+        if sensor.is_depth:
+            topics["depth_image"] = full(
+                cam, plugin.param("depthImageTopicName") or "depth/image_raw"
+            )
+            topics["depth_camera_info"] = full(
+                cam, plugin.param("depthImageCameraInfoTopicName") or "depth/camera_info"
+            )
+            topics["points"] = full(cam, plugin.param("pointCloudTopicName") or "points")
+        return topics, []
+    name = plugin.param("topicName")
+    if not name:
+        return {}, ["ROS 1 plugin without <topicName>: topic not known"]
+    role = "scan" if sensor.kind == "lidar" else "imu" if sensor.kind == "imu" else "out"
+    return {role: full(name)}, []
+
+
+def _gz_roles(sensor: Sensor, entries: Iterable[BridgeEntry]) -> dict[str, str]:
+    topics: dict[str, str] = {}
+    for entry in entries:
+        ros = _abs(entry.ros_topic_name)
+        kind = entry.ros_type_name.rsplit("/", 1)[-1]
+        if kind == "Image":
+            depth = sensor.kind == "depth" or entry.gz_topic_name.endswith("depth_image")
+            topics["depth_image" if depth else "image"] = ros
+        elif kind == "CameraInfo":
+            if sensor.kind != "depth":
+                topics["camera_info"] = ros
+            if sensor.is_depth:  # the depth image is registered to the colour one
+                topics["depth_camera_info"] = ros
+        elif kind == "PointCloud2":
+            topics["points"] = ros
+        elif kind == "LaserScan":
+            topics["scan"] = ros
+        elif kind == "Imu":
+            topics["imu"] = ros
+    return topics
+
+
+def _gz_entries(sensor: Sensor, target: str) -> list[BridgeEntry]:
+    from sensorkit.generate.bridge import sensor_entries
+
+    return sensor_entries(sensor.element, target)
+
+
+def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str]]:
+    """``(role -> ROS topic, notes)`` for everything ``sensor`` publishes under ``target``.
+
+    Roles: ``image``, ``camera_info``, ``depth_image``, ``depth_camera_info``,
+    ``points``, ``scan``, ``range``, ``imu``, ``trigger``, ``out``; a multicamera's
+    are ``<camera>/image`` and ``<camera>/camera_info``. Gazebo Classic: the plugin's
+    names after namespace and remapping (``~/out:=scan`` -> ``/scan``). Gazebo Sim: the
+    ROS names of the ros_gz_bridge entries ``sensorkit new`` writes for the sensor's
+    ``<topic>`` (``X/image`` -> ``/X/image_raw``, ...); a sensor without ``<topic>``
+    publishes under the world's scoped name, which no file can name.
+    """
+    from sensorkit.model.targets import is_gz
+
+    if is_gz(target):
+        if not sensor.topic:
+            return {}, [
+                "no <topic>: Gazebo Sim publishes under a name scoped by the world, "
+                "which cannot be bridged from here; give the sensor a <topic>"
+            ]
+        try:
+            entries = _gz_entries(sensor, target)
+        except InvalidValue as exc:
+            return {}, [f"cannot name its topics: {exc}"]
+        if not entries:
+            return {}, [f"sensor type {sensor.type!r} has no ros_gz_bridge message type"]
+        return _gz_roles(sensor, entries), []
+    if target == "ros1":
+        return _ros1_topics(sensor)
+    return _ros2_topics(sensor)
+
+
+# --------------------------------------------------------------------------- frames
+
+
+def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) -> str | None:
+    """The link placed exactly at the sensor's render pose, x forward (not optical).
+
+    Candidates in order: ``prefer``, the sensor's reference link, then every link of its
+    tree in document order. ``None`` when no link is there.
+    """
+    import numpy as np
+
+    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms import angle_between
+
+    T_render = render_pose(robot, sensor)
+    if T_render is None or sensor.reference is None:
+        return None
+    ancestors = robot.ancestors(sensor.reference)
+    root = ancestors[-1] if ancestors else sensor.reference
+    seen: set[str] = set()
+    for name in [*prefer, sensor.reference, *robot.subtree(root)]:
+        if name is None or name in seen or name not in robot.link_map:
+            continue
+        seen.add(name)
+        T = robot.T_world_link(name)
+        if T is None:
+            continue
+        if float(np.linalg.norm(T[:3, 3] - T_render[:3, 3])) > _POSE_TOL_M:
+            continue
+        if angle_between(T_render[:3, :3], T[:3, :3]) <= _POSE_TOL_RAD:
+            return name
+    return None
+
+
+# --------------------------------------------------------------------------- the model
+
+
+@dataclass
+class CameraView:
+    """One camera as its consumers see it: camera_info, topics, frame."""
+
+    sensor: Sensor
+    spec: CameraSpec
+    id: str  # the sensor name; "<sensor>/<camera>" for each camera of a multicamera
+    name: str  # the camera_name written into camera_info files
+    intrinsics: Intrinsics | None
+    error: str | None
+    notes: list[str]
+    image_topic: str | None
+    camera_info_topic: str | None
+    frame: str | None  # the frame its images are stamped with
+
+    @property
+    def fps(self) -> float | None:
+        """The sensor's ``<update_rate>``, when positive."""
+        rate = self.sensor.update_rate
+        return rate if rate is not None and rate > 0 else None
+
+
+@dataclass
+class SensorInfo:
+    """A sensor under one target: where it is, what it publishes, and its geometry."""
+
+    sensor: Sensor
+    link: str | None  # its <gazebo reference>, when that is a link
+    frame: str | None  # the frame its data is stamped with
+    frame_how: str  # frame_name, gz_frame_id, default, ...
+    frame_is_default: bool
+    body_frame: str | None  # x-forward link at its render pose
+    T_world_render: Mat | None
+    topics: dict[str, str]
+    has_colour: bool = False  # a camera with a colour (or grey) image, not depth only
+    topic_notes: list[str] = field(default_factory=list)  # why topics are missing
+    cameras: list[CameraView] = field(default_factory=list)
+    scan: LaserScanParams | None = None
+    vertical: LaserScanParams | None = None
+    scan_error: str | None = None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def name(self) -> str:
+        return self.sensor.name
+
+
+@dataclass
+class RobotInfo:
+    """Every sensor of a robot under one target."""
+
+    robot: Robot
+    target: str
+    target_reason: str
+    convention: Convention
+    sensors: list[SensorInfo]
+
+    @property
+    def cameras(self) -> list[CameraView]:
+        return [c for s in self.sensors for c in s.cameras]
+
+    @property
+    def imus(self) -> list[SensorInfo]:
+        return [s for s in self.sensors if s.sensor.kind == "imu"]
+
+
+def load(
+    path: Path, *, args: Mapping[str, str] | None = None, package_paths: Sequence[str] = ()
+) -> Robot:
+    """Load and model a URDF/xacro file.
+
+    Raises:
+        InputError: the file cannot be read, expanded or parsed as a robot.
+    """
+    from sensorkit.model import load_robot
+
+    loaded = load_robot(path, args=dict(args or {}), package_paths=tuple(package_paths))
+    if loaded.robot is None:
+        first = loaded.findings[0] if loaded.findings else None
+        msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
+        raise InputError(msg)
+    return loaded.robot
+
+
+def resolve_target(robot: Robot, target: str) -> tuple[str, str]:
+    """``(target, why)``: ``auto`` detected as ``sensorkit validate`` does, else checked.
+
+    Raises:
+        UsageError: an unknown target.
+    """
+    from sensorkit.model.targets import TARGETS, detect_target
+
+    if target == "auto":
+        return detect_target(robot)
+    if target in TARGETS:
+        return target, "chosen with --target"
+    msg = f"unknown target {target!r}: use auto, " + ", ".join(TARGETS)
+    raise UsageError(msg)
+
+
+def _camera_views(
+    robot: Robot,
+    sensor: Sensor,
+    target: str,
+    conv: Convention,
+    topics: dict[str, str],
+    frame: str | None,
+) -> list[CameraView]:
+    from sensorkit.model.frames import ros_plugin
+    from sensorkit.model.targets import is_gz
+
+    views: list[CameraView] = []
+    multi = sensor.kind == "multicamera" and len(sensor.cameras) > 1
+    plugin = None if is_gz(target) else ros_plugin(sensor)
+    base_name = (plugin.param("camera_name") if plugin is not None else None) or sensor.name
+    for index, spec in enumerate(sensor.cameras):
+        cam_name = spec.name or f"camera{index}"
+        key = f"{cam_name}/" if multi else ""
+        try:
+            intr, notes = published_intrinsics(sensor, spec, target, convention=conv)
+            error = None
+        except InvalidValue as exc:
+            intr, notes, error = None, [], str(exc)
+        views.append(
+            CameraView(
+                sensor=sensor,
+                spec=spec,
+                id=f"{sensor.name}/{cam_name}" if multi else sensor.name,
+                name=f"{base_name}_{cam_name}" if multi else base_name,
+                intrinsics=intr,
+                error=error,
+                notes=notes,
+                image_topic=topics.get(f"{key}image"),
+                camera_info_topic=topics.get(f"{key}camera_info"),
+                frame=frame,
+            )
+        )
+    return views
+
+
+def describe(robot: Robot, target: str, *, convention: Convention | None = None) -> RobotInfo:
+    """Every sensor of ``robot`` under ``target`` (``auto`` is detected).
+
+    ``convention`` overrides the target's camera_info convention for the intrinsics
+    (topics and frames stay the target's).
+
+    Raises:
+        UsageError: an unknown target or convention.
+    """
+    from sensorkit.model.frames import sensor_frames
+    from sensorkit.model.sdf import convert
+    from sensorkit.model.targets import is_gz
+
+    chosen, why = resolve_target(robot, target)
+    if convention is not None and convention not in get_args(Convention):
+        msg = f"unknown convention {convention!r}: use " + ", ".join(get_args(Convention))
+        raise UsageError(msg)
+    conv = convention or convention_of(chosen)
+    conversion = convert(robot)
+    infos: list[SensorInfo] = []
+    for sensor in robot.sensors:
+        frames = sensor_frames(robot, sensor, chosen, conversion)
+        topics, notes = sensor_topics(sensor, chosen)
+        info = SensorInfo(
+            sensor=sensor,
+            link=frames.link,
+            frame=frames.published,
+            frame_how=frames.how,
+            frame_is_default=frames.is_default,
+            body_frame=body_frame(robot, sensor, prefer=(frames.published,)),
+            T_world_render=frames.T_world_render,
+            topics=topics,
+            # Gazebo Sim's depth_camera renders depth only; every other camera has colour
+            has_colour=sensor.is_camera and not (is_gz(chosen) and sensor.kind == "depth"),
+            topic_notes=notes,
+            notes=list(notes),
+        )
+        if sensor.is_camera:
+            info.cameras = _camera_views(robot, sensor, chosen, conv, topics, frames.camera_frame)
+            if not sensor.cameras:
+                info.notes.append("no <camera> block")
+        if sensor.kind == "lidar":
+            if sensor.lidar is None:
+                info.scan_error = "no <lidar> or <ray> block"
+            else:
+                try:
+                    info.scan, info.vertical = lidar_scans(sensor.lidar, info.notes)
+                except InvalidValue as exc:
+                    info.scan_error = str(exc)
+        infos.append(info)
+    return RobotInfo(robot, chosen, why, conv, infos)
+
+
+# --------------------------------------------------------------------------- intrinsics
+
+
+def select_cameras(info: RobotInfo, name: str | None, fmt: str) -> list[CameraView]:
+    """The cameras ``sensorkit intrinsics`` prints: all, or those ``name`` picks (a
+    sensor name, or ``<sensor>/<camera>`` for one camera of a multicamera).
+
+    Raises:
+        UsageError: unknown format, no camera, an unknown name, or several cameras for
+            a format that holds one.
+    """
+    if fmt not in FORMATS:
+        msg = f"--format {fmt!r}: use " + ", ".join(FORMATS)
+        raise UsageError(msg)
+    cameras = info.cameras
+    ids = ", ".join(c.id for c in cameras)
+    if not cameras:
+        msg = f"{info.robot.document.display}: the robot has no camera"
+        if info.robot.sensors:
+            msg += " (sensors: " + ", ".join(s.name for s in info.robot.sensors) + ")"
+        raise UsageError(msg)
+    if name is not None:
+        picked = [c for c in cameras if name in (c.id, c.sensor.name)]
+        if not picked:
+            msg = f"--sensor {name}: no camera called {name!r} (cameras: {ids})"
+            raise UsageError(msg)
+        cameras = picked
+    if fmt in SINGLE_DOCUMENT_FORMATS and len(cameras) > 1:
+        msg = f"--format {fmt} holds one camera: pick one with --sensor (cameras: {ids})"
+        if name is not None:
+            listing = ", ".join(c.id for c in cameras)
+            msg = (
+                f"--format {fmt} holds one camera and {name!r} has {len(cameras)}: "
+                f"pick one with --sensor (cameras: {listing})"
+            )
+        raise UsageError(msg)
+    for cam in cameras:
+        if cam.intrinsics is None:
+            msg = f"camera {cam.id}: {cam.error}"
+            raise InputError(msg)
+    return cameras
+
+
+def _camera_record(view: CameraView, target: str) -> dict[str, object]:
+    from sensorkit.exporters import camera_dict
+
+    assert view.intrinsics is not None
+    return camera_dict(
+        view.intrinsics,
+        camera=view.id,
+        sensor=view.sensor.name,
+        sensor_type=view.sensor.type,
+        target=target,
+        frame_id=view.frame,
+        image_topic=view.image_topic,
+        camera_info_topic=view.camera_info_topic,
+        update_rate=view.sensor.update_rate,
+        notes=list(view.notes),
+    )
+
+
+def _fps(view: CameraView, notes: list[str]) -> int:
+    rate = view.fps
+    if rate is None:
+        notes.append(f"no positive <update_rate>: Camera.fps {DEFAULT_FPS}")
+        return DEFAULT_FPS
+    whole = max(1, round(rate))
+    if whole != rate:
+        notes.append(
+            f"<update_rate> {rate:g} rounded to Camera.fps {whole} (ORB-SLAM3 wants an int)"
+        )
+    return whole
+
+
+def _rgb(view: CameraView, notes: list[str]) -> bool:
+    fmt = (view.spec.format or "R8G8B8").strip()
+    if fmt not in _COLOUR_FORMATS:
+        notes.append(f"image format {fmt}: Camera.RGB only matters for colour images")
+    return fmt not in _BGR_FORMATS
+
+
+def _T_cam_imu(view: CameraView, info: RobotInfo, notes: list[str]) -> Mat | None:
+    """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
+    import numpy as np
+
+    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms import R_BODY_OPTICAL, invert
+
+    imus = info.imus
+    if not imus:
+        return None
+    T_world_render = render_pose(info.robot, view.sensor)
+    T_world_imu = imus[0].T_world_render
+    if T_world_render is None or T_world_imu is None:
+        return None
+    if view.spec.pose is not None and view.spec.pose.xyz is not None:
+        T_world_render = T_world_render @ view.spec.pose.matrix()
+    if len(imus) > 1:
+        notes.append(f"T_cam_imu uses the first IMU, {imus[0].name!r}")
+    T_render_optical = np.eye(4)
+    T_render_optical[:3, :3] = R_BODY_OPTICAL
+    T_world_optical = T_world_render @ T_render_optical
+    out: Mat = invert(T_world_optical) @ T_world_imu
+    out[3] = (0.0, 0.0, 0.0, 1.0)
+    return out
+
+
+def camera_document(
+    view: CameraView, fmt: str, info: RobotInfo, notes: list[str], *, mode: str = "monocular"
+) -> str:
+    """One camera in one single-document format.
+
+    Raises:
+        InvalidValue: the format cannot hold this camera (Kalibr: k3 or skew; a missing
+            image topic for Kalibr's ``rostopic``).
+    """
+    from sensorkit.exporters import (
+        camera_info_yaml,
+        kalibr_camchain_yaml,
+        opencv_yaml,
+        orbslam3_yaml,
+    )
+
+    intr = view.intrinsics
+    assert intr is not None
+    if fmt == "camera-info":
+        return camera_info_yaml(intr, camera_name=view.name)
+    if fmt == "opencv":
+        return opencv_yaml(intr)
+    if fmt in ("orbslam3", "orbslam3-v1"):
+        return orbslam3_yaml(
+            intr,
+            mode=mode,  # type: ignore[arg-type]
+            fps=_fps(view, notes),
+            version="1.0" if fmt == "orbslam3-v1" else "old",
+            rgb=_rgb(view, notes),
+        )
+    if fmt == "kalibr":
+        if view.image_topic is None:
+            msg = "no image topic for Kalibr's rostopic (the camera publishes nothing to ROS)"
+            raise InvalidValue(msg)
+        return kalibr_camchain_yaml(
+            intr, rostopic=view.image_topic, T_cam_imu=_T_cam_imu(view, info, notes)
+        )
+    msg = f"format {fmt!r} is not a single-document format"
+    raise UsageError(msg)
+
+
+def intrinsics_document(
+    info: RobotInfo, cameras: Sequence[CameraView], fmt: str
+) -> tuple[str, list[str]]:
+    """``sensorkit intrinsics`` output for ``cameras`` in ``fmt``, and notes for stderr.
+
+    ``json``: ``{"robot", "file", "target", "target_reason", "convention", "cameras":
+    [...]}``, each camera the exporter's ``camera_dict`` plus its sensor, topics and
+    frame. Every other format holds exactly one camera (see :func:`select_cameras`);
+    ORB-SLAM3 files are monocular.
+
+    Raises:
+        InvalidValue: the format cannot hold the camera.
+    """
+    from sensorkit.exporters import to_json
+
+    notes = [f"{c.id}: {n}" for c in cameras for n in c.notes]
+    if fmt == "json":
+        data: dict[str, object] = {
+            "robot": info.robot.name,
+            "file": info.robot.document.display,
+            "target": info.target,
+            "target_reason": info.target_reason,
+            "convention": info.convention,
+            "cameras": [_camera_record(c, info.target) for c in cameras],
+        }
+        return to_json(data), []
+    (view,) = cameras
+    extra: list[str] = []
+    text = camera_document(view, fmt, info, extra)
+    return text, notes + [f"{view.id}: {n}" for n in extra]
+
+
+# --------------------------------------------------------------------------- export
+
+
+@dataclass
+class ExportFiles:
+    """The export as text, before anything is written.
+
+    ``files`` maps a POSIX path relative to the output folder to its text; ``notes``
+    are for information; ``skipped`` names files a sensor should have had and why
+    they could not be produced (the robot needs a fix).
+    """
+
+    info: RobotInfo
+    files: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
+    folders: dict[str, str] = field(default_factory=dict)  # sensor name -> folder
+
+
+def _folder(name: str, taken: set[str]) -> str:
+    base = re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "sensor"
+    out, k = base, 2
+    while out.lower() in taken or out.lower() in _TOP_LEVEL_NAMES:
+        out, k = f"{base}_{k}", k + 1
+    taken.add(out.lower())
+    return out
+
+
+def _attempt(plan: ExportFiles, path: str, what: str, make: Callable[[], str]) -> None:
+    """Add ``path`` from ``make()``; an impossible value skips it with the reason."""
+    try:
+        plan.files[path] = make()
+    except InvalidValue as exc:
+        plan.skipped.append(f"{path}: {what}: {exc}")
+
+
+def _sensor_record(s: SensorInfo, target: str) -> dict[str, object]:
+    from sensorkit.exporters import laser_scan_dict
+
+    record: dict[str, object] = {
+        "name": s.name,
+        "type": s.sensor.type,
+        "kind": s.sensor.kind,
+        "target": target,
+        "link": s.link,
+        "frame_id": s.frame,
+        "frame_from": s.frame_how,
+        "body_frame": s.body_frame,
+        "update_rate": s.sensor.update_rate,
+        "topics": dict(s.topics),
+        "cameras": [c.id for c in s.cameras],
+        "notes": list(s.notes),
+    }
+    if s.T_world_render is not None:
+        record["T_root_sensor"] = [[float(v) for v in row] for row in s.T_world_render]
+    if s.scan is not None:
+        record["scan"] = laser_scan_dict(s.scan)
+    if s.vertical is not None:
+        record["vertical"] = laser_scan_dict(s.vertical)
+    return record
+
+
+def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: str) -> None:
+    from sensorkit.exporters import depthimage_to_laserscan_yaml, to_json
+
+    info = plan.info
+    plan.notes.extend(f"{view.id}: {n}" for n in view.notes)
+    if view.intrinsics is None:
+        plan.skipped.append(f"{folder}/: camera files: {view.error}")
+        return
+    intr = view.intrinsics
+    notes: list[str] = []
+    _attempt(
+        plan,
+        f"{folder}/camera_info.yaml",
+        "camera_info",
+        lambda: camera_document(view, "camera-info", info, notes),
+    )
+    _attempt(
+        plan,
+        f"{folder}/opencv.yaml",
+        "OpenCV",
+        lambda: camera_document(view, "opencv", info, notes),
+    )
+    _attempt(
+        plan,
+        f"{folder}/intrinsics.json",
+        "JSON",
+        lambda: to_json(_camera_record(view, info.target)),
+    )
+    if s.has_colour:
+        _attempt(
+            plan,
+            f"{folder}/orbslam3.yaml",
+            "ORB-SLAM3",
+            lambda: camera_document(view, "orbslam3", info, notes),
+        )
+        _attempt(
+            plan,
+            f"{folder}/orbslam3_v1.yaml",
+            "ORB-SLAM3 v1.0",
+            lambda: camera_document(view, "orbslam3-v1", info, notes),
+        )
+        _attempt(
+            plan,
+            f"{folder}/kalibr.yaml",
+            "Kalibr",
+            lambda: camera_document(view, "kalibr", info, notes),
+        )
+    else:
+        plan.notes.append(
+            f"{view.id}: publishes a depth image only, so no ORB-SLAM3 or Kalibr files "
+            "(an rgbd_camera publishes colour and depth)"
+        )
+    if s.sensor.is_depth:
+        if s.has_colour:
+            # Gazebo's depth images are 32FC1 metres: DepthMapFactor 1.0
+            _attempt(
+                plan,
+                f"{folder}/orbslam3_rgbd.yaml",
+                "ORB-SLAM3 RGB-D",
+                lambda: camera_document(view, "orbslam3", info, [], mode="rgbd"),
+            )
+            _attempt(
+                plan,
+                f"{folder}/orbslam3_rgbd_v1.yaml",
+                "ORB-SLAM3 v1.0 RGB-D",
+                lambda: camera_document(view, "orbslam3-v1", info, [], mode="rgbd"),
+            )
+        lo, hi, range_notes = depth_range(s.sensor, view.spec, info.target)
+        notes.extend(range_notes)
+        depth_topic = s.topics.get("depth_image")
+        depth_info = s.topics.get("depth_camera_info")
+        path = f"{folder}/depthimage_to_laserscan.yaml"
+        if s.body_frame is None:
+            plan.skipped.append(
+                f"{path}: no link sits at the camera's pose with x forward to stamp the scan with; "
+                "add a fixed link there (the camera's body frame)"
+            )
+        elif depth_topic is None or depth_info is None:
+            plan.skipped.append(f"{path}: the camera publishes no depth image topic to ROS")
+        else:
+            body = s.body_frame
+            _attempt(
+                plan,
+                path,
+                "depthimage_to_laserscan",
+                lambda: depthimage_to_laserscan_yaml(
+                    intr,
+                    depth_topic=depth_topic,
+                    depth_camera_info_topic=depth_info,
+                    output_frame=body,
+                    range_min=lo,
+                    range_max=hi,
+                    fps=view.fps,
+                ),
+            )
+    plan.notes.extend(f"{view.id}: {n}" for n in dict.fromkeys(notes))
+
+
+def _export_lidar(plan: ExportFiles, s: SensorInfo, folder: str) -> None:
+    from sensorkit.exporters import (
+        amcl_yaml,
+        nav2_obstacle_layer_yaml,
+        scan_yaml,
+        slam_toolbox_yaml,
+    )
+
+    if s.scan is None:
+        plan.skipped.append(f"{folder}/: lidar files: {s.scan_error}")
+        return
+    scan = s.scan
+    plan.files[f"{folder}/scan.yaml"] = scan_yaml(scan, frame_id=s.frame)
+    consumers = ("slam_toolbox.yaml", "nav2_obstacle_layer.yaml", "amcl.yaml")
+    if s.vertical is not None:
+        plan.notes.append(
+            f"{s.name}: a 3D lidar ({s.vertical.samples} layers): no LaserScan consumer files "
+            f"({', '.join(consumers)}); feed its points to a 3D pipeline or pointcloud_to_laserscan"
+        )
+        return
+    topic = s.topics.get("scan")
+    if topic is None:
+        if s.topics:
+            published = ", ".join(f"{k} {v}" for k, v in s.topics.items())
+            why = f"it publishes no sensor_msgs/LaserScan ({published}); set <output_type>sensor_msgs/LaserScan</output_type>"
+        else:
+            why = "it publishes no LaserScan topic to ROS"
+        plan.skipped.extend(f"{folder}/{name}: {why}" for name in consumers)
+        return
+    _attempt(
+        plan,
+        f"{folder}/slam_toolbox.yaml",
+        "slam_toolbox",
+        lambda: slam_toolbox_yaml(scan, scan_topic=topic),
+    )
+    _attempt(
+        plan,
+        f"{folder}/nav2_obstacle_layer.yaml",
+        "Nav2",
+        lambda: nav2_obstacle_layer_yaml(scan, topic=topic),
+    )
+    _attempt(plan, f"{folder}/amcl.yaml", "AMCL", lambda: amcl_yaml(scan, scan_topic=topic))
+
+
+def _bridge(plan: ExportFiles) -> None:
+    from sensorkit.exporters import bridge_yaml
+    from sensorkit.generate.bridge import bridge_entries
+
+    info = plan.info
+    for s in info.sensors:
+        if not s.topics and s.sensor.kind in ("camera", "depth", "rgbd", "lidar", "imu"):
+            why = "; ".join(s.topic_notes) or "no topic"
+            plan.skipped.append(f"bridge.yaml: sensor {s.name!r} is not bridged: {why}")
+    try:
+        entries = bridge_entries(info.robot.document.root, info.target)
+        header = (
+            f"# ros_gz_bridge configuration for {info.robot.name} on Gazebo Sim ({info.target}),\n"
+            "# written by sensorkit export.\n"
+            "#   ros2 run ros_gz_bridge parameter_bridge --ros-args -p config_file:=bridge.yaml\n"
+        )
+        plan.files["bridge.yaml"] = header + bridge_yaml(entries)
+    except InvalidValue as exc:
+        plan.skipped.append(f"bridge.yaml: {exc}")
+
+
+def export_files(info: RobotInfo) -> ExportFiles:
+    """Every file ``sensorkit export`` writes, as text (nothing touches the disk).
+
+    Per sensor, in a folder named after it: ``sensor.json`` (frames, topics); cameras
+    ``camera_info.yaml``, ``opencv.yaml``, ``intrinsics.json`` and, with a colour image,
+    ``orbslam3.yaml`` (old format), ``orbslam3_v1.yaml``, ``kalibr.yaml``; depth and
+    RGB-D cameras ``depthimage_to_laserscan.yaml`` and, with colour,
+    ``orbslam3_rgbd.yaml``/``orbslam3_rgbd_v1.yaml``; each camera of a multicamera in a
+    subfolder; 2D lidars ``scan.yaml``, ``slam_toolbox.yaml``, ``nav2_obstacle_layer.yaml``,
+    ``amcl.yaml`` (3D lidars ``scan.yaml``). Gazebo Sim targets add ``bridge.yaml``.
+    """
+    from sensorkit.exporters import to_json
+    from sensorkit.model.targets import is_gz
+
+    plan = ExportFiles(info)
+    taken: set[str] = set()
+    for s in info.sensors:
+        folder = _folder(s.name, taken)
+        plan.folders[s.name] = folder
+        plan.files[f"{folder}/sensor.json"] = to_json(_sensor_record(s, info.target))
+        plan.notes.extend(f"{s.name}: {n}" for n in s.notes)
+        if s.frame_is_default and s.frame is not None and is_gz(info.target):
+            plan.notes.append(
+                f"{s.name}: its data is stamped {s.frame!r} (gz's scoped default), which is no TF frame"
+            )
+        if s.sensor.is_camera:
+            inner: set[str] = set()
+            multi = len(s.cameras) > 1
+            for view in s.cameras:
+                sub = f"{folder}/{_folder(view.spec.name or view.id, inner)}" if multi else folder
+                _export_camera(plan, s, view, sub)
+        elif s.sensor.kind == "lidar":
+            _export_lidar(plan, s, folder)
+    if is_gz(info.target):
+        _bridge(plan)
+    return plan
+
+
+def _protect(out: Path, inputs: Iterable[Path]) -> None:
+    resolved = out.resolve()
+    cwd = Path.cwd().resolve()
+    protected = {Path.home().resolve(), cwd, Path(resolved.anchor)}
+    if resolved in protected or resolved in cwd.parents:
+        msg = f"{out}: refusing to replace this folder even with --force; choose a subfolder"
+        raise UsageError(msg)
+    for path in inputs:
+        if resolved in path.resolve().parents:
+            msg = f"{out}: holds {path.name}; --force would delete it, choose another --out"
+            raise UsageError(msg)
+
+
+def _publish(temp: Path, out: Path) -> None:
+    """Rename the finished ``temp`` folder to ``out``, replacing what is there."""
+    if not out.exists():
+        os.replace(temp, out)
+        return
+    if not any(out.iterdir()):
+        out.rmdir()  # POSIX would replace an empty folder, Windows would not
+        os.replace(temp, out)
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
+    old.rmdir()
+    os.replace(out, old)
+    try:
+        os.replace(temp, out)
+    except BaseException:
+        os.replace(old, out)
+        raise
+    shutil.rmtree(old, ignore_errors=True)
+
+
+def publish_export(
+    files: Mapping[str, str], out: Path, *, force: bool = False, inputs: Iterable[Path] = ()
+) -> list[Path]:
+    """Write ``files`` (relative POSIX path -> text) into the folder ``out``, atomically.
+
+    Everything is written into a temporary folder beside ``out`` and renamed into place
+    in one step, so ``out`` holds the old export or the new one, never a mix. ``out``
+    must be missing or empty unless ``force`` (then it is replaced whole; the current
+    folder, its parents, the home folder and any folder holding one of ``inputs`` are
+    never replaced).
+
+    Returns:
+        The paths written, under ``out``, in ``files`` order.
+
+    Raises:
+        UsageError: ``out`` is a file, or a non-empty folder without ``force``, or
+            protected; a path in ``files`` is absolute or climbs out.
+        OSError: the file system refused (nothing is left behind).
+    """
+    from sensorkit.exporters import write_text_atomic
+
+    if out.exists() and not out.is_dir():
+        msg = f"{out}: exists and is not a folder"
+        raise UsageError(msg)
+    if out.is_dir() and any(out.iterdir()):
+        if not force:
+            msg = f"{out}: folder is not empty; choose another --out or pass --force to replace it"
+            raise UsageError(msg)
+        _protect(out, inputs)
+    for rel in files:
+        parts = Path(rel).parts
+        if Path(rel).is_absolute() or ".." in parts or not parts:
+            msg = f"export path {rel!r} must stay inside the output folder"
+            raise UsageError(msg)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
+    try:
+        for rel, text in files.items():
+            target = temp / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            write_text_atomic(target, text)
+        umask = os.umask(0)
+        os.umask(umask)
+        for folder in [temp, *(p for p in temp.rglob("*") if p.is_dir())]:
+            folder.chmod(0o777 & ~umask)
+        _publish(temp, out)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            shutil.rmtree(temp)
+    return [out / rel for rel in files]
