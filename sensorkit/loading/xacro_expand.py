@@ -76,15 +76,16 @@ def _loc_parser(files: list[str], orig_parse: Any) -> Any:
 
     import xacro
 
-    class _LineBuilder(expatbuilder.ExpatBuilderNS):  # type: ignore[misc]
+    class _LineBuilder(expatbuilder.ExpatBuilderNS):
         file_index = 0
 
         def start_element_handler(self, name: str, attributes: Any) -> None:
             super().start_element_handler(name, attributes)
-            node = self.curNode
+            node: Any = self.curNode
             tag = node.tagName
             if not tag.startswith("xacro:") or tag in ("xacro:macro", "xacro:include"):
-                node.setAttribute(LOC_ATTR, f"{self.file_index}:{self._parser.CurrentLineNumber}")
+                line = getattr(self, "_parser").CurrentLineNumber  # noqa: B009 (private in typeshed)
+                node.setAttribute(LOC_ATTR, f"{self.file_index}:{line}")
 
     def parse(inp: Any, filename: str | None = None) -> Any:
         if inp is not None or filename is None:

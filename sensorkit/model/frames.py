@@ -143,7 +143,7 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
     plugin = ros_plugin(sensor)
     if plugin is None:
         return SensorFrames(sensor, link, T, None, "no plugin", True, None)
-    names = ("frameName",) if target == "ros1" else ("frame_name",)
+    names: tuple[str, ...] = ("frameName",) if target == "ros1" else ("frame_name",)
     if target == "ros1":
         names = ("frameName", "frame_name") if plugin.library == "gazebo_ros_imu_sensor" else names
         if plugin.library in ("gazebo_ros_imu",):

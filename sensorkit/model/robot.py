@@ -102,7 +102,7 @@ def local(el: etree._Element) -> str:
 
 def children(el: etree._Element, name: str) -> list[etree._Element]:
     """Child elements called ``name`` (documents are namespace-free after loading)."""
-    return el.findall(name)
+    return list(el.findall(name))
 
 
 def child(el: etree._Element | None, name: str) -> etree._Element | None:
@@ -120,7 +120,7 @@ def text_of(el: etree._Element | None, *path: str) -> str | None:
             return None
     if cur is None or cur.text is None:
         return None
-    return cur.text.strip()
+    return str(cur.text).strip()
 
 
 @dataclass(slots=True)
@@ -467,8 +467,8 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
         if tag not in allowed:
             _stray_child(c, "joint", None, strays)
             continue
-        if not URDF_ATTRS[tag].issuperset(c.keys()):  # type: ignore[index]
-            _check_attrs(c, tag, None, strays)  # type: ignore[arg-type]
+        if not URDF_ATTRS[tag].issuperset(c.keys()):
+            _check_attrs(c, tag, None, strays)
         if tag == "parent":
             parent_el = parent_el if parent_el is not None else c
         elif tag == "child":

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from types import ModuleType
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity
@@ -20,13 +21,13 @@ POSITION_TOL = 1e-3
 OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
 
 
-def _np():  # type: ignore[no-untyped-def]
+def _np() -> ModuleType:
     import numpy as np
 
     return np
 
 
-def _tf():  # type: ignore[no-untyped-def]
+def _tf() -> ModuleType:
     from sensorkit.model import transforms
 
     return transforms
@@ -236,8 +237,9 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
     for s in robot.sensors:
         if s.is_camera:
             fr = ctx.frames_of(s)
-            if fr.camera_frame in robot.link_map and fr.link is not None:
-                candidates.append((fr.camera_frame, fr.link))  # type: ignore[arg-type]
+            frame = fr.camera_frame
+            if frame is not None and frame in robot.link_map and fr.link is not None:
+                candidates.append((frame, fr.link))
     for lk in robot.links:
         if "optical" in lk.name and lk.name in robot.parent_joint:
             candidates.append((lk.name, None))

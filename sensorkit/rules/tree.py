@@ -188,7 +188,7 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 if key in reported:
                     continue
                 reported.add(key)
-                joints = [jn for _, jn in loop[1:]] + [jname]
+                joints = [jn or "" for _, jn in loop[1:]] + [jname]
                 first = robot.joint_map.get(jname)
                 yield ctx.finding(
                     "SK204",
