@@ -116,7 +116,9 @@ def _magenta_centroids(rgb: np.ndarray, predicted: np.ndarray, window: float = 8
     return out
 
 
-def _optical(points: np.ndarray, position: tuple[float, float, float], pitch: float = 0.0) -> np.ndarray:
+def _optical(
+    points: np.ndarray, position: tuple[float, float, float], pitch: float = 0.0
+) -> np.ndarray:
     """World points in the optical frame of a camera at ``position`` looking along +x,
     pitched down by ``pitch`` (no yaw, no roll)."""
     d = points - np.array(position)
@@ -135,7 +137,12 @@ def _optical(points: np.ndarray, position: tuple[float, float, float], pitch: fl
     ],
 )
 def test_markers_land_within_half_a_pixel_of_camera_info(
-    request: pytest.FixtureRequest, folder: str, sensor_name: str, position: tuple[float, float, float], pitch: float, origin: float
+    request: pytest.FixtureRequest,
+    folder: str,
+    sensor_name: str,
+    position: tuple[float, float, float],
+    pitch: float,
+    origin: float,
 ) -> None:
     """Project the scene's markers through the K written to camera_info.yaml and find them
     in rgb.png by colour. pybullet's image, as the preview renders it, has Gazebo's
@@ -159,7 +166,9 @@ def test_markers_land_within_half_a_pixel_of_camera_info(
     assert abs(bias[0] - origin) < 0.3 and abs(bias[1] - origin) < 0.3
 
 
-def test_reprojection_check_catches_a_principal_point_gazebo_does_not_render(occluded: Path) -> None:
+def test_reprojection_check_catches_a_principal_point_gazebo_does_not_render(
+    occluded: Path,
+) -> None:
     """bad_cx_cam's plugin says <cx>60</cx>; Gazebo still renders a centred image."""
     c = check(summary(occluded), "bad_cx_cam", "reprojection")
     assert c["status"] == "fail"
@@ -180,7 +189,9 @@ def test_pitched_mount_sees_the_floor_where_trigonometry_says(mounts: Path) -> N
         assert check(data, name, "depth")["status"] == "ok"
         assert check(data, name, "render_pose")["status"] == "ok"
         assert check(data, name, "published_frame")["status"] == "ok"
-    assert sensor(data, "pitch_cam")["frames"]["render_pose"]["rpy"] == pytest.approx([0.0, 0.4, 0.0], abs=1e-9)
+    assert sensor(data, "pitch_cam")["frames"]["render_pose"]["rpy"] == pytest.approx(
+        [0.0, 0.4, 0.0], abs=1e-9
+    )
 
 
 def test_yawed_mount_on_a_pan_joint(mounts: Path, tmp_path: Path) -> None:
@@ -228,7 +239,11 @@ def test_3d_lidar_ranges_to_floor_and_wall(gz_wall: Path) -> None:
         z = h + t_wall * np.sin(e)
         on_wall = (np.abs(y) < 3.0) & (z > 0) & (z < 3.0)
         # leave out beams within 5 cm of the wall's edges
-        near_edge = (np.abs(np.abs(y) - 3.0) < 0.05) | (np.abs(z - 3.0) < 0.05) | (np.abs(t_floor - t_wall) < 0.05)
+        near_edge = (
+            (np.abs(np.abs(y) - 3.0) < 0.05)
+            | (np.abs(z - 3.0) < 0.05)
+            | (np.abs(t_floor - t_wall) < 0.05)
+        )
     t_wall = np.where(on_wall, t_wall, np.inf)
     expected = np.minimum(t_floor, t_wall)
     expected[expected > 30] = np.inf
@@ -247,12 +262,16 @@ def test_3d_lidar_ranges_to_floor_and_wall(gz_wall: Path) -> None:
 
 
 # ---- self-occlusion ------------------------------------------------------------------------
-def test_self_occlusion_when_looking_through_the_robots_own_mast(occluded: Path, mounts: Path) -> None:
+def test_self_occlusion_when_looking_through_the_robots_own_mast(
+    occluded: Path, mounts: Path
+) -> None:
     data = summary(occluded)
     cam = check(data, "mast_cam", "self_occlusion")
     assert cam["status"] == "warn" and cam["value"] > 1.0 and "mast" in cam["details"]["links"]
     laser = check(data, "mast_laser", "self_occlusion")
-    assert laser["status"] == "warn" and laser["value"] > 1.0 and "mast" in laser["details"]["links"]
+    assert (
+        laser["status"] == "warn" and laser["value"] > 1.0 and "mast" in laser["details"]["links"]
+    )
     assert check(summary(mounts), "pitch_cam", "self_occlusion")["status"] == "ok"
 
 
@@ -266,6 +285,7 @@ def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
         text=True,
         timeout=120,
         env=env,
+        check=False,
     )
 
 
@@ -315,7 +335,9 @@ def test_command_writes_every_file_and_keeps_pybullet_quiet(tmp_path: Path) -> N
 
 
 def test_sensor_filter(tmp_path: Path) -> None:
-    result = CliRunner().invoke(app, ["render", "preview", str(WALL_BOT), "--out", str(tmp_path), "--sensor", "laser"])
+    result = CliRunner().invoke(
+        app, ["render", "preview", str(WALL_BOT), "--out", str(tmp_path), "--sensor", "laser"]
+    )
     assert result.exit_code == 0, result.output
     assert (tmp_path / "laser" / "ranges.npy").is_file()
     assert not (tmp_path / "depth_cam").exists()
@@ -323,7 +345,10 @@ def test_sensor_filter(tmp_path: Path) -> None:
 
 
 def test_failed_check_exits_1(tmp_path: Path) -> None:
-    result = CliRunner().invoke(app, ["render", "preview", str(OCCLUDED_BOT), "--out", str(tmp_path), "--sensor", "bad_cx_cam"])
+    result = CliRunner().invoke(
+        app,
+        ["render", "preview", str(OCCLUDED_BOT), "--out", str(tmp_path), "--sensor", "bad_cx_cam"],
+    )
     assert result.exit_code == 1
     assert "fail: reprojection" in result.output
 
@@ -344,8 +369,13 @@ def test_failed_check_exits_1(tmp_path: Path) -> None:
 def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, extra: list[str], message: str) -> None:
     garbage = tmp_path / "garbage.urdf"
     garbage.write_text("<robot name='x'><link name='a'></robot>")
-    extra = [str(tmp_path / "missing.urdf") if e == "MISSING" else str(garbage) if e == "GARBAGE" else e for e in extra]
-    result = CliRunner().invoke(app, ["render", "preview", str(MOUNTS_BOT), "--out", str(tmp_path / "o"), *extra])
+    extra = [
+        str(tmp_path / "missing.urdf") if e == "MISSING" else str(garbage) if e == "GARBAGE" else e
+        for e in extra
+    ]
+    result = CliRunner().invoke(
+        app, ["render", "preview", str(MOUNTS_BOT), "--out", str(tmp_path / "o"), *extra]
+    )
     assert result.exit_code == 2
     lines = [line for line in result.output.splitlines() if line.startswith("sensorkit:")]
     assert len(lines) == 1 and message in lines[0], result.output
@@ -353,7 +383,9 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, extra: list[str], mess
 
 
 def test_unreadable_robot_exits_2(tmp_path: Path) -> None:
-    proc = run_cli("render", "preview", str(tmp_path / "nothing.urdf"), "--out", str(tmp_path / "o"))
+    proc = run_cli(
+        "render", "preview", str(tmp_path / "nothing.urdf"), "--out", str(tmp_path / "o")
+    )
     assert proc.returncode == 2
     assert proc.stderr.strip().splitlines()[-1].startswith("sensorkit:")
     assert "Traceback" not in proc.stderr
@@ -365,17 +397,29 @@ def test_importing_the_cli_does_not_import_pybullet() -> None:
         "bad = [m for m in ('pybullet', 'sensorkit.render.sim') if m in sys.modules];"
         "assert not bad, bad"
     )
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    proc = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
+    )
     assert proc.returncode == 0, proc.stderr
 
 
 def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
-        pytest.skip("Chromium is not installed: the headless screenshot of index.html cannot be taken")
+        pytest.skip(
+            "Chromium is not installed: the headless screenshot of index.html cannot be taken"
+        )
     shot = tmp_path / "shot.png"
     subprocess.run(
-        [browser, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={shot}", "--window-size=1280,2000", (wall / "index.html").as_uri()],
+        [
+            browser,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            f"--screenshot={shot}",
+            "--window-size=1280,2000",
+            (wall / "index.html").as_uri(),
+        ],
         capture_output=True,
         timeout=120,
         check=False,
@@ -384,3 +428,23 @@ def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
     assert data.startswith(b"\x89PNG")
     # a blank page compresses to a few kilobytes; the preview's pictures do not
     assert len(data) > 50_000
+
+
+def test_forked_cameras_give_the_same_files(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """workers > 1 renders cameras in forked processes (Linux); nothing may change."""
+    one = render_preview(MOUNTS_BOT, tmp_path / "one")
+    two = render_preview(MOUNTS_BOT, tmp_path / "two", workers=3)
+    assert [s.name for s in one.sensors] == [s.name for s in two.sensors]
+    for a, b in zip(one.sensors, two.sensors, strict=True):
+        assert [c.to_dict() for c in a.checks] == [c.to_dict() for c in b.checks]
+        for key, path in a.files.items():
+            assert path.read_bytes() == b.files[key].read_bytes(), (a.name, key)
+
+    def no_fork() -> int:
+        raise OSError("fork refused")
+
+    monkeypatch.setattr(os, "fork", no_fork)
+    three = render_preview(MOUNTS_BOT, tmp_path / "three", workers=3)
+    assert [s.status for s in three.sensors] == [s.status for s in one.sensors]

@@ -63,13 +63,25 @@ def test_png_refuses_what_it_cannot_write() -> None:
 
 # ---- projection --------------------------------------------------------------------------
 def _camera(**kw: float) -> RenderCamera:
-    base = {"width": 160, "height": 120, "fx": 100.0, "fy": 90.0, "cx": 79.5, "cy": 59.5, "skew": 0.0, "near": 0.1, "far": 50.0}
+    base = {
+        "width": 160,
+        "height": 120,
+        "fx": 100.0,
+        "fy": 90.0,
+        "cx": 79.5,
+        "cy": 59.5,
+        "skew": 0.0,
+        "near": 0.1,
+        "far": 50.0,
+    }
     base.update(kw)
     return RenderCamera(T_world_render=np.eye(4), **base)  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("kw", [{}, {"cx": 70.0, "cy": 52.0}, {"skew": 3.0}])
-def test_projection_sends_each_pixel_ray_to_the_point_tinyrenderer_samples(kw: dict[str, float]) -> None:
+def test_projection_sends_each_pixel_ray_to_the_point_tinyrenderer_samples(
+    kw: dict[str, float],
+) -> None:
     """TinyRenderer fills pixel (i, r) from NDC (2i/W - 1, 1 - 2(r+1)/H)."""
     cam = _camera(**kw)
     P = np.array(cam.projection_matrix()).reshape(4, 4).T  # column-major
@@ -108,7 +120,9 @@ def test_depth_buffer_to_metres() -> None:
     assert np.isposinf(out[4])
 
 
-def _plate_centroid(projection: list[float], width: int = 160, height: int = 120) -> tuple[float, float]:
+def _plate_centroid(
+    projection: list[float], width: int = 160, height: int = 120
+) -> tuple[float, float]:
     """Centroid of a square plate centred on the optical axis, 5 m ahead."""
     from sensorkit.render.sim import World
 
@@ -122,7 +136,9 @@ def _plate_centroid(projection: list[float], width: int = 160, height: int = 120
     return float(xs.mean()), float(ys.mean())
 
 
-def test_tinyrenderer_puts_its_own_axis_half_a_pixel_off_and_ours_on_the_pixel_grid_centre() -> None:
+def test_tinyrenderer_puts_its_own_axis_half_a_pixel_off_and_ours_on_the_pixel_grid_centre() -> (
+    None
+):
     """pybullet's own symmetric projection lands the axis on (W/2, H/2 - 1); the preview's
     lands it on ((W-1)/2, (H-1)/2), where Gazebo's rasteriser puts it."""
     from sensorkit.render.sim import _pybullet
@@ -131,7 +147,9 @@ def test_tinyrenderer_puts_its_own_axis_half_a_pixel_off_and_ours_on_the_pixel_g
     vfov = math.degrees(2 * math.atan(60 / 90.0))
     own = p.computeProjectionMatrixFOV(vfov, 160 / 120, 0.1, 50.0)
     assert _plate_centroid(list(own)) == pytest.approx((80.0, 59.0), abs=0.05)
-    assert _plate_centroid(_camera(fx=90.0, fy=90.0).projection_matrix()) == pytest.approx((79.5, 59.5), abs=0.05)
+    assert _plate_centroid(_camera(fx=90.0, fy=90.0).projection_matrix()) == pytest.approx(
+        (79.5, 59.5), abs=0.05
+    )
 
 
 # ---- shapes --------------------------------------------------------------------------------
@@ -141,7 +159,9 @@ def test_shape_intersections() -> None:
     box = Shape("b", "box", transform((3.0, 0.0, 1.0), (0, 0, math.pi / 4)), (0.5, 0.5, 0.5))
     t, n = box.hit(o, d)
     assert t[0] == pytest.approx(3.0 - 0.5 * math.sqrt(2)) and np.isnan(t[1:]).all()
-    assert n[0] == pytest.approx([-math.sqrt(0.5), -math.sqrt(0.5), 0.0]) or n[0] == pytest.approx([-math.sqrt(0.5), math.sqrt(0.5), 0.0])
+    assert n[0] == pytest.approx([-math.sqrt(0.5), -math.sqrt(0.5), 0.0]) or n[0] == pytest.approx(
+        [-math.sqrt(0.5), math.sqrt(0.5), 0.0]
+    )
     sphere = Shape("s", "sphere", transform((-2.0, 0.0, 1.0)), (0.5,))
     assert sphere.intersect(o, d)[1] == pytest.approx(1.5) and np.isnan(sphere.intersect(o, d)[0])
     ground = Shape("g", GROUND, np.eye(4))
@@ -177,7 +197,7 @@ def test_link_poses_follow_the_joints() -> None:
     assert T[:3, 3] == pytest.approx([0.1 * math.cos(0.5), 0.1 * math.sin(0.5), 0.5])
     zero = link_poses(robot, {})
     for name, T0 in zero.items():
-        assert T0 == pytest.approx(robot.T_world_link(name))
+        assert pytest.approx(robot.T_world_link(name)) == T0
     with pytest.raises(UsageError, match="movable joints: pan"):
         joint_positions(robot, {"tilt": 1.0})
     with pytest.raises(UsageError, match="fixed"):
@@ -238,7 +258,9 @@ def test_pybullet_failure_is_an_input_error() -> None:
     from sensorkit.render.sim import World
 
     with World() as world, pytest.raises(InputError, match="pybullet could not load"):
-        world.add_robot(b"<robot name='x'><link name='a'/><joint name='j' type='fixed'><parent link='a'/><child link='zz'/></joint></robot>")
+        world.add_robot(
+            b"<robot name='x'><link name='a'/><joint name='j' type='fixed'><parent link='a'/><child link='zz'/></joint></robot>"
+        )
 
 
 def test_captured_output_keeps_c_level_writes_off_the_terminal() -> None:
@@ -251,7 +273,14 @@ def test_captured_output_keeps_c_level_writes_off_the_terminal() -> None:
         "    ctypes.CDLL(None).printf(b'from C\\n')\n"
         "print('after', sorted(log))\n"
     )
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env=dict(os.environ))
+    proc = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=dict(os.environ),
+        check=False,
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     assert proc.stdout == "after ['fd one', 'fd two', 'from C']\n"

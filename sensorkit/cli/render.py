@@ -9,6 +9,7 @@ go to stdout. Exit status: 0, or 1 when a check failed, 2 when it could not run.
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 from typing import Annotated
 
@@ -103,23 +104,19 @@ def preview(
     from sensorkit.render import render_preview
 
     err = Console(stderr=True, highlight=False, log_path=False)
-    with err.status("starting", spinner="dots") as status:
-
-        def progress(message: str) -> None:
-            status.update(message)
-            err.log(message)
-
-        result = render_preview(
-            file,
-            out,
-            scene=scene,
-            sensors=tuple(sensor or ()),
-            joints=joints,
-            args=xacro_args,
-            package_paths=tuple(package_path or ()),
-            target=target,
-            progress=progress,
-        )
+    # No live spinner: it would run a thread, and cameras render in forked processes.
+    result = render_preview(
+        file,
+        out,
+        scene=scene,
+        sensors=tuple(sensor or ()),
+        joints=joints,
+        args=xacro_args,
+        package_paths=tuple(package_path or ()),
+        target=target,
+        progress=lambda message: err.log(message, markup=False),
+        workers=min(4, os.cpu_count() or 1),
+    )
     for s in result.sensors:
         typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))
         for c in s.checks:

@@ -81,21 +81,20 @@ def draw_overview(
             shade = (205, 205, 200) if k else (170, 170, 165)
             canvas.line(a[0], a[1], shade)
             canvas.line(b[0], b[1], shade)
+    markers = [s for s in scene_shapes if s.role == MARKER and s.kind == "sphere" and s.visual]
+    marker_ids = {id(m) for m in markers}
     for shape in scene_shapes:
-        if shape.kind == GROUND or not shape.visual:
+        if shape.kind == GROUND or not shape.visual or id(shape) in marker_ids:
             continue
         pts = shape.footprint()
         if len(pts) < 3:
             continue
         hull = view.px(convex_hull(pts))
-        fill = (
-            (240, 120, 220)
-            if shape.role == MARKER
-            else (190, 180, 165)
-            if shape.role == "wall"
-            else (215, 200, 170)
-        )
+        fill = (190, 180, 165) if shape.role == "wall" else (215, 200, 170)
         canvas.polygon(hull, fill, (120, 110, 100))
+    for radius in sorted({m.size[0] for m in markers}):
+        same = np.array([m.centre[:2] for m in markers if m.size[0] == radius])
+        canvas.points(view.px(same), (240, 120, 220), radius=max(1.0, radius * view.scale))
     for s in sensors:  # beams first, faint, so that the robot and the axes stay visible
         if s.hits is not None and len(s.hits):
             hits = s.hits[np.isfinite(s.hits).all(axis=1)]

@@ -53,9 +53,9 @@ def encode_png(image: npt.NDArray[np.uint8], *, level: int = 3) -> bytes:
     )
 
 
-def write_png(path: Path, image: npt.NDArray[np.uint8]) -> bytes:
+def write_png(path: Path, image: npt.NDArray[np.uint8], *, level: int = 3) -> bytes:
     """Encode ``image`` and publish it atomically at ``path``; returns the bytes."""
-    data = encode_png(image)
+    data = encode_png(image, level=level)
     write_bytes_atomic(path, data)
     return data
 

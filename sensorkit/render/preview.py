@@ -15,7 +15,9 @@ Output folder layout::
 from __future__ import annotations
 
 import math
+import os
 import re
+import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -139,6 +141,17 @@ def _topics(sensor: Sensor, target: str) -> list[str] | None:
     return [full for _, full in resolved_topics(plugin, sensor)] or None
 
 
+@dataclass
+class _Job:
+    """One sensor (or one camera of a multicamera) to render, planned before any runs."""
+
+    sensor: Sensor
+    name: str
+    folder: Path
+    colour: tuple[int, int, int]
+    cam: CameraSpec | None = None
+
+
 class _Run:
     """State shared by the sensors of one preview."""
 
@@ -160,19 +173,12 @@ class _Run:
         self.target = target
         self.out_dir = out_dir
         self.conv = convert(robot)
-        self.taken: set[str] = set()
-        self.drawings: list[SensorDrawing] = []
         self.link_index = {name: idx for idx, name in world.robot_links.items()}
         self.markers: list[tuple[Shape, int, int]] = []
         for (body, link), shapes in world.shape_of.items():
             visual = [s for s in shapes if s.visual]
             if len(visual) == 1 and visual[0].kind == "sphere":
                 self.markers.append((visual[0], body, link))
-
-    def colour(self) -> tuple[int, int, int]:
-        from sensorkit.render.overview import PALETTE
-
-        return PALETTE[len(self.drawings) % len(PALETTE)]
 
     def frames(self, sensor: Sensor) -> SensorFrames:
         from sensorkit.model.frames import sensor_frames
@@ -203,8 +209,8 @@ class _Run:
 
 
 def _camera(
-    run: _Run, sensor: Sensor, cam: CameraSpec, name: str, progress: Progress | None
-) -> SensorPreview:
+    run: _Run, job: _Job, progress: Progress | None
+) -> tuple[SensorPreview, SensorDrawing | None]:
     from sensorkit.exporters import camera_dict, camera_info_yaml, write_text_atomic
     from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
@@ -221,27 +227,27 @@ def _camera(
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
 
+    sensor, name, cam = job.sensor, job.name, job.cam
+    assert cam is not None
     out = SensorPreview(name, sensor.name, sensor.type, sensor.kind, sensor.reference)
     T_render = run.T_world_render(sensor)
     if T_render is None:
         out.skipped = f"its reference link {sensor.reference!r} is not a link of the robot"
-        return out
+        return out, None
     if cam.pose is not None:
         T_render = T_render @ cam.pose.matrix()
     try:
         published, notes = published_intrinsics(sensor, cam, run.target)
     except InvalidValue as exc:
         out.skipped = f"not a pinhole camera sensorkit can render: {exc}"
-        return out
+        return out, None
     out.notes += notes
     rc = render_camera(sensor, cam, run.target, T_render, published)
     _say(progress, f"rendering {name} ({rc.width}x{rc.height})")
     image = run.world.render(rc.width, rc.height, rc.view_matrix(), rc.projection_matrix())
     depth = depth_from_buffer(image.depth_buffer, rc.near, rc.far)
 
-    folder = run.out_dir / _folder_name(sensor.name, run.taken)
-    if sensor.kind == "multicamera":
-        folder = folder / _folder_name(cam.name or name, set())
+    folder = job.folder
     folder.mkdir(parents=True, exist_ok=True)
     out.directory = folder
     out.files["rgb"] = folder / "rgb.png"
@@ -303,34 +309,36 @@ def _camera(
     out.checks.append(fcheck)
 
     # overview: edge rays along the middle row, as far as they reach
-    origin, dirs, cos = rc.pixel_rays()
     mid = rc.height // 2
+    edge_cols = np.array([0.0, rc.width - 1.0])
+    origin, dirs, cos = rc.rays_at(edge_cols, np.array([float(mid), float(mid)]))
     reach = min(rc.far, run.scene.half_extent * 3)
 
-    def end(col: int) -> np.ndarray:
-        z = float(depth[mid, col])
-        dist = z / float(cos[mid, col]) if math.isfinite(z) else reach
-        out_end: np.ndarray = origin + dirs[mid, col] * dist
+    def end(k: int) -> np.ndarray:
+        z = float(depth[mid, int(edge_cols[k])])
+        dist = z / float(cos[k]) if math.isfinite(z) else reach
+        out_end: np.ndarray = origin + dirs[k] * dist
         return out_end
 
     centre_z = float(depth[mid, rc.width // 2])
     axis_len = centre_z if math.isfinite(centre_z) else reach
     drawing = SensorDrawing(
         name,
-        run.colour(),
+        job.colour,
         origin,
         origin + rc.T_world_optical[:3, 2] * axis_len,
-        [end(0), end(rc.width - 1)],
+        [end(0), end(1)],
     )
     if fcheck.status == "warn" and T_frame is not None:
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 2] * axis_len
-    run.drawings.append(drawing)
-    out.info["colour"] = "#%02x%02x%02x" % drawing.colour
-    return out
+    out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
+    return out, drawing
 
 
-def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPreview:
+def _lidar(
+    run: _Run, job: _Job, progress: Progress | None
+) -> tuple[SensorPreview, SensorDrawing | None]:
     from sensorkit.exporters import laser_scan_dict
     from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
@@ -338,19 +346,20 @@ def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPrevie
     from sensorkit.render.overview import SensorDrawing, draw_scan
     from sensorkit.render.png import write_png
 
+    sensor = job.sensor
     out = SensorPreview(sensor.name, sensor.name, sensor.type, sensor.kind, sensor.reference)
     T_render = run.T_world_render(sensor)
     if T_render is None:
         out.skipped = f"its reference link {sensor.reference!r} is not a link of the robot"
-        return out
+        return out, None
     if sensor.lidar is None:
         out.skipped = "no <lidar> or <ray> block"
-        return out
+        return out, None
     try:
         beams = lidar_beams(sensor.lidar)
     except InvalidValue as exc:
         out.skipped = f"its scan cannot be cast: {exc}"
-        return out
+        return out, None
     V, H = beams.shape
     _say(
         progress,
@@ -359,7 +368,7 @@ def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPrevie
         else f"casting {sensor.name} ({H} beams)",
     )
     scan = cast(run.world, T_render, beams)
-    folder = run.out_dir / _folder_name(sensor.name, run.taken)
+    folder = job.folder
     folder.mkdir(parents=True, exist_ok=True)
     out.directory = folder
     out.files["ranges"] = folder / "ranges.npy"
@@ -406,7 +415,7 @@ def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPrevie
     origin = T_render[:3, 3].copy()
     drawing = SensorDrawing(
         sensor.name,
-        run.colour(),
+        job.colour,
         origin,
         origin + T_render[:3, 0] * min(fwd, 1.0),
         [],
@@ -415,9 +424,139 @@ def _lidar(run: _Run, sensor: Sensor, progress: Progress | None) -> SensorPrevie
     if fcheck.status == "warn" and T_frame is not None:
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 0] * min(fwd, 1.0)
-    run.drawings.append(drawing)
-    out.info["colour"] = "#%02x%02x%02x" % drawing.colour
-    return out
+    out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
+    return out, drawing
+
+
+def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | SensorPreview]:
+    """What to render, in document order, with folders and colours fixed up front."""
+    from sensorkit.render.overview import PALETTE
+
+    plan: list[_Job | SensorPreview] = []
+    taken: set[str] = set()
+    drawn = 0
+    for sensor in robot.sensors:
+        if only and sensor.name not in only:
+            continue
+        if sensor.is_camera and sensor.cameras:
+            folder = out_dir / _folder_name(sensor.name, taken)
+            multi = sensor.kind == "multicamera"
+            cams = sensor.cameras if multi else sensor.cameras[:1]
+            inner: set[str] = set()
+            for i, cam in enumerate(cams):
+                label = f"{sensor.name}/{cam.name or i}" if multi else sensor.name
+                where = folder / _folder_name(cam.name or f"camera{i}", inner) if multi else folder
+                plan.append(_Job(sensor, label, where, PALETTE[drawn % len(PALETTE)], cam))
+                drawn += 1
+        elif sensor.kind == "lidar":
+            folder = out_dir / _folder_name(sensor.name, taken)
+            plan.append(_Job(sensor, sensor.name, folder, PALETTE[drawn % len(PALETTE)]))
+            drawn += 1
+        else:
+            what = (
+                "has no <camera> block"
+                if sensor.is_camera
+                else f"is a {sensor.type or 'untyped'} sensor"
+            )
+            plan.append(
+                SensorPreview(
+                    sensor.name,
+                    sensor.name,
+                    sensor.type,
+                    sensor.kind,
+                    sensor.reference,
+                    skipped=f"not rendered: it {what}",
+                )
+            )
+    return plan
+
+
+_Result = tuple[SensorPreview, "SensorDrawing | None"]
+
+
+def _run_job(run: _Run, job: _Job, progress: Progress | None) -> _Result:
+    return _camera(run, job, progress) if job.cam is not None else _lidar(run, job, progress)
+
+
+def _render_all(
+    run: _Run, plan: list[_Job | SensorPreview], progress: Progress | None, workers: int
+) -> list[_Result]:
+    """Render every job; with ``workers`` > 1 on Linux, split the cameras over forked
+    processes (lidars stay here: rayTestBatch starts threads, which must not exist when
+    forking). A child that fails has its cameras rendered here instead."""
+    cameras = [j for j in plan if isinstance(j, _Job) and j.cam is not None]
+    groups = min(max(1, workers), len(cameras))
+    if groups <= 1 or not sys.platform.startswith("linux") or not hasattr(os, "fork"):
+        groups = 1
+    done: dict[int, _Result] = {}
+    children: list[tuple[int, int, list[_Job]]] = []
+    for g in range(1, groups):
+        group = cameras[g::groups]
+        for job in group:
+            _say(progress, f"rendering {job.name} (in a second process)")
+        child = _fork(run, group)
+        if child is not None:
+            children.append((*child, group))
+    forked = {id(j) for _, _, group in children for j in group}
+    jobs = [j for j in plan if isinstance(j, _Job)]
+    for job in jobs:  # this process's cameras, then every lidar
+        if job.cam is not None and id(job) not in forked:
+            done[id(job)] = _run_job(run, job, progress)
+    for job in jobs:
+        if job.cam is None:
+            done[id(job)] = _run_job(run, job, progress)
+    for pid, fd, group in children:
+        results = _collect(pid, fd)
+        if results is None or len(results) != len(group):
+            results = [_run_job(run, job, progress) for job in group]
+        for job, result in zip(group, results, strict=True):
+            done[id(job)] = result
+    return [done[id(j)] if isinstance(j, _Job) else (j, None) for j in plan]
+
+
+def _fork(run: _Run, group: list[_Job]) -> tuple[int, int] | None:
+    """Render ``group`` in a forked child; (pid, read end of its pipe), or None."""
+    import pickle
+
+    for stream in (sys.stdout, sys.stderr):
+        stream.flush()
+    read, write = os.pipe()
+    try:
+        pid = os.fork()
+    except OSError:
+        os.close(read)
+        os.close(write)
+        return None
+    if pid == 0:  # the child: render, send the results, leave without cleanup
+        code = 0
+        try:
+            os.close(read)
+            run.world.quiet.forget_sink()
+            payload = pickle.dumps([_run_job(run, job, None) for job in group])
+        except BaseException:
+            payload, code = b"", 1
+        try:
+            with os.fdopen(write, "wb") as pipe:
+                pipe.write(payload)
+        finally:
+            os._exit(code)
+    os.close(write)
+    return pid, read
+
+
+def _collect(pid: int, fd: int) -> list[_Result] | None:
+    import pickle
+
+    with os.fdopen(fd, "rb") as pipe:
+        payload = pipe.read()
+    _, status = os.waitpid(pid, 0)
+    if status != 0 or not payload:
+        return None
+    try:
+        results: list[_Result] = pickle.loads(payload)
+    except Exception:
+        return None
+    return results
 
 
 def _robot_shapes(robot: Robot, poses: dict[str, Mat]) -> list[Shape]:
@@ -459,6 +598,7 @@ def render_preview(
     package_paths: Sequence[str] = (),
     target: str = "auto",
     progress: Progress | None = None,
+    workers: int = 1,
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -474,6 +614,9 @@ def render_preview(
         target: ``auto`` or a simulator target (decides camera_info's convention and the
             published frames).
         progress: called with a short message before each step.
+        workers: processes to render cameras in (Linux; the others are forked from this
+            one after the world is built, so each renders from the same state). 1 renders
+            everything here; results are the same either way.
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
@@ -557,35 +700,10 @@ def render_preview(
         world.set_joints(positions)
 
         run = _Run(robot, world, world_scene, poses, target, out_dir)
-        previews: list[SensorPreview] = []
-        for sensor in robot.sensors:
-            if sensors and sensor.name not in sensors:
-                continue
-            if sensor.is_camera and sensor.cameras:
-                cams = sensor.cameras if sensor.kind == "multicamera" else sensor.cameras[:1]
-                for cam in cams:
-                    label = (
-                        f"{sensor.name}/{cam.name}" if sensor.kind == "multicamera" else sensor.name
-                    )
-                    previews.append(_camera(run, sensor, cam, label, progress))
-            elif sensor.kind == "lidar":
-                previews.append(_lidar(run, sensor, progress))
-            else:
-                what = (
-                    "has no <camera> block"
-                    if sensor.is_camera
-                    else f"is a {sensor.type or 'untyped'} sensor"
-                )
-                previews.append(
-                    SensorPreview(
-                        sensor.name,
-                        sensor.name,
-                        sensor.type,
-                        sensor.kind,
-                        sensor.reference,
-                        skipped=f"not rendered: it {what}",
-                    )
-                )
+        plan = _plan(robot, sensors, out_dir)
+        results = _render_all(run, plan, progress, workers)
+        previews = [p for p, _ in results]
+        drawings = [d for _, d in results if d is not None]
         robot_boxes = []
         if world.robot is not None:
             for _, lo, hi in world.aabbs(world.robot):
@@ -614,7 +732,7 @@ def render_preview(
 
     _say(progress, "writing overview, summary and index")
     half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
-    overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, run.drawings, half)
+    overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
     result.files["overview"] = out_dir / "overview.png"
     write_png(result.files["overview"], overview)
     result.seconds = time.perf_counter() - started

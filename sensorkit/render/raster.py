@@ -119,8 +119,7 @@ class Canvas:
                     inside ^= crosses & (gx < xcross)
                 self.image[gy[inside], gx[inside]] = fill
         if outline is not None:
-            for a, b in zip(pts, np.roll(pts, -1, axis=0), strict=True):
-                self.line(a, b, outline)
+            self.lines(pts, np.roll(pts, -1, axis=0), outline)
 
     def circle(
         self,

@@ -74,9 +74,10 @@ def _sensor_dict(s: SensorPreview, base: Path) -> dict[str, Any]:
 
 
 def summary_dict(result: PreviewResult) -> dict[str, Any]:
+    """Everything summary.json holds (JSON-ready: no NaN or infinity)."""
     base = result.out_dir
     findings = None if result.findings is None else [f.to_dict() for f in result.findings]
-    return _clean(
+    out: dict[str, Any] = _clean(
         {
             "sensorkit": __version__,
             "robot": result.robot,
@@ -94,6 +95,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
             "notes": result.notes,
         }
     )
+    return out
 
 
 def write_summary(result: PreviewResult) -> None:

@@ -25,6 +25,8 @@ import numpy.typing as npt
 from sensorkit.model.transforms import Mat, transform
 
 if TYPE_CHECKING:
+    from lxml import etree
+
     from sensorkit.model.robot import Robot
 
 __all__ = ["Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
@@ -110,7 +112,8 @@ class Shape:
             r, h = self.size
             a = np.linspace(0, 2 * np.pi, 24, endpoint=False)
             ring = np.stack([r * np.cos(a), r * np.sin(a), np.zeros_like(a)], axis=1)
-            local = np.concatenate([ring + [0, 0, h], ring - [0, 0, h]])
+            cap = np.array([0.0, 0.0, h])
+            local = np.concatenate([ring + cap, ring - cap])
         else:
             return np.zeros((0, 2))
         world = local @ self.T_world[:3, :3].T + self.T_world[:3, 3]
@@ -274,13 +277,15 @@ def default_scene(reach: float) -> Scene:
     return Scene(shapes, "default", half + thick, None, textures)
 
 
-def _geometry_shape(el: object, T_world: Mat, name: str, link: str, visual: bool) -> Shape | None:
+def _geometry_shape(
+    el: etree._Element, T_world: Mat, name: str, link: str, visual: bool
+) -> Shape | None:
     from sensorkit.model.robot import child, parse_float, parse_vec
 
-    geometry = child(el, "geometry")  # type: ignore[arg-type]
+    geometry = child(el, "geometry")
     if geometry is None:
         return None
-    origin = child(el, "origin")  # type: ignore[arg-type]
+    origin = child(el, "origin")
     xyz, _ = parse_vec(origin.get("xyz")) if origin is not None else (None, None)
     rpy, _ = parse_vec(origin.get("rpy")) if origin is not None else (None, None)
     T = T_world @ transform(xyz or (0, 0, 0), rpy or (0, 0, 0))

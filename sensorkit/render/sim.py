@@ -3,7 +3,7 @@
 A :class:`World` is one pybullet client in DIRECT mode (no display, no GUI thread).
 pybullet and its C++ core print to the process's stdout and stderr (the build banner on
 import, warnings from the URDF importer, TinyRenderer notes); every call that can print
-runs inside :func:`captured_output`, which points file descriptors 1 and 2 at a
+runs inside an :class:`OutputCapture`, which points file descriptors 1 and 2 at a
 temporary file at the OS level and restores them afterwards, so nothing reaches the
 terminal and the text is still there to explain a failure.
 
@@ -22,7 +22,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -46,39 +46,81 @@ def _flush_c_stdio() -> None:
         ctypes.CDLL(None).fflush(None)
 
 
+class OutputCapture:
+    """Points fds 1 and 2 at one temporary file while active; re-entrant and reusable.
+
+    Nested activations cost nothing; the text written (up to 64 KiB per activation) is
+    appended to ``log``.
+    """
+
+    def __init__(self, log: list[str] | None = None) -> None:
+        self.log = log
+        self._depth = 0
+        self._sink: IO[bytes] | None = None
+        self._saved: tuple[int, int] | None = None
+
+    def __enter__(self) -> OutputCapture:
+        self._depth += 1
+        if self._depth > 1:
+            return self
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        _flush_c_stdio()
+        if self._sink is None:
+            self._sink = tempfile.TemporaryFile()
+        self._sink.seek(0)
+        self._sink.truncate()
+        self._saved = (os.dup(1), os.dup(2))
+        os.dup2(self._sink.fileno(), 1)
+        os.dup2(self._sink.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._depth -= 1
+        if self._depth > 0 or self._saved is None or self._sink is None:
+            return
+        _flush_c_stdio()
+        os.dup2(self._saved[0], 1)
+        os.dup2(self._saved[1], 2)
+        os.close(self._saved[0])
+        os.close(self._saved[1])
+        self._saved = None
+        if self.log is not None:
+            self._sink.seek(0)
+            text = self._sink.read(_LOG_LIMIT).decode("utf-8", "replace")
+            self.log.extend(line for line in text.splitlines() if line.strip())
+
+    def close(self) -> None:
+        if self._sink is not None:
+            self._sink.close()
+            self._sink = None
+
+    def forget_sink(self) -> None:
+        """After a fork: leave the shared file to the parent; the next use opens a new one."""
+        self._sink = None
+
+
 @contextlib.contextmanager
 def captured_output(log: list[str] | None = None) -> Iterator[None]:
     """Send everything written to fds 1 and 2 to a temporary file while inside.
 
     The text written (up to 64 KiB) is appended to ``log`` when one is given.
     """
-    for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(Exception):
-            stream.flush()
-    _flush_c_stdio()
-    saved = (os.dup(1), os.dup(2))
-    with tempfile.TemporaryFile() as sink:
-        os.dup2(sink.fileno(), 1)
-        os.dup2(sink.fileno(), 2)
-        try:
+    capture = OutputCapture(log)
+    try:
+        with capture:
             yield
-        finally:
-            _flush_c_stdio()
-            os.dup2(saved[0], 1)
-            os.dup2(saved[1], 2)
-            os.close(saved[0])
-            os.close(saved[1])
-            if log is not None:
-                sink.seek(0)
-                text = sink.read(_LOG_LIMIT).decode("utf-8", "replace")
-                log.extend(line for line in text.splitlines() if line.strip())
+    finally:
+        capture.close()
 
 
 def _pybullet() -> ModuleType:
     with captured_output():
         import pybullet
 
-    return pybullet
+    module: ModuleType = pybullet
+    return module
 
 
 @dataclass
@@ -131,8 +173,9 @@ class World:
 
     def __init__(self) -> None:
         self.log: list[str] = []
+        self.quiet = OutputCapture(self.log)
         self.p = _pybullet()
-        with captured_output(self.log):
+        with self.quiet:
             self.client: int = self.p.connect(self.p.DIRECT)
         if self.client < 0:
             msg = "pybullet could not start a DIRECT client"
@@ -144,8 +187,9 @@ class World:
 
     # ---- lifetime ------------------------------------------------------------------
     def close(self) -> None:
-        with contextlib.suppress(Exception), captured_output(self.log):
+        with contextlib.suppress(Exception), self.quiet:
             self.p.disconnect(physicsClientId=self.client)
+        self.quiet.close()
         self._tmp.cleanup()
 
     def __enter__(self) -> World:
@@ -155,7 +199,7 @@ class World:
         self.close()
 
     def _call(self, name: str, *args: Any, **kwargs: Any) -> Any:
-        with captured_output(self.log):
+        with self.quiet:
             return getattr(self.p, name)(*args, physicsClientId=self.client, **kwargs)
 
     def _failure(self, what: str, exc: Exception) -> InputError:
@@ -169,12 +213,16 @@ class World:
             from sensorkit.render.png import write_png
 
             path = Path(self._tmp.name) / f"{key}.png"
-            write_png(path, scene.textures[key])
+            write_png(path, scene.textures[key], level=0)  # read once, by pybullet
             cache[key] = int(self._call("loadTexture", str(path)))
         return cache[key]
 
     def add_default_shapes(self, scene: Scene, ground_half: float) -> None:
         """Create the shapes of a generated scene (and the ground) as static bodies."""
+        with self.quiet:
+            self._add_default_shapes(scene, ground_half)
+
+    def _add_default_shapes(self, scene: Scene, ground_half: float) -> None:
         cache: dict[str, int] = {}
         markers = [s for s in scene.shapes if s.role == "marker"]
         for shape in scene.shapes:
@@ -224,7 +272,10 @@ class World:
         self, half: float, scene: Scene, shape: Shape, cache: dict[str, int] | None = None
     ) -> None:
         """The plane z = 0 for rays and a textured slab whose top face is z = 0 for images."""
-        cache = {} if cache is None else cache
+        with self.quiet:
+            self._add_ground(half, scene, shape, {} if cache is None else cache)
+
+    def _add_ground(self, half: float, scene: Scene, shape: Shape, cache: dict[str, int]) -> None:
         col = self._call("createCollisionShape", self.p.GEOM_PLANE)
         slab = (half, half, 0.01)
         if shape.texture is not None and shape.texture in scene.textures:
@@ -268,6 +319,10 @@ class World:
         """Load URDF text as a fixed-base body at the origin; (body, link index -> name)."""
         path = Path(self._tmp.name) / f"{what}.urdf"
         path.write_bytes(text)
+        with self.quiet:
+            return self._load_urdf(path, what)
+
+    def _load_urdf(self, path: Path, what: str) -> tuple[int, dict[int, str]]:
         flags = self.p.URDF_USE_MATERIAL_COLORS_FROM_MTL
         try:
             body = int(
@@ -359,6 +414,10 @@ class World:
 
     def cast(self, starts: np.ndarray, ends: np.ndarray) -> RayHits:
         """First hit of each ray from ``starts`` to ``ends`` (``(N, 3)``)."""
+        with self.quiet:
+            return self._cast(starts, ends)
+
+    def _cast(self, starts: np.ndarray, ends: np.ndarray) -> RayHits:
         n = len(starts)
         body = np.full(n, -1, dtype=np.int32)
         link = np.full(n, -1, dtype=np.int32)

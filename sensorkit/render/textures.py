@@ -12,39 +12,57 @@ import numpy.typing as npt
 __all__ = ["feature_texture", "floor_texture"]
 
 
+def _disc(
+    img: npt.NDArray[np.int16], cx: float, cy: float, r: float, colour: npt.NDArray[np.int16]
+) -> None:
+    size = img.shape[0]
+    x0, x1 = max(0, int(cx - r)), min(size, int(cx + r) + 2)
+    y0, y1 = max(0, int(cy - r)), min(size, int(cy + r) + 2)
+    if x0 >= x1 or y0 >= y1:
+        return
+    yy, xx = np.ogrid[y0:y1, x0:x1]
+    img[y0:y1, x0:x1][(xx - cx) ** 2 + (yy - cy) ** 2 <= r * r] = colour
+
+
+def _finish(
+    img: npt.NDArray[np.int16], rng: np.random.Generator, noise: int
+) -> npt.NDArray[np.uint8]:
+    img += rng.integers(-noise, noise + 1, img.shape, dtype=np.int16)
+    return np.clip(img, 0, 255).astype(np.uint8)
+
+
 def feature_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
     """A square RGB texture with many corners of different contrast and scale."""
     rng = np.random.default_rng(seed)
-    img = np.empty((size, size, 3), dtype=np.float64)
-    base = rng.uniform(90, 200, 3)
     cell = size // 8
-    yy, xx = np.mgrid[0:size, 0:size]
-    checks = ((yy // cell + xx // cell) % 2).astype(np.float64)[:, :, None]
-    img[:] = base * (0.75 + 0.35 * checks)
+    checks = ((np.arange(size)[:, None] // cell + np.arange(size)[None, :] // cell) % 2).astype(
+        np.int16
+    )
+    base = rng.integers(90, 200, 3).astype(np.int16)
+    img = (base * (75 + 35 * checks[:, :, None]) // 100).astype(np.int16)
     for _ in range(40):
         w, h = rng.integers(size // 20, size // 4, 2)
         x0, y0 = rng.integers(0, size - w), rng.integers(0, size - h)
-        img[y0 : y0 + h, x0 : x0 + w] = rng.uniform(0, 255, 3)
+        img[y0 : y0 + h, x0 : x0 + w] = rng.integers(0, 256, 3)
     for _ in range(14):
         r = rng.uniform(size / 40, size / 10)
         cx, cy = rng.uniform(0, size, 2)
-        img[(xx - cx) ** 2 + (yy - cy) ** 2 <= r * r] = rng.uniform(0, 255, 3)
-    img += rng.normal(0.0, 6.0, img.shape)
-    return np.clip(img, 0, 255).astype(np.uint8)
+        _disc(img, cx, cy, r, rng.integers(0, 256, 3).astype(np.int16))
+    return _finish(img, rng, 10)
 
 
 def floor_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
     """A tiled floor: light and dark squares with speckles (one texture repeat = 1 m)."""
     rng = np.random.default_rng(seed)
     cell = size // 4
-    yy, xx = np.mgrid[0:size, 0:size]
-    checks = ((yy // cell + xx // cell) % 2).astype(np.float64)
-    img = np.empty((size, size, 3), dtype=np.float64)
-    img[:] = (150.0, 140.0, 120.0)
-    img *= (0.7 + 0.45 * checks)[:, :, None]
+    checks = ((np.arange(size)[:, None] // cell + np.arange(size)[None, :] // cell) % 2).astype(
+        np.int16
+    )
+    img = (
+        np.array([150, 140, 120], dtype=np.int16) * (70 + 45 * checks[:, :, None]) // 100
+    ).astype(np.int16)
     for _ in range(60):
         r = rng.uniform(1.5, size / 40)
         cx, cy = rng.uniform(0, size, 2)
-        img[(xx - cx) ** 2 + (yy - cy) ** 2 <= r * r] = rng.uniform(20, 235, 3)
-    img += rng.normal(0.0, 5.0, img.shape)
-    return np.clip(img, 0, 255).astype(np.uint8)
+        _disc(img, cx, cy, r, rng.integers(20, 236, 3).astype(np.int16))
+    return _finish(img, rng, 8)

@@ -70,7 +70,8 @@ def prepare_urdf(robot: Robot, resolver: PackageResolver, *, what: str = "robot"
         uri = (mesh.get("filename") or "").strip()
         path, why = resolve_uri(uri, base, resolver) if uri else (None, "no filename")
         if path is not None and path.suffix.lower() not in MESH_SUFFIXES:
-            path, why = None, f"pybullet cannot read {path.suffix or 'this'} meshes"
+            why = f"pybullet cannot read {path.suffix or 'this'} meshes"
+            path = None
         if path is None:
             holder = mesh
             while holder is not None and local(holder) not in ("visual", "collision"):
