@@ -1,0 +1,124 @@
+"""``sensorkit intrinsics`` and ``sensorkit export``: what the sensors publish, as the
+files their consumers read.
+
+Thin: parse options, call :mod:`sensorkit.sensorinfo`, print. Data goes to stdout (the
+intrinsics document; the paths written), notes and the summary to stderr.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from sensorkit.cli.common import ArgOpt, FileArg, PackagePathOpt, handle_errors, parse_xacro_args
+
+TargetOpt = Annotated[
+    str,
+    typer.Option(
+        "--target",
+        help="auto, classic, ros1, fortress, harmonic or jetty (auto: detected as validate does)",
+    ),
+]
+
+
+@handle_errors
+def intrinsics(
+    file: FileArg,
+    sensor: Annotated[
+        str | None,
+        typer.Option(
+            "--sensor",
+            help="only this camera (a sensor name, or SENSOR/CAMERA inside a multicamera)",
+            metavar="NAME",
+        ),
+    ] = None,
+    convention: Annotated[
+        str | None,
+        typer.Option(
+            "--convention",
+            help="classic, gz or ideal (default: the target's; classic for classic and ros1)",
+        ),
+    ] = None,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format",
+            "-f",
+            help="json (every camera), camera-info, orbslam3, orbslam3-v1 (monocular), "
+            "kalibr or opencv (one camera each)",
+        ),
+    ] = "json",
+    target: TargetOpt = "auto",
+    arg: ArgOpt = None,
+    package_path: PackagePathOpt = None,
+) -> None:
+    """Print the camera_info each camera of FILE publishes, in the format a tool reads.
+
+    Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
+    """
+    from sensorkit.errors import UsageError
+    from sensorkit.sensorinfo import FORMATS, describe, intrinsics_document, load, select_cameras
+
+    xacro_args = parse_xacro_args(arg)
+    if fmt not in FORMATS:
+        raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+    if convention is not None and convention not in ("classic", "gz", "ideal"):
+        raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
+    robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))
+    info = describe(robot, target, convention=convention)  # type: ignore[arg-type]
+    cameras = select_cameras(info, sensor, fmt)
+    text, notes = intrinsics_document(info, cameras, fmt)
+    sys.stdout.write(text)
+    for note in notes:
+        typer.echo(f"sensorkit: note: {note}", err=True)
+
+
+@handle_errors
+def export(
+    file: FileArg,
+    out: Annotated[
+        Path, typer.Option("--out", "-o", help="the folder to create (must be missing or empty)")
+    ] = Path("sensorkit-export"),
+    force: Annotated[
+        bool, typer.Option("--force", help="replace --out if it is not empty")
+    ] = False,
+    target: TargetOpt = "auto",
+    arg: ArgOpt = None,
+    package_path: PackagePathOpt = None,
+) -> None:
+    """Write every sensor's configuration files: camera_info, ORB-SLAM3, Kalibr, OpenCV,
+    depthimage_to_laserscan, slam_toolbox, Nav2, AMCL and, for Gazebo Sim, the
+    ros_gz_bridge config.
+
+    Exit status: 0 all written, 1 some files could not be produced (why is on stderr;
+    the others are written), 2 it could not run.
+    """
+    from sensorkit.sensorinfo import describe, export_files, load, publish_export
+
+    xacro_args = parse_xacro_args(arg)
+    robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))
+    info = describe(robot, target)
+    plan = export_files(info)
+    written = publish_export(plan.files, out, force=force, inputs=[file])
+    for path in written:
+        typer.echo(path.as_posix())
+    for note in plan.notes:
+        typer.echo(f"sensorkit: note: {note}", err=True)
+    for skipped in plan.skipped:
+        typer.echo(f"sensorkit: not written: {skipped}", err=True)
+    typer.echo(
+        f"sensorkit: wrote {len(written)} files for {len(info.sensors)} sensors of "
+        f"{robot.name} into {out} (target {info.target}, {info.target_reason})",
+        err=True,
+    )
+    if plan.skipped:
+        raise typer.Exit(1)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``intrinsics`` and ``export`` to ``app``."""
+    app.command("intrinsics", no_args_is_help=True)(intrinsics)
+    app.command("export", no_args_is_help=True)(export)
