@@ -849,7 +849,7 @@ def intrinsics_document(
             "convention": info.convention,
             "cameras": [_camera_record(c, info.target) for c in cameras],
         }
-        return to_json(data), []
+        return to_json(data), notes
     (view,) = cameras
     extra: list[str] = []
     text = camera_document(view, fmt, info, extra)
