@@ -318,11 +318,12 @@ def test_command_writes_every_file_and_keeps_pybullet_quiet(tmp_path: Path) -> N
     assert cam["frames"]["published_frame"] == "camera_optical_frame"
     assert cam["frames"]["render_pose"]["xyz"] == pytest.approx([0.25, 0.0, 0.5])
     assert cam["intrinsics"]["cx"] == 80.5 and cam["intrinsics"]["rendered"]["cx"] == 79.5
-    assert "/depth_cam/image_raw" in cam["topics"]
+    assert cam["topics"]["image"] == "/depth_cam/image_raw"
+    assert cam["topics"]["depth_image"] == "/depth_cam/depth/image_raw"
     assert set(cam["files"]) == {"rgb", "depth", "depth_png", "camera_info"}
     names = {c["name"] for c in cam["checks"]}
     assert {"reprojection", "depth", "self_occlusion", "orb_features", "published_frame"} <= names
-    assert sensor(data, "laser")["topics"] == ["/scan"]
+    assert sensor(data, "laser")["topics"] == {"scan": "/scan"}
     assert sensor(data, "laser")["scan"]["samples"] == 360
     assert data["validate"]["findings"] is not None
     info = camera_info(out / "depth_cam" / "camera_info.yaml")

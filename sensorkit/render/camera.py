@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.intrinsics import Intrinsics, camera_intrinsics
+from sensorkit.intrinsics import Intrinsics
 from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, invert
 from sensorkit.render.checks import Check
 
@@ -54,13 +54,11 @@ __all__ = [
     "depth_check",
     "depth_from_buffer",
     "orb_check",
-    "published_intrinsics",
     "render_camera",
     "reprojection_check",
 ]
 
 PIXEL_ORIGIN = {"classic": 1.0, "gz": 0.5, "ideal": 0.0}
-SDF_DEFAULTS = {"width": 320, "height": 240, "hfov": 1.047, "near": 0.1, "far": 100.0}
 REPROJECTION_LIMIT_PX = 0.5
 DEPTH_LIMIT_M = 0.01
 DEPTH_SAMPLES = 20_000
@@ -69,11 +67,6 @@ DEPTH_SAMPLES = 20_000
 ORB_NEEDED = {"mono": 100, "rgbd": 500}
 
 FloatArray = npt.NDArray[np.float64]
-
-
-def convention_of(target: str) -> str:
-    """The camera_info convention of a target: Gazebo Classic (ROS 1 and 2) or gz."""
-    return "classic" if target in ("classic", "ros1") else "gz"
 
 
 @dataclass
@@ -159,95 +152,17 @@ def depth_from_buffer(
     return z.astype(np.float32)
 
 
-def _plugin_number(sensor: Sensor, names: tuple[str, ...], notes: list[str]) -> float | None:
-    from sensorkit.model.frames import ros_plugin
-
-    plugin = ros_plugin(sensor)
-    if plugin is None:
-        return None
-    for name in names:
-        text = plugin.param(name)
-        if text is None:
-            continue
-        try:
-            value = float(text)
-        except ValueError:
-            notes.append(f"plugin <{name}> {text!r} is not a number; ignored")
-            return None
-        return value if math.isfinite(value) else None
-    return None
-
-
-def _size(cam: CameraSpec, notes: list[str]) -> tuple[int, int, float]:
-    width = cam.width if cam.width and cam.width > 0 else None
-    height = cam.height if cam.height and cam.height > 0 else None
-    hfov = cam.hfov
-    if width is None:
-        width = int(SDF_DEFAULTS["width"])
-        notes.append(f"no usable image width: SDF's default {width}")
-    if height is None:
-        height = int(SDF_DEFAULTS["height"])
-        notes.append(f"no usable image height: SDF's default {height}")
-    if hfov is None:
-        hfov = SDF_DEFAULTS["hfov"]
-        notes.append(f"no horizontal_fov: SDF's default {hfov} rad")
-    return width, height, hfov
-
-
-def published_intrinsics(
-    sensor: Sensor, cam: CameraSpec, target: str
-) -> tuple[Intrinsics, list[str]]:
-    """The camera_info a simulator publishes for ``cam`` under ``target``.
-
-    Raises:
-        InvalidValue: the camera cannot be a pinhole (e.g. hfov >= pi).
-    """
-    notes: list[str] = []
-    width, height, hfov = _size(cam, notes)
-    dist = cam.distortion
-    distortion = None
-    if any(dist.get(k, 0.0) for k in ("k1", "k2", "k3", "p1", "p2")):
-        distortion = tuple(dist.get(k, 0.0) for k in ("k1", "k2", "p1", "p2", "k3"))
-        notes.append("distortion is published in camera_info but not rendered in the preview")
-    convention = convention_of(target)
-    if convention == "classic":
-        ros1 = target == "ros1"
-        cx = _plugin_number(sensor, ("Cx",) if ros1 else ("cx",), notes)
-        cy = _plugin_number(sensor, ("Cy",) if ros1 else ("cy",), notes)
-        focal = _plugin_number(sensor, ("focalLength",) if ros1 else ("focal_length",), notes)
-        baseline = _plugin_number(sensor, ("hackBaseline",) if ros1 else ("hack_baseline",), notes)
-        if ros1:  # gazebo_ros_camera_utils (ROS 1) treats 0 as "compute it"
-            cx = cx or None
-            cy = cy or None
-        intr = camera_intrinsics(
-            width,
-            height,
-            hfov,
-            "classic",
-            focal_length=focal,
-            cx=cx,
-            cy=cy,
-            distortion=distortion,  # type: ignore[arg-type]
-            hack_baseline=baseline or 0.0,
-        )
-    else:
-        intr = camera_intrinsics(
-            width,
-            height,
-            hfov,
-            "gz",
-            lens_intrinsics=cam.lens_intrinsics,
-            distortion=distortion,  # type: ignore[arg-type]
-        )
-    return intr, notes
-
-
 def render_camera(
     sensor: Sensor, cam: CameraSpec, target: str, T_world_render: Mat, published: Intrinsics
 ) -> RenderCamera:
-    """The camera the simulator actually renders (which camera_info may not describe)."""
+    """The camera the simulator actually renders (which camera_info may not describe).
+
+    ``published`` is the camera_info (``sensorkit.sensorinfo.published_intrinsics``).
+    """
+    from sensorkit.sensorinfo import SDF_DEFAULTS, camera_size, convention_of
+
     notes: list[str] = []
-    width, height, hfov = _size(cam, [])
+    width, height, hfov = camera_size(cam, [])
     if convention_of(target) == "gz" and cam.lens_intrinsics is not None:
         fx, fy, cx, cy, skew = cam.lens_intrinsics
         cx0, cy0 = cx - PIXEL_ORIGIN["gz"], cy - PIXEL_ORIGIN["gz"]

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.intrinsics import LaserScanParams, laser_scan
+from sensorkit.intrinsics import LaserScanParams
 from sensorkit.model.transforms import Mat
 from sensorkit.render.checks import Check
 
@@ -65,31 +65,13 @@ class LidarScan:
     dirs_world: FloatArray  # (V*H, 3)
 
 
-def lidar_beams(spec: LidarSpec) -> LidarBeams:
-    """The beams of ``spec``; raises InvalidValue when the scan cannot exist."""
-    from sensorkit.intrinsics import InvalidValue
+def lidar_beams(spec: LidarSpec, notes: list[str] | None = None) -> LidarBeams:
+    """The beams of ``spec`` (``sensorkit.sensorinfo.lidar_scans``, so the preview casts
+    exactly the scan the exports describe); raises InvalidValue when it cannot exist."""
+    from sensorkit.sensorinfo import lidar_scans
 
-    samples = spec.samples if spec.samples is not None else 640
-    resolution = spec.resolution if spec.resolution is not None else 1.0
-    lo = spec.min_angle if spec.min_angle is not None else 0.0
-    hi = spec.max_angle if spec.max_angle is not None else 0.0
-    rmin = spec.range_min if spec.range_min is not None else 0.0
-    if spec.range_max is None:
-        msg = "the lidar has no <range><max>"
-        raise InvalidValue(msg)
-    h = laser_scan(samples, resolution, lo, hi, rmin, spec.range_max)
-    v: LaserScanParams | None = None
-    elevation = np.zeros(1)
-    if spec.has_vertical:
-        v = laser_scan(
-            spec.v_samples if spec.v_samples is not None else 1,
-            spec.v_resolution if spec.v_resolution is not None else 1.0,
-            spec.v_min_angle if spec.v_min_angle is not None else 0.0,
-            spec.v_max_angle if spec.v_max_angle is not None else 0.0,
-            rmin,
-            spec.range_max,
-        )
-        elevation = v.beam_angles()
+    h, v = lidar_scans(spec, notes)
+    elevation = v.beam_angles() if v is not None else np.zeros(1)
     return LidarBeams(h, v, h.beam_angles(), elevation, h.range_min, h.range_max)
 
 

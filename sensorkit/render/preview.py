@@ -126,19 +126,12 @@ def _load_robot(
     return loaded.robot
 
 
-def _topics(sensor: Sensor, target: str) -> list[str] | None:
-    try:
-        from sensorkit.model.frames import ros_plugin
-        from sensorkit.model.targets import is_gz
-        from sensorkit.rules.plugins import gz_topics, resolved_topics
-    except ImportError:
-        return None
-    if is_gz(target):
-        return gz_topics(sensor) or None
-    plugin = ros_plugin(sensor)
-    if plugin is None:
-        return None
-    return [full for _, full in resolved_topics(plugin, sensor)] or None
+def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
+    """Role -> ROS topic (``image``, ``camera_info``, ``scan``...), None when unknown."""
+    from sensorkit.sensorinfo import sensor_topics
+
+    topics, _ = sensor_topics(sensor, target)
+    return topics or None
 
 
 @dataclass
@@ -219,13 +212,13 @@ def _camera(
         depth_check,
         depth_from_buffer,
         orb_check,
-        published_intrinsics,
         render_camera,
         reprojection_check,
     )
     from sensorkit.render.overview import SensorDrawing
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
+    from sensorkit.sensorinfo import depth_range, published_intrinsics
 
     sensor, name, cam = job.sensor, job.name, job.cam
     assert cam is not None
@@ -253,8 +246,8 @@ def _camera(
     out.files["rgb"] = folder / "rgb.png"
     write_png(out.files["rgb"], image.rgb)
     if sensor.is_depth:
-        near = cam.depth_near if cam.depth_near is not None else rc.near
-        far = cam.depth_far if cam.depth_far is not None else rc.far
+        near, far, depth_notes = depth_range(sensor, cam, run.target)
+        out.notes += depth_notes
         published_depth = depth.copy()
         published_depth[published_depth > far] = np.inf
         published_depth[published_depth < near] = -np.inf
@@ -356,7 +349,7 @@ def _lidar(
         out.skipped = "no <lidar> or <ray> block"
         return out, None
     try:
-        beams = lidar_beams(sensor.lidar)
+        beams = lidar_beams(sensor.lidar, out.notes)
     except InvalidValue as exc:
         out.skipped = f"its scan cannot be cast: {exc}"
         return out, None

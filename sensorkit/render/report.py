@@ -218,7 +218,10 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
                 )
             )
     if s.info.get("topics"):
-        facts.append(("topics", ", ".join(f"<code>{e(t)}</code>" for t in s.info["topics"])))
+        topics = s.info["topics"]
+        facts.append(
+            ("topics", ", ".join(f"{e(k)} <code>{e(v)}</code>" for k, v in topics.items()))
+        )
     files = ", ".join(
         f'<a href="{e(_rel(p, base))}">{e(_rel(p, base))}</a>' for p in s.files.values()
     )
