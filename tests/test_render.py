@@ -449,3 +449,15 @@ def test_forked_cameras_give_the_same_files(
     monkeypatch.setattr(os, "fork", no_fork)
     three = render_preview(MOUNTS_BOT, tmp_path / "three", workers=3)
     assert [s.status for s in three.sensors] == [s.status for s in one.sensors]
+
+
+def test_a_file_of_macros_is_refused_in_one_line(tmp_path: Path) -> None:
+    macros = tmp_path / "macros.urdf.xacro"
+    macros.write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="m"><link name="a"/></xacro:macro></robot>'
+    )
+    result = CliRunner().invoke(
+        app, ["render", "preview", str(macros), "--out", str(tmp_path / "o")]
+    )
+    assert result.exit_code == 2
+    assert "defines no links" in result.output and "Traceback" not in result.output

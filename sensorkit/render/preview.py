@@ -446,10 +446,10 @@ def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | Senso
             plan.append(_Job(sensor, sensor.name, folder, PALETTE[drawn % len(PALETTE)]))
             drawn += 1
         else:
-            what = (
-                "has no <camera> block"
+            why = (
+                "it has no <camera> block"
                 if sensor.is_camera
-                else f"is a {sensor.type or 'untyped'} sensor"
+                else f"only cameras and lidars are, and its type is {sensor.type or 'missing'!r}"
             )
             plan.append(
                 SensorPreview(
@@ -458,7 +458,7 @@ def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | Senso
                     sensor.type,
                     sensor.kind,
                     sensor.reference,
-                    skipped=f"not rendered: it {what}",
+                    skipped=f"not rendered: {why}",
                 )
             )
     return plan
@@ -645,8 +645,15 @@ def render_preview(
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     prepared = prepare_urdf(robot, resolver)
     notes = list(prepared.notes)
-    if len(robot.roots()) != 1:
-        msg = f"{robot.document.display}: the robot has {len(robot.roots())} root links ({', '.join(robot.roots()) or 'a cycle'}); pybullet needs one tree"
+    roots = robot.roots()
+    if len(roots) != 1:
+        where = robot.document.display
+        if not robot.links:
+            msg = f"{where}: defines no links, so there is nothing to render (a file of macros to include?)"
+        elif not roots:
+            msg = f"{where}: its joints form a cycle, and pybullet needs a tree"
+        else:
+            msg = f"{where}: the robot has {len(roots)} root links ({', '.join(roots)}); pybullet needs one tree"
         raise InputError(msg)
 
     scene_robot: Robot | None = None
