@@ -178,20 +178,16 @@ def render_camera(
 
 
 # ---- checks ------------------------------------------------------------------------------
-def _keys(image: CameraImage) -> npt.NDArray[np.int64]:
-    return image.body.astype(np.int64) * 65536 + (image.link.astype(np.int64) + 1)
-
-
-def _interior(keys: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
-    """Pixels whose 4 neighbours all show the same body and link."""
-    inside = np.ones(keys.shape, dtype=bool)
-    inside[1:, :] &= keys[1:, :] == keys[:-1, :]
-    inside[:-1, :] &= keys[:-1, :] == keys[1:, :]
-    inside[:, 1:] &= keys[:, 1:] == keys[:, :-1]
-    inside[:, :-1] &= keys[:, :-1] == keys[:, 1:]
-    inside[0, :] = inside[-1, :] = False
-    inside[:, 0] = inside[:, -1] = False
-    return inside
+def _interior_at(
+    seg: npt.NDArray[np.int32], rows: npt.NDArray[np.intp], cols: npt.NDArray[np.intp]
+) -> npt.NDArray[np.bool_]:
+    """For the given pixels: do their 4 neighbours show the same body and link?"""
+    H, W = seg.shape
+    ok: npt.NDArray[np.bool_] = (rows > 0) & (rows < H - 1) & (cols > 0) & (cols < W - 1)
+    r, c = np.clip(rows, 1, H - 2), np.clip(cols, 1, W - 2)
+    k = seg[r, c]
+    ok &= (seg[r - 1, c] == k) & (seg[r + 1, c] == k) & (seg[r, c - 1] == k) & (seg[r, c + 1] == k)
+    return ok
 
 
 def reprojection_check(
@@ -207,7 +203,8 @@ def reprojection_check(
     centres = np.array([m.centre for m, _, _ in markers])
     p_opt = camera.world_to_optical(centres)
     predicted = published.project(p_opt)  # in the convention's coordinates
-    keys = _keys(image)
+    from sensorkit.render.sim import seg_key
+
     rows: list[dict[str, float | str]] = []
     W, H = camera.width, camera.height
     for (shape, body, link), p, uv in zip(markers, p_opt, predicted, strict=True):
@@ -225,7 +222,7 @@ def reprojection_check(
         reach = math.ceil(1.5 * r_px + 3)
         c0, c1 = max(0, int(ur) - reach), min(W, int(ur) + reach + 2)
         r0, r1 = max(0, int(vr) - reach), min(H, int(vr) + reach + 2)
-        mask = keys[r0:r1, c0:c1] == body * 65536 + link + 1
+        mask = image.seg[r0:r1, c0:c1] == seg_key(body, link)
         count = int(mask.sum())
         if count < 12 or count < 0.7 * expected:
             continue  # too small to measure to a fraction of a pixel, or partly hidden
@@ -290,19 +287,19 @@ def depth_check(
 
     Measured on a regular sample of about 20,000 pixels (every pixel of a small image).
     """
-    keys = _keys(image)
-    interior = _interior(keys) & np.isfinite(depth)
     stride = max(1, round(math.sqrt(camera.width * camera.height / DEPTH_SAMPLES)))
-    rows, cols = np.mgrid[0 : camera.height : stride, 0 : camera.width : stride]
-    keep = interior[rows, cols]
+    grid_rows, grid_cols = np.mgrid[0 : camera.height : stride, 0 : camera.width : stride]
+    rows, cols = grid_rows.ravel(), grid_cols.ravel()
+    keep = _interior_at(image.seg, rows, cols) & np.isfinite(depth[rows, cols])
     rows, cols = rows[keep], cols[keep]
-    sample_keys = keys[rows, cols]
+    sample_keys = image.seg[rows, cols]
     origin, dirs, cos = camera.rays_at(cols, rows)
     analytic = np.full(len(rows), np.nan)
     for key in np.unique(sample_keys):
-        visual = [
-            s for s in shapes_of.get((int(key) // 65536, int(key) % 65536 - 1), []) if s.visual
-        ]
+        if key < 0:
+            continue
+        body, link = int(key) & 0xFFFFFF, (int(key) >> 24) - 1
+        visual = [s for s in shapes_of.get((body, link), []) if s.visual]
         if not visual or not all(s.is_flat for s in visual):
             continue
         sel = sample_keys == key

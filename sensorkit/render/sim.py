@@ -123,12 +123,32 @@ def _pybullet() -> ModuleType:
     return module
 
 
+def seg_key(body: int, link: int) -> int:
+    """pybullet's segmentation value for a (body, link): ``body + ((link + 1) << 24)``."""
+    return body + ((link + 1) << 24)
+
+
 @dataclass
 class CameraImage:
     rgb: npt.NDArray[np.uint8]  # (H, W, 3)
     depth_buffer: npt.NDArray[np.float32]  # (H, W), OpenGL depth in [0, 1]
-    body: npt.NDArray[np.int32]  # (H, W) body id hit, -1 for none
-    link: npt.NDArray[np.int32]  # (H, W) link index hit (-1: base)
+    seg: npt.NDArray[np.int32]  # (H, W) seg_key of what each pixel shows, -1 for nothing
+
+    @property
+    def body(self) -> npt.NDArray[np.int32]:
+        """(H, W) body id hit, -1 for none."""
+        out: npt.NDArray[np.int32] = np.where(self.seg < 0, -1, self.seg & 0xFFFFFF).astype(
+            np.int32
+        )
+        return out
+
+    @property
+    def link(self) -> npt.NDArray[np.int32]:
+        """(H, W) link index hit (-1: the base, or nothing)."""
+        out: npt.NDArray[np.int32] = np.where(self.seg < 0, -1, (self.seg >> 24) - 1).astype(
+            np.int32
+        )
+        return out
 
 
 @dataclass
@@ -406,11 +426,8 @@ class World:
         )
         rgba = np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)
         depth = np.asarray(depth, dtype=np.float32).reshape(height, width)
-        seg = np.asarray(seg, dtype=np.int64).reshape(height, width)
-        none = seg < 0
-        body = np.where(none, -1, seg & ((1 << 24) - 1)).astype(np.int32)
-        link = np.where(none, -1, (seg >> 24) - 1).astype(np.int32)
-        return CameraImage(np.ascontiguousarray(rgba[:, :, :3]), depth, body, link)
+        seg = np.asarray(seg, dtype=np.int32).reshape(height, width)
+        return CameraImage(np.ascontiguousarray(rgba[:, :, :3]), depth, seg)
 
     def cast(self, starts: np.ndarray, ends: np.ndarray) -> RayHits:
         """First hit of each ray from ``starts`` to ``ends`` (``(N, 3)``)."""
