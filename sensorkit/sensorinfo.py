@@ -884,12 +884,18 @@ def _folder(name: str, taken: set[str]) -> str:
     return out
 
 
-def _attempt(plan: ExportFiles, path: str, what: str, make: Callable[[], str]) -> None:
-    """Add ``path`` from ``make()``; an impossible value skips it with the reason."""
+def _attempt(
+    plan: ExportFiles, path: str, what: str, make: Callable[[], str], *, limit: bool = False
+) -> None:
+    """Add ``path`` from ``make()``. An impossible value skips it with the reason: as a
+    note when the format cannot hold the camera (``limit``), else as a skipped file."""
     try:
         plan.files[path] = make()
     except InvalidValue as exc:
-        plan.skipped.append(f"{path}: {what}: {exc}")
+        if limit:
+            plan.notes.append(f"{path} not written: {what} cannot hold this camera: {exc}")
+        else:
+            plan.skipped.append(f"{path}: {what}: {exc}")
 
 
 def _sensor_record(s: SensorInfo, target: str) -> dict[str, object]:
@@ -928,18 +934,12 @@ def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: s
         return
     intr = view.intrinsics
     notes: list[str] = []
-    _attempt(
-        plan,
-        f"{folder}/camera_info.yaml",
-        "camera_info",
-        lambda: camera_document(view, "camera-info", info, notes),
-    )
-    _attempt(
-        plan,
-        f"{folder}/opencv.yaml",
-        "OpenCV",
-        lambda: camera_document(view, "opencv", info, notes),
-    )
+
+    def document(fmt: str, mode: str = "monocular") -> Callable[[], str]:
+        return lambda: camera_document(view, fmt, info, notes, mode=mode)
+
+    _attempt(plan, f"{folder}/camera_info.yaml", "camera_info", document("camera-info"))
+    _attempt(plan, f"{folder}/opencv.yaml", "OpenCV", document("opencv"))
     _attempt(
         plan,
         f"{folder}/intrinsics.json",
@@ -947,44 +947,29 @@ def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: s
         lambda: to_json(_camera_record(view, info.target)),
     )
     if s.has_colour:
+        _attempt(plan, f"{folder}/orbslam3.yaml", "ORB-SLAM3", document("orbslam3"), limit=True)
         _attempt(
-            plan,
-            f"{folder}/orbslam3.yaml",
-            "ORB-SLAM3",
-            lambda: camera_document(view, "orbslam3", info, notes),
+            plan, f"{folder}/orbslam3_v1.yaml", "ORB-SLAM3", document("orbslam3-v1"), limit=True
         )
-        _attempt(
-            plan,
-            f"{folder}/orbslam3_v1.yaml",
-            "ORB-SLAM3 v1.0",
-            lambda: camera_document(view, "orbslam3-v1", info, notes),
-        )
-        _attempt(
-            plan,
-            f"{folder}/kalibr.yaml",
-            "Kalibr",
-            lambda: camera_document(view, "kalibr", info, notes),
-        )
+        if view.image_topic is None:
+            plan.skipped.append(
+                f"{folder}/kalibr.yaml: no image topic for Kalibr's rostopic "
+                "(the camera publishes nothing to ROS)"
+            )
+        else:
+            _attempt(plan, f"{folder}/kalibr.yaml", "Kalibr", document("kalibr"), limit=True)
     else:
         plan.notes.append(
             f"{view.id}: publishes a depth image only, so no ORB-SLAM3 or Kalibr files "
             "(an rgbd_camera publishes colour and depth)"
         )
     if s.sensor.is_depth:
-        if s.has_colour:
-            # Gazebo's depth images are 32FC1 metres: DepthMapFactor 1.0
-            _attempt(
-                plan,
-                f"{folder}/orbslam3_rgbd.yaml",
-                "ORB-SLAM3 RGB-D",
-                lambda: camera_document(view, "orbslam3", info, [], mode="rgbd"),
-            )
-            _attempt(
-                plan,
-                f"{folder}/orbslam3_rgbd_v1.yaml",
-                "ORB-SLAM3 v1.0 RGB-D",
-                lambda: camera_document(view, "orbslam3-v1", info, [], mode="rgbd"),
-            )
+        if s.has_colour:  # Gazebo's depth images are 32FC1 metres: DepthMapFactor 1.0
+            for name, fmt in (
+                ("orbslam3_rgbd.yaml", "orbslam3"),
+                ("orbslam3_rgbd_v1.yaml", "orbslam3-v1"),
+            ):
+                _attempt(plan, f"{folder}/{name}", "ORB-SLAM3", document(fmt, "rgbd"), limit=True)
         lo, hi, range_notes = depth_range(s.sensor, view.spec, info.target)
         notes.extend(range_notes)
         depth_topic = s.topics.get("depth_image")
@@ -992,8 +977,8 @@ def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: s
         path = f"{folder}/depthimage_to_laserscan.yaml"
         if s.body_frame is None:
             plan.skipped.append(
-                f"{path}: no link sits at the camera's pose with x forward to stamp the scan with; "
-                "add a fixed link there (the camera's body frame)"
+                f"{path}: no link sits at the camera's pose with x forward to stamp the scan "
+                "with; add a fixed link there (the camera's body frame)"
             )
         elif depth_topic is None or depth_info is None:
             plan.skipped.append(f"{path}: the camera publishes no depth image topic to ROS")
@@ -1176,6 +1161,11 @@ def publish_export(
     if out.exists() and not out.is_dir():
         msg = f"{out}: exists and is not a folder"
         raise UsageError(msg)
+    resolved = out.resolve()
+    if resolved == Path.cwd().resolve() or resolved == Path(resolved.anchor):
+        msg = f"{out}: the export needs a folder of its own; choose a subfolder"
+        raise UsageError(msg)
+    given, out = out, out.absolute()
     if out.is_dir() and any(out.iterdir()):
         if not force:
             msg = f"{out}: folder is not empty; choose another --out or pass --force to replace it"
@@ -1201,4 +1191,4 @@ def publish_export(
     finally:
         with contextlib.suppress(FileNotFoundError):
             shutil.rmtree(temp)
-    return [out / rel for rel in files]
+    return [given / rel for rel in files]
