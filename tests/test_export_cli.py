@@ -682,6 +682,35 @@ def test_empty_out_is_used_and_out_file_refused(classic_file: Path, tmp_path: Pa
     one_line_error(run("export", classic_file, "--out", classic_file))
 
 
+def test_out_must_not_be_the_current_folder(
+    classic_file: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert "subfolder" in one_line_error(run("export", classic_file, "--out", "."))
+    assert list(work.iterdir()) == []
+    result = run("export", classic_file, "--out", "exp")  # the paths are printed as given
+    assert result.exit_code == 0, result.stderr
+    assert "exp/front_camera/camera_info.yaml" in result.stdout.split()
+
+
+def test_format_limits_are_notes_not_failures(tmp_path: Path) -> None:
+    distortion = "<distortion><k1>-0.2</k1><k2>0.05</k2><k3>0.01</k3></distortion>"
+    sensor = classic_camera("cam").replace("</camera>", distortion + "</camera>")
+    path = tmp_path / "r.urdf"
+    path.write_text(robot(mounted("cam", sensor)))
+    out = tmp_path / "out"
+    result = run("export", path, "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert not (out / "cam/kalibr.yaml").exists()
+    assert "kalibr.yaml not written" in result.stderr and "k3" in result.stderr
+    info = load_yaml(out / "cam/camera_info.yaml")
+    assert info["distortion_coefficients"]["data"] == [-0.2, 0.05, 0.0, 0.0, 0.01]
+    old = load_opencv(out / "cam/orbslam3.yaml")
+    assert (old["Camera.k1"], old["Camera.k3"]) == (-0.2, 0.01)
+
+
 def test_cli_does_not_import_pybullet() -> None:
     code = (
         "import sys, sensorkit.cli, sensorkit.cli.export, sensorkit.sensorinfo;"
