@@ -102,7 +102,8 @@ def export(
     robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))
     info = describe(robot, target)
     plan = export_files(info)
-    written = publish_export(plan.files, out, force=force, inputs=[file])
+    inputs = [file, *(Path(f) for f in robot.document.files)]  # --force must spare them
+    written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:
         typer.echo(path.as_posix())
     for note in plan.notes:
