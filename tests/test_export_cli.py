@@ -674,6 +674,25 @@ def test_force_never_replaces_the_folder_holding_the_robot(classic_file: Path) -
     assert classic_file.is_file()
 
 
+def test_force_never_replaces_a_folder_holding_an_include(tmp_path: Path) -> None:
+    parts = tmp_path / "parts"
+    parts.mkdir()
+    (parts / "cam.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + mounted("cam", classic_camera("cam"))
+        + "</robot>"
+    )
+    main = tmp_path / "robot.urdf.xacro"
+    main.write_text(
+        robot('<xacro:include filename="parts/cam.xacro"/>').replace(
+            "<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1
+        )
+    )
+    message = one_line_error(run("export", main, "--out", parts, "--force"))
+    assert "holds cam.xacro" in message
+    assert (parts / "cam.xacro").is_file()
+
+
 def test_empty_out_is_used_and_out_file_refused(classic_file: Path, tmp_path: Path) -> None:
     out = tmp_path / "empty"
     out.mkdir()
