@@ -416,10 +416,11 @@ def _gz_entries(sensor: Sensor, target: str) -> list[BridgeEntry]:
 
 
 def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str]]:
-    """``(role -> ROS topic, notes)`` for everything ``sensor`` publishes under ``target``.
+    """``(role -> ROS topic, notes)``: the ROS topics of ``sensor`` under ``target``.
 
     Roles: ``image``, ``camera_info``, ``depth_image``, ``depth_camera_info``,
-    ``points``, ``scan``, ``range``, ``imu``, ``trigger``, ``out``; a multicamera's
+    ``points``, ``scan``, ``range``, ``imu``, ``out`` and ``trigger`` (the one the
+    camera subscribes to); a multicamera's
     are ``<camera>/image`` and ``<camera>/camera_info``. Gazebo Classic: the plugin's
     names after namespace and remapping (``~/out:=scan`` -> ``/scan``). Gazebo Sim: the
     ROS names of the ros_gz_bridge entries ``sensorkit new`` writes for the sensor's

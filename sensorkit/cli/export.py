@@ -55,7 +55,7 @@ def intrinsics(
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
 ) -> None:
-    """Print the camera_info each camera of FILE publishes, in the format a tool reads.
+    """Print the camera_info each camera of FILE publishes, for a tool to read.
 
     Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
     """
@@ -89,12 +89,15 @@ def export(
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
 ) -> None:
-    """Write every sensor's configuration files: camera_info, ORB-SLAM3, Kalibr, OpenCV,
-    depthimage_to_laserscan, slam_toolbox, Nav2, AMCL and, for Gazebo Sim, the
-    ros_gz_bridge config.
+    """Write each sensor's config files into one folder per sensor.
 
-    Exit status: 0 all written, 1 some files could not be produced (why is on stderr;
-    the others are written), 2 it could not run.
+    Cameras: camera_info, ORB-SLAM3 (old, v1.0), Kalibr, OpenCV, JSON.
+    Depth cameras: depthimage_to_laserscan, ORB-SLAM3 RGB-D.
+    Lidars: LaserScan, slam_toolbox, Nav2 obstacle layer, AMCL.
+    Gazebo Sim: bridge.yaml for ros_gz_bridge.
+
+    Exit status: 0 all written; 1 some files could not be produced
+    (why is on stderr, the rest is written); 2 it could not run.
     """
     from sensorkit.sensorinfo import describe, export_files, load, publish_export
 
