@@ -89,7 +89,12 @@ def preview(
         ),
     ] = "auto",
 ) -> None:
-    """Render every camera and cast every lidar of FILE, with checks, into --out."""
+    """Render every camera and cast every lidar of FILE into --out, with checks.
+
+    Writes images, depth, ranges and camera_info per sensor, plus summary.json,
+    overview.png and a self-contained index.html. Exit status 0; 1 when a check
+    fails; 2 when the preview cannot run.
+    """
     xacro_args = parse_xacro_args(arg)
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
