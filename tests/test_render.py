@@ -461,3 +461,25 @@ def test_a_file_of_macros_is_refused_in_one_line(tmp_path: Path) -> None:
     )
     assert result.exit_code == 2
     assert "defines no links" in result.output and "Traceback" not in result.output
+
+
+def test_multicamera_renders_each_camera_from_its_own_pose(tmp_path: Path) -> None:
+    result = render_preview(HERE / "stereo_bot.urdf", tmp_path)
+    assert [(s.name, s.status == "skipped") for s in result.sensors] == [
+        ("stereo/left", False),
+        ("stereo/right", False),
+        ("imu", True),
+    ]
+    data = summary(tmp_path)
+    left, right = sensor(data, "stereo/left"), sensor(data, "stereo/right")
+    assert left["frames"]["render_pose"]["xyz"] == pytest.approx([0.2, 0.06, 0.5])
+    assert right["frames"]["render_pose"]["xyz"] == pytest.approx([0.2, -0.06, 0.5])
+    assert left["topics"] == {
+        "image": "/stereo/left/image_raw",
+        "camera_info": "/stereo/left/camera_info",
+    }
+    for name in ("stereo/left", "stereo/right"):
+        assert check(data, name, "reprojection")["status"] == "ok"
+    a = (tmp_path / "stereo" / "left" / "rgb.png").read_bytes()
+    b = (tmp_path / "stereo" / "right" / "rgb.png").read_bytes()
+    assert a != b

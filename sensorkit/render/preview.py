@@ -283,7 +283,11 @@ def _camera(
             "coordinates": "0-based pixel centres",
         },
     )
-    out.info["topics"] = _topics(sensor, run.target)
+    topics = _topics(sensor, run.target)
+    if topics and sensor.kind == "multicamera":  # this camera's share: "left/image" -> "image"
+        prefix = f"{cam.name}/"
+        topics = {k[len(prefix) :]: v for k, v in topics.items() if k.startswith(prefix)} or None
+    out.info["topics"] = topics
 
     robot_id = run.world.robot
     out.checks.append(reprojection_check(rc, image, published, run.markers))
