@@ -5,7 +5,13 @@ function and formats its result. Command groups live in their own modules, each 
 
 from __future__ import annotations
 
-import typer
+import os
+
+# sensorkit's numpy work is small (4x4 transforms, one image at a time): OpenBLAS's thread
+# pool only burns CPU at start-up. Set before anything imports numpy; the user's value wins.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import typer  # noqa: E402
 
 from sensorkit import __version__
 
