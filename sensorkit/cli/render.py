@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from pathlib import Path
 from typing import Annotated
 
@@ -104,11 +105,20 @@ def preview(
             else f"--scene {scene}: not a file"
         )
 
-    from rich.console import Console
-
     from sensorkit.render import render_preview
 
-    err = Console(stderr=True, highlight=False, log_path=False)
+    def say(message: str) -> None:
+        typer.echo(message, err=True)
+
+    log = say
+    if sys.stderr.isatty():  # rich's timestamps and colour for people; plain lines for logs
+        from rich.console import Console
+
+        console = Console(stderr=True, highlight=False, log_path=False)
+
+        def log(message: str) -> None:
+            console.log(message, markup=False)
+
     # No live spinner: it would run a thread, and cameras render in forked processes.
     result = render_preview(
         file,
@@ -119,7 +129,7 @@ def preview(
         args=xacro_args,
         package_paths=tuple(package_path or ()),
         target=target,
-        progress=lambda message: err.log(message, markup=False),
+        progress=log,
         workers=min(4, os.cpu_count() or 1),
     )
     for s in result.sensors:
@@ -128,7 +138,7 @@ def preview(
             if c.status in ("warn", "fail"):
                 typer.echo(f"  {c.status}: {c.name}: {c.message}")
     for note in result.notes:
-        err.print(f"note: {note}", markup=False)
+        say(f"note: {note}")
     typer.echo(f"wrote {result.files['index']}")
     if result.failed:
         raise typer.Exit(1)
