@@ -53,7 +53,7 @@ _NO_DISTORTION: Distortion = (0.0, 0.0, 0.0, 0.0, 0.0)
 _GZ_NEAR_CLIP = 0.1
 
 
-class InvalidValue(UsageError, ValueError):  # noqa: N818 - reads as "raise InvalidValue(...)"
+class InvalidValue(UsageError, ValueError):
     """A parameter is out of range, not finite, or of the wrong kind."""
 
 
@@ -441,7 +441,7 @@ class LaserScanParams:
         return self.angle_min + np.arange(self.samples, dtype=np.float64) * self.angle_increment
 
 
-def laser_scan(  # noqa: PLR0917 - mirrors the SDF <horizontal> and <range> fields
+def laser_scan(
     samples: int,
     resolution: float,
     min_angle: float,

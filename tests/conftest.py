@@ -2,6 +2,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
@@ -40,4 +41,18 @@ def check_urdf_bin() -> str:
 
 
 def run_check_urdf(path: Path, timeout: float = 20) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([check_urdf_bin(), str(path)], capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(
+        [check_urdf_bin(), str(path)], check=False, capture_output=True, text=True, timeout=timeout
+    )
+
+
+def run_cli(*args: str, cwd: Path | None = None, timeout: float = 120) -> subprocess.CompletedProcess[str]:
+    """Run ``python -m sensorkit ARGS`` as a user would (a fresh process)."""
+    return subprocess.run(
+        [sys.executable, "-m", "sensorkit", *args],
+        check=False,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        cwd=cwd,
+    )

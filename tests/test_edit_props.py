@@ -119,7 +119,7 @@ def free(name: str) -> bool:
     st.tuples(coords, coords, coords),
     st.tuples(angles, angles, angles),
 )
-def test_accepted_add_keeps_bytes_and_validates(  # noqa: PLR0917 (one per strategy)
+def test_accepted_add_keeps_bytes_and_validates(
     style: tuple[str, str, str],
     spec: tuple[str, dict[str, str]],
     name: str,

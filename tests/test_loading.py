@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 from builders import robot
 from conftest import CORPUS, ROOT, rules_of
+from conftest import run_cli as cli
 
 from sensorkit.engine import Options, validate_file
 from sensorkit.loading.packages import PackageResolver
@@ -29,10 +28,6 @@ BOMB = """<?xml version="1.0"?>
 SECRET = "sensorkit-secret-canary-1234"
 
 
-def cli(*args: str, cwd: Path | None = None, timeout: float = 120) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "sensorkit", *args], capture_output=True, text=True, timeout=timeout, cwd=cwd
-    )
 
 
 def write(tmp_path: Path, name: str, text: str | bytes) -> Path:

@@ -11,7 +11,7 @@ import os
 # pool only burns CPU at start-up. Set before anything imports numpy; the user's value wins.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import typer  # noqa: E402
+import typer
 
 from sensorkit import __version__
 

@@ -390,7 +390,7 @@ def _common(
 
 
 @handle_errors
-def add_camera(  # noqa: PLR0917 (one parameter per option)
+def add_camera(
     file: FileArg,
     name: NameOpt,
     parent: ParentOpt,
@@ -438,7 +438,7 @@ def add_camera(  # noqa: PLR0917 (one parameter per option)
 
 
 @handle_errors
-def add_depth_camera(  # noqa: PLR0917 (one parameter per option)
+def add_depth_camera(
     file: FileArg,
     name: NameOpt,
     parent: ParentOpt,
@@ -489,7 +489,7 @@ def add_depth_camera(  # noqa: PLR0917 (one parameter per option)
 
 
 @handle_errors
-def add_lidar(  # noqa: PLR0917 (one parameter per option)
+def add_lidar(
     file: FileArg,
     name: NameOpt,
     parent: ParentOpt,
@@ -556,7 +556,7 @@ def add_lidar(  # noqa: PLR0917 (one parameter per option)
 
 
 @handle_errors
-def add_stereo(  # noqa: PLR0917 (one parameter per option)
+def add_stereo(
     file: FileArg,
     name: NameOpt,
     parent: ParentOpt,
@@ -606,7 +606,7 @@ def add_stereo(  # noqa: PLR0917 (one parameter per option)
 
 
 @handle_errors
-def add_imu(  # noqa: PLR0917 (one parameter per option)
+def add_imu(
     file: FileArg,
     name: NameOpt,
     parent: ParentOpt,
