@@ -78,6 +78,9 @@ def validate(
         timeout=timeout,
     )
     report = validate_paths(files, options)
+    from sensorkit.cli import leave_quickly
+
+    leave_quickly()  # only reading was done: nothing to clean up
     sys.stdout.write(render(report, fmt, color=fmt == "text" and sys.stdout.isatty()))
     for fr in report.files:
         if fr.error:
