@@ -112,14 +112,18 @@ def test_readme_rule_table_matches_registry() -> None:
 
 
 def test_validate_does_not_import_pybullet_or_trimesh() -> None:
-    code = (
-        f"import sys, runpy; sys.argv=['sensorkit','validate',{str(GOOD)!r}];\n"
-        "try:\n  runpy.run_module('sensorkit', run_name='__main__')\n"
-        "except SystemExit: pass\n"
-        "bad=[m for m in ('pybullet','trimesh','yourdfpy') if m in sys.modules]; print(bad)"
+    # -X importtime logs every import on stderr as it happens (validate ends with os._exit).
+    res = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", str(GOOD)],
+        check=False,
+        capture_output=True,
+        text=True,
+        timeout=60,
     )
-    res = subprocess.run([sys.executable, "-c", code], check=False, capture_output=True, text=True, timeout=60)
-    assert res.stdout.strip().endswith("[]"), res.stdout + res.stderr
+    assert res.returncode == 0, res.stdout + res.stderr
+    imported = {line.rsplit("|", 1)[-1].strip() for line in res.stderr.splitlines() if "|" in line}
+    assert "sensorkit.engine" in imported  # the log is real
+    assert not {m for m in imported if m.split(".")[0] in ("pybullet", "trimesh", "yourdfpy")}
 
 
 def test_pre_commit_hook_file() -> None:
