@@ -140,6 +140,9 @@ def preview(
     for note in result.notes:
         say(f"note: {note}")
     typer.echo(f"wrote {result.files['index']}")
+    from sensorkit.cli import leave_quickly
+
+    leave_quickly()  # everything is written and pybullet disconnected: skip teardown
     if result.failed:
         raise typer.Exit(1)
 
