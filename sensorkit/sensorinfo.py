@@ -27,12 +27,8 @@ export.
 
 from __future__ import annotations
 
-import contextlib
 import math
-import os
 import re
-import shutil
-import tempfile
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -1105,39 +1101,6 @@ def export_files(info: RobotInfo) -> ExportFiles:
     return plan
 
 
-def _protect(out: Path, inputs: Iterable[Path]) -> None:
-    resolved = out.resolve()
-    cwd = Path.cwd().resolve()
-    protected = {Path.home().resolve(), cwd, Path(resolved.anchor)}
-    if resolved in protected or resolved in cwd.parents:
-        msg = f"{out}: refusing to replace this folder even with --force; choose a subfolder"
-        raise UsageError(msg)
-    for path in inputs:
-        if resolved in path.resolve().parents:
-            msg = f"{out}: holds {path.name}; --force would delete it, choose another --out"
-            raise UsageError(msg)
-
-
-def _publish(temp: Path, out: Path) -> None:
-    """Rename the finished ``temp`` folder to ``out``, replacing what is there."""
-    if not out.exists():
-        os.replace(temp, out)
-        return
-    if not any(out.iterdir()):
-        out.rmdir()  # POSIX would replace an empty folder, Windows would not
-        os.replace(temp, out)
-        return
-    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
-    old.rmdir()
-    os.replace(out, old)
-    try:
-        os.replace(temp, out)
-    except BaseException:
-        os.replace(old, out)
-        raise
-    shutil.rmtree(old, ignore_errors=True)
-
-
 def publish_export(
     files: Mapping[str, str], out: Path, *, force: bool = False, inputs: Iterable[Path] = ()
 ) -> list[Path]:
@@ -1157,39 +1120,18 @@ def publish_export(
             protected; a path in ``files`` is absolute or climbs out.
         OSError: the file system refused (nothing is left behind).
     """
-    from sensorkit.exporters import write_text_atomic
+    from sensorkit.atomic import check_replaceable, staged_folder, write_text
 
-    if out.exists() and not out.is_dir():
-        msg = f"{out}: exists and is not a folder"
-        raise UsageError(msg)
-    resolved = out.resolve()
-    if resolved == Path.cwd().resolve() or resolved == Path(resolved.anchor):
-        msg = f"{out}: the export needs a folder of its own; choose a subfolder"
-        raise UsageError(msg)
+    check_replaceable(out, force=force, inputs=inputs)
     given, out = out, out.absolute()
-    if out.is_dir() and any(out.iterdir()):
-        if not force:
-            msg = f"{out}: folder is not empty; choose another --out or pass --force to replace it"
-            raise UsageError(msg)
-        _protect(out, inputs)
     for rel in files:
         parts = Path(rel).parts
         if Path(rel).is_absolute() or ".." in parts or not parts:
             msg = f"export path {rel!r} must stay inside the output folder"
             raise UsageError(msg)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
-    try:
+    with staged_folder(out) as temp:
         for rel, text in files.items():
             target = temp / rel
             target.parent.mkdir(parents=True, exist_ok=True)
-            write_text_atomic(target, text)
-        umask = os.umask(0)
-        os.umask(umask)
-        for folder in [temp, *(p for p in temp.rglob("*") if p.is_dir())]:
-            folder.chmod(0o777 & ~umask)
-        _publish(temp, out)
-    finally:
-        with contextlib.suppress(FileNotFoundError):
-            shutil.rmtree(temp)
+            write_text(target, text, fsync=False)  # the folder is published as a whole
     return [given / rel for rel in files]

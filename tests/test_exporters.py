@@ -4,10 +4,7 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
-import stat
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -35,7 +32,6 @@ from sensorkit.exporters import (
     sensor_bridge_entries,
     slam_toolbox_yaml,
     to_json,
-    write_text_atomic,
 )
 from sensorkit.exporters import _text as text
 from sensorkit.intrinsics import (
@@ -714,28 +710,3 @@ def test_sensor_bridge_entries_topics() -> None:
     assert all(item["direction"] == "GZ_TO_ROS" for item in data)
     with pytest.raises(InvalidValue, match="sensor_type"):
         sensor_bridge_entries("sonar", "/s", gz_version="harmonic")
-
-
-# --------------------------------------------------------------------------- atomic write
-
-
-def test_write_text_atomic(tmp_path: Path) -> None:
-    target = tmp_path / "camera_info.yaml"
-    write_text_atomic(target, "a: 1\n")
-    assert target.read_text(encoding="utf-8") == "a: 1\n"
-    os.chmod(target, 0o640)
-    write_text_atomic(target, "a: 2\n")
-    assert target.read_text(encoding="utf-8") == "a: 2\n"
-    assert stat.S_IMODE(target.stat().st_mode) == 0o640
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["camera_info.yaml"]
-
-
-def test_write_text_atomic_leaves_nothing_on_failure(tmp_path: Path) -> None:
-    with pytest.raises(OSError):
-        write_text_atomic(tmp_path / "missing" / "x.yaml", "a: 1\n")
-    target = tmp_path / "x.yaml"
-    target.write_text("old\n", encoding="utf-8")
-    with pytest.raises(UnicodeEncodeError):
-        write_text_atomic(target, "\udcff", encoding="utf-8")
-    assert target.read_text(encoding="utf-8") == "old\n"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.yaml"]

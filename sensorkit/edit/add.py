@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.edit.atomic import atomic_write
+from sensorkit.atomic import write_bytes
 from sensorkit.edit.check import Verdict, check_names, check_parent, compare, describe
 from sensorkit.edit.fragment import Fragment, expand_fragment
 from sensorkit.edit.kinds import KINDS, XACRO_NS, MacroInfo, SensorKind, read_macro, shipped_macro
@@ -491,10 +491,10 @@ def apply_add(result: AddResult) -> AddResult:
                 if not w.path.parent.is_dir():
                     w.path.parent.mkdir()
                     made_dirs.append(w.path.parent)
-                atomic_write(w.path, w.data, None)
+                write_bytes(w.path, w.data)
                 made_files.append(w.path)
             else:
-                atomic_write(w.path, w.data, w.mode)
+                write_bytes(w.path, w.data, mode=w.mode)
     except BaseException:
         for f in made_files:
             f.unlink(missing_ok=True)

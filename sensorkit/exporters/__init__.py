@@ -1,7 +1,7 @@
 """Exporters: pure functions from intrinsics and scan geometry to configuration text.
 
 Each returns a string (or, for JSON, a dict) and never touches the file system;
-:func:`write_text_atomic` publishes any of them safely. Reals are written exactly
+:func:`sensorkit.atomic.write_text` publishes any of them safely. Reals are written exactly
 (``repr``, always with a decimal point), ints without one, so each reader sees the
 kind it checks for.
 """
@@ -20,7 +20,6 @@ from sensorkit.exporters.depth_scan import (
     depthimage_to_laserscan_remappings,
     depthimage_to_laserscan_yaml,
 )
-from sensorkit.exporters.files import write_text_atomic
 from sensorkit.exporters.kalibr import kalibr_camchain_yaml
 from sensorkit.exporters.lidar import (
     amcl_yaml,
@@ -55,5 +54,4 @@ __all__ = [
     "sensor_bridge_entries",
     "slam_toolbox_yaml",
     "to_json",
-    "write_text_atomic",
 ]

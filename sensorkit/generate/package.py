@@ -8,17 +8,14 @@ one out in a single rename.
 
 from __future__ import annotations
 
-import contextlib
-import os
 import re
-import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
 
-from sensorkit.errors import InputError, UsageError
+from sensorkit.atomic import check_replaceable, staged_folder
+from sensorkit.errors import InputError
 from sensorkit.exporters.bridge import BridgeEntry
 from sensorkit.generate import render
 from sensorkit.generate.bridge import bridge_entries, bridge_file_text
@@ -120,45 +117,6 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
     return entries
 
 
-def _check_target(out: Path, spec_path: Path, *, force: bool) -> None:
-    if out.exists() and not out.is_dir():
-        msg = f"{out}: exists and is not a folder"
-        raise UsageError(msg)
-    if not out.is_dir() or not any(out.iterdir()):
-        return
-    if not force:
-        msg = f"{out}: folder is not empty; choose another -o or pass --force to replace it"
-        raise UsageError(msg)
-    resolved = out.resolve()
-    protected = {Path.home().resolve(), Path.cwd().resolve(), Path(resolved.anchor)}
-    if resolved in protected or resolved in Path.cwd().resolve().parents:
-        msg = f"{out}: refusing to replace this folder even with --force; choose a subfolder"
-        raise UsageError(msg)
-    if resolved in spec_path.resolve().parents:
-        msg = f"{out}: holds {spec_path.name}; --force would delete it, choose another -o"
-        raise UsageError(msg)
-
-
-def _publish(temp: Path, out: Path) -> None:
-    """Rename the finished ``temp`` folder to ``out``, replacing what is there."""
-    if not out.exists():
-        os.replace(temp, out)
-        return
-    if not any(out.iterdir()):
-        out.rmdir()  # POSIX would replace an empty folder, Windows would not
-        os.replace(temp, out)
-        return
-    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
-    old.rmdir()
-    os.replace(out, old)
-    try:
-        os.replace(temp, out)
-    except BaseException:
-        os.replace(old, out)
-        raise
-    shutil.rmtree(old, ignore_errors=True)
-
-
 def new_package(
     spec_path: Path, out: Path, *, force: bool = False, dry_run: bool = False
 ) -> GeneratedPackage:
@@ -175,19 +133,8 @@ def new_package(
         OSError: the file system refused.
     """
     spec = load_spec(spec_path)
-    _check_target(out, spec_path, force=force)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
-    try:
+    check_replaceable(out, force=force, inputs=[spec_path], flag="-o")
+    with staged_folder(out, publish=not dry_run) as temp:
         entries = build_package(spec, temp, yaml_name=spec_path.name)
         files = _listing(temp)
-        umask = os.umask(0)
-        os.umask(umask)
-        for folder in [temp, *(p for p in temp.rglob("*") if p.is_dir())]:
-            folder.chmod(0o777 & ~umask)
-        if not dry_run:
-            _publish(temp, out)
-    finally:
-        with contextlib.suppress(FileNotFoundError):
-            shutil.rmtree(temp)
     return GeneratedPackage(spec, out, files, entries, dry_run)

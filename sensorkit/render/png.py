@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.render._files import write_bytes_atomic
+from sensorkit.atomic import write_bytes
 
 __all__ = ["encode_png", "read_png", "write_png"]
 
@@ -56,7 +56,7 @@ def encode_png(image: npt.NDArray[np.uint8], *, level: int = 3) -> bytes:
 def write_png(path: Path, image: npt.NDArray[np.uint8], *, level: int = 3) -> bytes:
     """Encode ``image`` and publish it atomically at ``path``; returns the bytes."""
     data = encode_png(image, level=level)
-    write_bytes_atomic(path, data)
+    write_bytes(path, data, fsync=False)
     return data
 
 

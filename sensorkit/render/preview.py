@@ -204,7 +204,8 @@ class _Run:
 def _camera(
     run: _Run, job: _Job, progress: Progress | None
 ) -> tuple[SensorPreview, SensorDrawing | None]:
-    from sensorkit.exporters import camera_dict, camera_info_yaml, write_text_atomic
+    from sensorkit.atomic import write_text
+    from sensorkit.exporters import camera_dict, camera_info_yaml
     from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
     from sensorkit.render.camera import (
@@ -262,9 +263,10 @@ def _camera(
     if plugin is not None:
         camera_name = plugin.param("camera_name") or plugin.param("cameraName")
     out.files["camera_info"] = folder / "camera_info.yaml"
-    write_text_atomic(
+    write_text(
         out.files["camera_info"],
         camera_info_yaml(published, camera_name=camera_name or sensor.name),
+        fsync=False,
     )
 
     frames = run.frames(sensor)

@@ -14,7 +14,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from sensorkit import __version__
-from sensorkit.exporters import write_text_atomic
+from sensorkit.atomic import write_text
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -100,7 +100,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
 
 def write_summary(result: PreviewResult) -> None:
     text = json.dumps(summary_dict(result), indent=2, allow_nan=False) + "\n"
-    write_text_atomic(result.files["summary"], text)
+    write_text(result.files["summary"], text, fsync=False)
 
 
 # ---- index.html ----------------------------------------------------------------------
@@ -292,4 +292,4 @@ def write_index(result: PreviewResult) -> None:
 <p class="meta">Files: <a href="summary.json">summary.json</a> &middot; <a href="overview.png">overview.png</a></p>
 </body></html>
 """
-    write_text_atomic(result.files["index"], page)
+    write_text(result.files["index"], page, fsync=False)

@@ -1,0 +1,135 @@
+"""Atomic publication: a reader sees the old file (or folder) or the new one, never half.
+
+One place for every write sensorkit makes: the user's robot files (``add-*``), exported
+configs, preview images, and whole generated folders (``new``, ``export``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import stat
+import tempfile
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+from sensorkit.errors import UsageError
+
+__all__ = ["check_replaceable", "staged_folder", "write_bytes", "write_text"]
+
+
+def _umask() -> int:
+    old = os.umask(0o022)
+    os.umask(old)
+    return old
+
+
+def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool = True) -> None:
+    """Write ``data`` to ``path`` through a temporary file in its folder and ``os.replace``.
+
+    ``mode=None`` keeps an existing file's permission bits (a new file gets 0o666 less the
+    umask). A symlink is followed, so the link itself survives. ``fsync`` makes the data
+    and the rename durable (the default for users' files; generated outputs may skip it).
+    The temporary file is removed if anything fails. The folder must exist.
+    """
+    real = Path(os.path.realpath(path))
+    if mode is None:
+        try:
+            mode = real.stat().st_mode
+        except FileNotFoundError:
+            mode = 0o666 & ~_umask()
+    fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".sensorkit-tmp")
+    try:
+        with os.fdopen(fd, "wb") as out:
+            out.write(data)
+            if fsync:
+                out.flush()
+                os.fsync(out.fileno())
+        os.chmod(tmp, stat.S_IMODE(mode))
+        os.replace(tmp, real)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    if fsync:
+        with contextlib.suppress(OSError):  # make the rename itself durable where possible
+            dir_fd = os.open(real.parent, os.O_RDONLY)
+            try:
+                os.fsync(dir_fd)
+            finally:
+                os.close(dir_fd)
+
+
+def write_text(
+    path: str | os.PathLike[str], text: str, *, encoding: str = "utf-8", fsync: bool = True
+) -> None:
+    """``write_bytes`` for text (no newline translation: ``text`` is written as given)."""
+    write_bytes(Path(path), text.encode(encoding), fsync=fsync)
+
+
+def check_replaceable(
+    out: Path, *, force: bool, inputs: Iterable[Path] = (), flag: str = "--out"
+) -> None:
+    """Refuse an output folder that is a file, non-empty without ``force``, or precious.
+
+    A folder that would be replaced whole must not be the working folder, one of its
+    ancestors, the home folder or a file system root, nor hold any of ``inputs``.
+    """
+    if out.exists() and not out.is_dir():
+        msg = f"{out}: exists and is not a folder"
+        raise UsageError(msg)
+    resolved = out.resolve()
+    cwd = Path.cwd().resolve()
+    if resolved in {cwd, Path.home().resolve(), Path(resolved.anchor)} or resolved in cwd.parents:
+        msg = f"{out}: refusing to write into this folder (it would be replaced whole); choose a subfolder"
+        raise UsageError(msg)
+    if not out.is_dir() or not any(out.iterdir()):
+        return
+    if not force:
+        msg = f"{out}: folder is not empty; choose another {flag} or pass --force to replace it"
+        raise UsageError(msg)
+    for path in inputs:
+        if resolved in path.resolve().parents:
+            msg = f"{out}: holds {path.name}; --force would delete it, choose another {flag}"
+            raise UsageError(msg)
+
+
+@contextlib.contextmanager
+def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
+    """Yield an empty folder beside ``out`` to fill; on success it replaces ``out`` whole.
+
+    On an exception (or with ``publish=False``) the staging folder is deleted and ``out``
+    is untouched. Folders get the usual 0o777 less the umask.
+    """
+    out.parent.mkdir(parents=True, exist_ok=True)
+    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
+    try:
+        yield temp
+        umask = _umask()
+        for folder in [temp, *(p for p in temp.rglob("*") if p.is_dir())]:
+            folder.chmod(0o777 & ~umask)
+        if publish:
+            _replace_folder(temp, out)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            shutil.rmtree(temp)
+
+
+def _replace_folder(temp: Path, out: Path) -> None:
+    if not out.exists():
+        os.replace(temp, out)
+        return
+    if not any(out.iterdir()):
+        out.rmdir()  # POSIX would replace an empty folder, Windows would not
+        os.replace(temp, out)
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
+    old.rmdir()
+    os.replace(out, old)
+    try:
+        os.replace(temp, out)
+    except BaseException:
+        os.replace(old, out)
+        raise
+    shutil.rmtree(old, ignore_errors=True)
