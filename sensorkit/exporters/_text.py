@@ -16,7 +16,10 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from sensorkit.intrinsics import InvalidValue
+from sensorkit.intrinsics import (
+    InvalidValue,
+    _finite,  # one definition of "a finite number"
+)
 
 _PLAIN = re.compile(r"^[A-Za-z_/~][A-Za-z0-9_/.~-]*$")
 _YAML_WORDS = frozenset(
@@ -110,14 +113,7 @@ def fps_int(value: object, name: str = "fps") -> int:
 
 def finite(value: object, name: str) -> float:
     """Return ``value`` as a float if finite (not a bool), else raise InvalidValue."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        msg = f"{name} must be a finite number, got {value!r}"
-        raise InvalidValue(msg)
-    number = float(value)
-    if not math.isfinite(number):
-        msg = f"{name} must be a finite number, got {value!r}"
-        raise InvalidValue(msg)
-    return number
+    return _finite(name, value)
 
 
 def matrix_rows(matrix: Iterable[Iterable[float]]) -> list[float]:
