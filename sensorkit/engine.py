@@ -16,6 +16,7 @@ from sensorkit.errors import InputError, UsageError
 from sensorkit.findings import Finding, Severity
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import load_robot
 from sensorkit.model.frames import sensor_frames
 from sensorkit.model.robot import Robot
@@ -90,25 +91,6 @@ class Report:
         return 1 if any(f.severity >= fail_on for f in self.findings) else 0
 
 
-def _mesh_path(
-    uri: str, base: Path, resolver: PackageResolver
-) -> tuple[Path | None, str | None, str | None]:
-    """(path, reason-if-unresolvable, missing package) for a mesh/texture reference."""
-    if uri.startswith("package://"):
-        rest = uri[len("package://") :]
-        pkg, _, rel = rest.partition("/")
-        folder = resolver.find(pkg)
-        if folder is None:
-            return None, f"package {pkg!r} not found", pkg
-        return folder / rel, None, None
-    if uri.startswith("file://"):
-        return Path(uri[len("file://") :]), None, None
-    if "://" in uri:  # model://, http:// ...: resolved by the simulator, not by us
-        return None, None, None
-    p = Path(uri)
-    return (p if p.is_absolute() else base / p), None, None
-
-
 def find_missing_files(
     robot: Robot, resolver: PackageResolver
 ) -> tuple[list[MissingFile], list[Finding]]:
@@ -120,7 +102,8 @@ def find_missing_files(
     exists: dict[Path, bool] = {}
     for link in robot.links:
         for uri, src in link.meshes:
-            path, _why, pkg = _mesh_path(uri, base, resolver)
+            target = resolve_uri(uri, base, resolver)
+            path, pkg = target.path, target.missing_package
             if pkg is not None:
                 if pkg not in seen_pkg:
                     seen_pkg.add(pkg)

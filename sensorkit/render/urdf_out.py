@@ -16,10 +16,11 @@ from pathlib import Path
 from lxml import etree
 
 from sensorkit.loading import PackageResolver
+from sensorkit.loading.uris import resolve_uri
 from sensorkit.loading.xacro_expand import LOC_ATTR
 from sensorkit.model.robot import Robot, local
 
-__all__ = ["PreparedUrdf", "prepare_urdf", "resolve_uri"]
+__all__ = ["PreparedUrdf", "prepare_urdf", "resolve_file"]
 
 # What pybullet's URDF importer reads (it also takes .dae for visuals, less reliably).
 MESH_SUFFIXES = (".obj", ".stl", ".dae")
@@ -34,25 +35,14 @@ class PreparedUrdf:
     dropped: int = 0
 
 
-def resolve_uri(uri: str, base: Path, resolver: PackageResolver) -> tuple[Path | None, str]:
-    """A file reference as a path, or (None, why not)."""
-    if uri.startswith("package://"):
-        pkg, _, rel = uri[len("package://") :].partition("/")
-        folder = resolver.find(pkg)
-        if folder is None:
-            return None, f"package {pkg!r} not found"
-        path = folder / rel
-    elif uri.startswith("file://"):
-        path = Path(uri[len("file://") :])
-    elif "://" in uri:
-        return None, "only package:// and file:// URIs can be read outside the simulator"
-    else:
-        path = Path(uri)
-        if not path.is_absolute():
-            path = base / path
-    if not path.is_file():
-        return None, f"no file at {path}"
-    return path.resolve(), ""
+def resolve_file(uri: str, base: Path, resolver: PackageResolver) -> tuple[Path | None, str]:
+    """An existing file for a reference, or (None, why not)."""
+    target = resolve_uri(uri, base, resolver)
+    if target.path is None:
+        return None, target.why
+    if not target.path.is_file():
+        return None, f"no file at {target.path}"
+    return target.path.resolve(), ""
 
 
 def prepare_urdf(robot: Robot, resolver: PackageResolver, *, what: str = "robot") -> PreparedUrdf:
@@ -68,7 +58,7 @@ def prepare_urdf(robot: Robot, resolver: PackageResolver, *, what: str = "robot"
             del el.attrib[LOC_ATTR]
     for mesh in list(root.iter("mesh")):
         uri = (mesh.get("filename") or "").strip()
-        path, why = resolve_uri(uri, base, resolver) if uri else (None, "no filename")
+        path, why = resolve_file(uri, base, resolver) if uri else (None, "no filename")
         if path is not None and path.suffix.lower() not in MESH_SUFFIXES:
             why = f"pybullet cannot read {path.suffix or 'this'} meshes"
             path = None
@@ -89,7 +79,7 @@ def prepare_urdf(robot: Robot, resolver: PackageResolver, *, what: str = "robot"
         uri = (tex.get("filename") or "").strip()
         if not uri:
             continue
-        path, why = resolve_uri(uri, base, resolver)
+        path, why = resolve_file(uri, base, resolver)
         if path is None or path.suffix.lower() not in TEXTURE_SUFFIXES:
             parent = tex.getparent()
             if parent is not None:
