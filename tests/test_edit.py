@@ -539,3 +539,22 @@ def test_mode_and_symlink_are_kept(rover: Path) -> None:
     assert (rover.stat().st_mode & 0o777) == 0o640
     assert b"imu_link" in rover.read_bytes()
     assert not [p for p in rover.parent.iterdir() if p.name.endswith(".sensorkit-tmp")]
+
+
+def test_add_to_a_robot_with_a_default_namespace(tmp_path: Path) -> None:
+    # urdfdom ignores a default xmlns; the validator drops it on load, and so must the
+    # re-validation of the result (it once refused this add with a false SK301).
+    robot = tmp_path / "ns.urdf"
+    robot.write_text(
+        '<?xml version="1.0"?>\n<robot name="r" xmlns="http://www.ros.org">\n'
+        '  <link name="base_footprint"/>\n'
+        '  <joint name="bj" type="fixed"><parent link="base_footprint"/><child link="base_link"/></joint>\n'
+        '  <link name="base_link"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>\n'
+        "</robot>\n"
+    )
+    result = add_sensor(AddRequest(path=robot, kind="camera", name="cam", parent="base_link"))
+    assert result.written
+    report = validate_file(robot)
+    assert [f for f in report.findings if f.severity >= Severity.WARNING] == []
+    assert report.robot is not None and "cam_optical_frame" in report.robot.link_map

@@ -36,6 +36,7 @@ from sensorkit.loading.document import (
     display_path,
     looks_like_xacro,
     read_input,
+    drop_default_namespace,
     strict_parser,
 )
 from sensorkit.loading.xacro_expand import forbid_entities
@@ -456,7 +457,8 @@ def _validate(
             includes=list(doc.includes),
         )
     else:
-        after = Document(path=doc.path, root=etree.fromstring(new, strict_parser()))
+        root = drop_default_namespace(etree.fromstring(new, strict_parser()))
+        after = Document(path=doc.path, root=root)
     return compare(robot, load_findings, after, options)
 
 
