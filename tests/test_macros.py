@@ -859,3 +859,18 @@ def test_unknown_sim_fails_on_the_command_line(tmp_path: Path) -> None:
 
 def test_macros_dir_holds_exactly_the_six_files() -> None:
     assert sorted(p.name for p in MACROS_DIR.glob("*.xacro")) == sorted(c.file for c in CASES)
+
+
+@pytest.mark.parametrize("case", CAMERA_CASES, ids=[c.key for c in CAMERA_CASES])
+def test_classic_cameras_each_serve_their_own_set_camera_info(
+    case: MacroCase, expanded: Callable[..., str]
+) -> None:
+    # camera_info_manager creates "set_camera_info" relative to the node's namespace, so two
+    # cameras in one namespace would both serve /set_camera_info: each remaps it under its name.
+    root = parse(expanded(case, sim="classic"))
+    plugins = [p for p in root.iter("plugin") if p.get("filename") == "libgazebo_ros_camera.so"]
+    assert plugins
+    for plugin in plugins:
+        camera = text_of(plugin, "camera_name")
+        remaps = [r.text for r in plugin.iter("remapping")]
+        assert f"set_camera_info:={camera}/set_camera_info" in remaps
