@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from builders import inertial, joint, link
-from conftest import CORPUS, ROOT, run_check_urdf
+from conftest import ROOT, run_check_urdf
 from test_rules import CASES
 
 from sensorkit.engine import Options, validate_file
@@ -30,14 +30,16 @@ ON_PURPOSE = {
 
 
 def _plain_urdfs() -> list[Path]:
-    files = sorted((ROOT / "tests/robots").rglob("*.urdf"))
-    files += [p for p in sorted(CORPUS.rglob("*.urdf")) if not looks_like_xacro(p, p.read_bytes())]
-    return files
+    """Every plain URDF file under tests/ (fixtures and the corpus copy), not xacro in disguise."""
+    files = sorted(p for p in (ROOT / "tests").rglob("*.urdf"))
+    return [p for p in files if not looks_like_xacro(p, p.read_bytes())]
 
 
 def _structural_errors(path: Path, target: str = "auto") -> set[str]:
     report = validate_file(path, Options(target=target))
-    return {f.rule for f in report.findings if f.rule in STRUCTURAL and f.severity == Severity.ERROR}
+    return {
+        f.rule for f in report.findings if f.rule in STRUCTURAL and f.severity == Severity.ERROR
+    }
 
 
 @pytest.mark.parametrize("path", _plain_urdfs(), ids=lambda p: p.name)
@@ -63,14 +65,22 @@ def test_rule_cases_agree_with_check_urdf(tmp_path: Path) -> None:
         if (res.returncode == 0) != (not _structural_errors(path, target)):
             differ.append(name)
     # Exactly the documented cases differ: two parents, lower > upper, zero axis, mimic target.
-    assert sorted(differ) == sorted(["SK204-9-bad", "SK205-12-bad", "SK206-14-bad", "SK207-16-bad"]), differ
+    assert sorted(differ) == sorted(
+        ["SK204-9-bad", "SK205-12-bad", "SK206-14-bad", "SK207-16-bad"]
+    ), differ
     assert len(ON_PURPOSE) == len(differ)
 
 
 def test_check_urdf_hangs_on_a_cycle_below_the_root_and_we_do_not(tmp_path: Path) -> None:
     text = (
-        '<robot name="c">' + link("a", inertial(1, 0.1)) + link("b") + link("c")
-        + joint("j1", "a", "b") + joint("j2", "b", "c") + joint("j3", "c", "b") + "</robot>"
+        '<robot name="c">'
+        + link("a", inertial(1, 0.1))
+        + link("b")
+        + link("c")
+        + joint("j1", "a", "b")
+        + joint("j2", "b", "c")
+        + joint("j3", "c", "b")
+        + "</robot>"
     )
     p = tmp_path / "cycle.urdf"
     p.write_text(text)

@@ -874,3 +874,31 @@ def test_classic_cameras_each_serve_their_own_set_camera_info(
         camera = text_of(plugin, "camera_name")
         remaps = [r.text for r in plugin.iter("remapping")]
         assert f"set_camera_info:={camera}/set_camera_info" in remaps
+
+
+@pytest.mark.parametrize(("sim", "gz_version"), SIM_VARIANTS, ids=VARIANT_IDS)
+@pytest.mark.parametrize("case", CASES, ids=CASE_IDS)
+def test_macro_validates_clean_and_gazebo_keeps_every_sensor(
+    case: MacroCase, sim: str, gz_version: str, tmp_path: Path
+) -> None:
+    from sensorkit.engine import Options, validate_file
+    from sensorkit.findings import Severity
+    from sensorkit.model.sdf import convert
+
+    source = tmp_path / "robot.urdf.xacro"
+    calls = [
+        (case, params(name="a", sim=sim, gz_version=gz_version)),
+        (case, params(name="b", sim=sim, gz_version=gz_version)),
+    ]
+    source.write_text(robot_source(calls))
+    target = gz_version if sim == "gz" else "classic"
+    report = validate_file(source, Options(target=target))
+    assert report.error is None and not report.internal_errors
+    assert [(f.rule, f.message) for f in report.findings if f.severity >= Severity.WARNING] == []
+    robot = report.robot
+    assert robot is not None
+    assert len(robot.sensors) == (0 if sim == "none" else 2 * max(1, len(case.eyes)))
+    conv = convert(robot)
+    assert not conv.dropped, conv.dropped  # every link keeps its mass through the conversion
+    for sensor in robot.sensors:
+        assert sensor.reference in robot.link_map and sensor.reference not in conv.dropped
