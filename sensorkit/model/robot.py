@@ -61,10 +61,24 @@ URDF_ATTRS: dict[str, frozenset[str]] = {
 }
 
 
+def parse_vec3(text: str) -> tuple[Vec3 | None, str | None]:
+    """Three finite numbers from an attribute, or (None, why): ``parse_vec``'s fast path."""
+    try:
+        a, b, c = text.split()
+        v = (float(a), float(b), float(c))
+    except ValueError:
+        return None, f"{text!r} is not 3 numbers"
+    if v[0] - v[0] or v[1] - v[1] or v[2] - v[2]:  # NaN for NaN and inf, 0.0 otherwise
+        return None, f"{text!r} is not finite"
+    return v, None
+
+
 def parse_vec(text: str | None, n: int = 3) -> tuple[tuple[float, ...] | None, str | None]:
     """``n`` numbers from an attribute, or (None, why)."""
     if text is None:
         return None, None
+    if n == 3:
+        return parse_vec3(text)
     parts = text.split()
     if len(parts) != n:
         return None, f"{text!r} is not {n} numbers"
@@ -123,6 +137,9 @@ def text_of(el: etree._Element | None, *path: str) -> str | None:
     return str(cur.text).strip()
 
 
+_ZERO: Vec3 = (0.0, 0.0, 0.0)
+
+
 @dataclass(slots=True)
 class Origin:
     """A URDF ``<origin>``: xyz and rpy, zeros when absent; notes when unreadable."""
@@ -137,18 +154,19 @@ class Origin:
     def read(cls, el: etree._Element | None, source: SourceRef | None = None) -> Origin:
         if el is None:
             return cls(source=source)
-        out = cls(source=source, rpy_text=el.get("rpy"))
-        xyz, why = parse_vec(el.get("xyz"))
-        if why:
-            out.problems.append(f"xyz {why}")
-        elif xyz is not None:
-            out.xyz = (xyz[0], xyz[1], xyz[2])
-        rpy, why = parse_vec(el.get("rpy"))
-        if why:
-            out.problems.append(f"rpy {why}")
-        elif rpy is not None:
-            out.rpy = (rpy[0], rpy[1], rpy[2])
-        return out
+        xyz_text, rpy_text = el.get("xyz"), el.get("rpy")
+        xyz: Vec3 | None = _ZERO
+        rpy: Vec3 | None = _ZERO
+        problems: list[str] = []
+        if xyz_text is not None:
+            xyz, why = parse_vec3(xyz_text)
+            if why:
+                problems.append(f"xyz {why}")
+        if rpy_text is not None:
+            rpy, why = parse_vec3(rpy_text)
+            if why:
+                problems.append(f"rpy {why}")
+        return cls(xyz or _ZERO, rpy or _ZERO, problems, rpy_text, source)
 
     def matrix(self) -> Mat:
         from sensorkit.model.transforms import transform
@@ -378,7 +396,13 @@ _INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _MASS_ATTRS = URDF_ATTRS["mass"] | {LOC_ATTR}
 _INERTIA_ATTRS = URDF_ATTRS["inertia"] | {LOC_ATTR}
 _ORIGIN_ATTRS = URDF_ATTRS["origin"] | {LOC_ATTR}
+_LINK_ATTRS = URDF_ATTRS["link"] | {LOC_ATTR}
 _LIMIT_KEYS = ("lower", "upper", "effort", "velocity")
+_JOINT_CHILD_ATTRS = {tag: URDF_ATTRS[tag] | {LOC_ATTR} for tag in URDF_CHILDREN["joint"]}
+
+
+def _no_attr(_key: str) -> None:
+    return None
 
 
 def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[Stray]) -> Inertial:
@@ -412,14 +436,14 @@ def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[St
             if why:
                 problems.append(f"mass {why}")
     inertia: dict[str, float | None] = {}
-    get = in_el.get if in_el is not None else (lambda _k: None)
+    get = in_el.get if in_el is not None else _no_attr
     for key in _INERTIA_KEYS:
         text = get(key)
         if text is None:
             inertia[key] = None
             continue
         try:
-            value = float(text)
+            value: float | None = float(text)
         except ValueError:
             value = None
         if value is None or value - value != 0.0:
@@ -434,8 +458,9 @@ def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[St
 
 def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
     name = el.get("name", "")
-    link = Link(name=name, element=el, doc=doc)
-    _check_attrs(el, "link", name, strays)
+    link = Link(name, el, doc)
+    if not _LINK_ATTRS.issuperset(el.keys()):
+        _check_attrs(el, "link", name, strays)
     for part in el:
         tag = part.tag
         if tag == "inertial":
@@ -446,11 +471,12 @@ def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
             for c in part:
                 ctag = c.tag
                 if ctag == "geometry":
-                    for mesh in c.iterchildren("mesh"):
-                        if mesh.get("filename"):
-                            link.meshes.append((mesh.get("filename", ""), doc.locate(mesh)))
+                    for shape in c:
+                        if shape.tag == "mesh" and shape.get("filename"):
+                            link.meshes.append((shape.get("filename", ""), doc.locate(shape)))
                 elif ctag == "origin":
-                    _check_attrs(c, "origin", name, strays)
+                    if not _ORIGIN_ATTRS.issuperset(c.keys()):
+                        _check_attrs(c, "origin", name, strays)
                 elif ctag not in allowed:
                     _stray_child(c, tag, name, strays)
         else:
@@ -461,13 +487,13 @@ def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
 def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint:
     parent_el = child_el = origin_el = axis_el = limit_el = mimic_el = None
     _check_attrs(el, "joint", None, strays)
-    allowed = URDF_CHILDREN["joint"]
     for c in el:
         tag = c.tag
-        if tag not in allowed:
+        attrs = _JOINT_CHILD_ATTRS.get(tag)
+        if attrs is None:
             _stray_child(c, "joint", None, strays)
             continue
-        if not URDF_ATTRS[tag].issuperset(c.keys()):
+        if not attrs.issuperset(c.keys()):
             _check_attrs(c, tag, None, strays)
         if tag == "parent":
             parent_el = parent_el if parent_el is not None else c
@@ -491,7 +517,8 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
         doc=doc,
     )
     if axis_el is not None:
-        axis, why = parse_vec(axis_el.get("xyz"))
+        axis_text = axis_el.get("xyz")
+        axis, why = parse_vec3(axis_text) if axis_text is not None else (None, None)
         joint.axis_problem = why
         if axis is not None:
             joint.axis = (axis[0], axis[1], axis[2])
