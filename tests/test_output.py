@@ -132,3 +132,12 @@ def test_pre_commit_hook_file() -> None:
     hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
     (hook,) = [h for h in hooks if h["id"] == "sensorkit-validate"]
     assert hook["entry"] == "sensorkit validate" and hook["language"] == "python"
+
+
+def test_readme_example_output_is_what_validate_prints() -> None:
+    readme = (ROOT / "README.md").read_text()
+    cmd = "$ sensorkit validate tests/robots/acceptance/sk502_bad.urdf\n"
+    assert cmd in readme
+    shown = readme.split(cmd, 1)[1].split("```", 1)[0]
+    res = cli("validate", "tests/robots/acceptance/sk502_bad.urdf", cwd=ROOT)
+    assert res.stdout == shown
