@@ -1,7 +1,7 @@
 """``sensorkit intrinsics`` and ``sensorkit export``: what the sensors publish, as the
 files their consumers read.
 
-Thin: parse options, call :mod:`sensorkit.sensorinfo`, print. Data goes to stdout (the
+Thin: parse options, call :mod:`sensorkit.exporters.robot`, print. Data goes to stdout (the
 intrinsics document; the paths written), notes and the summary to stderr.
 """
 
@@ -60,7 +60,8 @@ def intrinsics(
     Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
     """
     from sensorkit.errors import UsageError
-    from sensorkit.sensorinfo import FORMATS, describe, intrinsics_document, load, select_cameras
+    from sensorkit.exporters.robot import FORMATS, intrinsics_document, select_cameras
+    from sensorkit.sensorinfo import describe, load
 
     xacro_args = parse_xacro_args(arg)
     if fmt not in FORMATS:
@@ -99,7 +100,8 @@ def export(
     Exit status: 0 all written; 1 some files could not be produced
     (why is on stderr, the rest is written); 2 it could not run.
     """
-    from sensorkit.sensorinfo import describe, export_files, load, publish_export
+    from sensorkit.exporters.robot import export_files, publish_export
+    from sensorkit.sensorinfo import describe, load
 
     xacro_args = parse_xacro_args(arg)
     robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))

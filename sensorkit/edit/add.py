@@ -34,9 +34,9 @@ from sensorkit.findings import Finding
 from sensorkit.loading.document import (
     Document,
     display_path,
+    drop_default_namespace,
     looks_like_xacro,
     read_input,
-    drop_default_namespace,
     strict_parser,
 )
 from sensorkit.loading.xacro_expand import forbid_entities

@@ -1,0 +1,495 @@
+"""A whole robot's exports: the ``intrinsics`` documents and the ``export`` folder.
+
+Built on :func:`sensorkit.sensorinfo.describe` (what each sensor publishes) and the format
+writers of this package; :func:`publish_export` writes the folder atomically.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Literal, get_args
+
+from sensorkit.errors import InputError, UsageError
+from sensorkit.intrinsics import InvalidValue
+from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
+
+if TYPE_CHECKING:
+    from sensorkit.model.transforms import Mat
+
+DEFAULT_FPS = 30
+"""Frame rate written for ORB-SLAM3 when a camera's ``<update_rate>`` is 0 or missing."""
+
+IntrinsicsFormat = Literal["json", "camera-info", "orbslam3", "orbslam3-v1", "kalibr", "opencv"]
+FORMATS: tuple[str, ...] = get_args(IntrinsicsFormat)
+SINGLE_DOCUMENT_FORMATS = frozenset(FORMATS) - {"json"}
+
+_BGR_FORMATS = frozenset({"B8G8R8", "BGR_INT8"})
+_COLOUR_FORMATS = frozenset({"R8G8B8", "RGB_INT8", "R16G16B16", "RGB_INT16"}) | _BGR_FORMATS
+_TOP_LEVEL_NAMES = ("bridge.yaml",)
+
+
+# --------------------------------------------------------------------------- intrinsics
+
+
+def select_cameras(info: RobotInfo, name: str | None, fmt: str) -> list[CameraView]:
+    """The cameras ``sensorkit intrinsics`` prints: all, or those ``name`` picks (a
+    sensor name, or ``<sensor>/<camera>`` for one camera of a multicamera).
+
+    Raises:
+        UsageError: unknown format, no camera, an unknown name, or several cameras for
+            a format that holds one.
+    """
+    if fmt not in FORMATS:
+        msg = f"--format {fmt!r}: use " + ", ".join(FORMATS)
+        raise UsageError(msg)
+    cameras = info.cameras
+    ids = ", ".join(c.id for c in cameras)
+    if not cameras:
+        msg = f"{info.robot.document.display}: the robot has no camera"
+        if info.robot.sensors:
+            msg += " (sensors: " + ", ".join(s.name for s in info.robot.sensors) + ")"
+        raise UsageError(msg)
+    if name is not None:
+        picked = [c for c in cameras if name in (c.id, c.sensor.name)]
+        if not picked:
+            msg = f"--sensor {name}: no camera called {name!r} (cameras: {ids})"
+            raise UsageError(msg)
+        cameras = picked
+    if fmt in SINGLE_DOCUMENT_FORMATS and len(cameras) > 1:
+        msg = f"--format {fmt} holds one camera: pick one with --sensor (cameras: {ids})"
+        if name is not None:
+            listing = ", ".join(c.id for c in cameras)
+            msg = (
+                f"--format {fmt} holds one camera and {name!r} has {len(cameras)}: "
+                f"pick one with --sensor (cameras: {listing})"
+            )
+        raise UsageError(msg)
+    for cam in cameras:
+        if cam.intrinsics is None:
+            msg = f"camera {cam.id}: {cam.error}"
+            raise InputError(msg)
+    return cameras
+
+
+def _camera_record(view: CameraView, target: str) -> dict[str, object]:
+    from sensorkit.exporters import camera_dict
+
+    assert view.intrinsics is not None
+    return camera_dict(
+        view.intrinsics,
+        camera=view.id,
+        sensor=view.sensor.name,
+        sensor_type=view.sensor.type,
+        target=target,
+        frame_id=view.frame,
+        image_topic=view.image_topic,
+        camera_info_topic=view.camera_info_topic,
+        update_rate=view.sensor.update_rate,
+        notes=list(view.notes),
+    )
+
+
+def _fps(view: CameraView, notes: list[str]) -> int:
+    rate = view.fps
+    if rate is None:
+        notes.append(f"no positive <update_rate>: Camera.fps {DEFAULT_FPS}")
+        return DEFAULT_FPS
+    whole = max(1, round(rate))
+    if whole != rate:
+        notes.append(
+            f"<update_rate> {rate:g} rounded to Camera.fps {whole} (ORB-SLAM3 wants an int)"
+        )
+    return whole
+
+
+def _rgb(view: CameraView, notes: list[str]) -> bool:
+    fmt = (view.spec.format or "R8G8B8").strip()
+    if fmt not in _COLOUR_FORMATS:
+        notes.append(f"image format {fmt}: Camera.RGB only matters for colour images")
+    return fmt not in _BGR_FORMATS
+
+
+def _T_cam_imu(view: CameraView, info: RobotInfo, notes: list[str]) -> Mat | None:
+    """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
+    import numpy as np
+
+    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms import R_BODY_OPTICAL, invert
+
+    imus = info.imus
+    if not imus:
+        return None
+    T_world_render = render_pose(info.robot, view.sensor)
+    T_world_imu = imus[0].T_world_render
+    if T_world_render is None or T_world_imu is None:
+        return None
+    if view.spec.pose is not None and view.spec.pose.xyz is not None:
+        T_world_render = T_world_render @ view.spec.pose.matrix()
+    if len(imus) > 1:
+        notes.append(f"T_cam_imu uses the first IMU, {imus[0].name!r}")
+    T_render_optical = np.eye(4)
+    T_render_optical[:3, :3] = R_BODY_OPTICAL
+    T_world_optical = T_world_render @ T_render_optical
+    out: Mat = invert(T_world_optical) @ T_world_imu
+    out[3] = (0.0, 0.0, 0.0, 1.0)
+    return out
+
+
+def camera_document(
+    view: CameraView, fmt: str, info: RobotInfo, notes: list[str], *, mode: str = "monocular"
+) -> str:
+    """One camera in one single-document format.
+
+    Raises:
+        InvalidValue: the format cannot hold this camera (Kalibr: k3 or skew; a missing
+            image topic for Kalibr's ``rostopic``).
+    """
+    from sensorkit.exporters import (
+        camera_info_yaml,
+        kalibr_camchain_yaml,
+        opencv_yaml,
+        orbslam3_yaml,
+    )
+
+    intr = view.intrinsics
+    assert intr is not None
+    if fmt == "camera-info":
+        return camera_info_yaml(intr, camera_name=view.name)
+    if fmt == "opencv":
+        return opencv_yaml(intr)
+    if fmt in ("orbslam3", "orbslam3-v1"):
+        return orbslam3_yaml(
+            intr,
+            mode=mode,  # type: ignore[arg-type]
+            fps=_fps(view, notes),
+            version="1.0" if fmt == "orbslam3-v1" else "old",
+            rgb=_rgb(view, notes),
+        )
+    if fmt == "kalibr":
+        if view.image_topic is None:
+            msg = "no image topic for Kalibr's rostopic (the camera publishes nothing to ROS)"
+            raise InvalidValue(msg)
+        return kalibr_camchain_yaml(
+            intr, rostopic=view.image_topic, T_cam_imu=_T_cam_imu(view, info, notes)
+        )
+    msg = f"format {fmt!r} is not a single-document format"
+    raise UsageError(msg)
+
+
+def intrinsics_document(
+    info: RobotInfo, cameras: Sequence[CameraView], fmt: str
+) -> tuple[str, list[str]]:
+    """``sensorkit intrinsics`` output for ``cameras`` in ``fmt``, and notes for stderr.
+
+    ``json``: ``{"robot", "file", "target", "target_reason", "convention", "cameras":
+    [...]}``, each camera the exporter's ``camera_dict`` plus its sensor, topics and
+    frame. Every other format holds exactly one camera (see :func:`select_cameras`);
+    ORB-SLAM3 files are monocular.
+
+    Raises:
+        InvalidValue: the format cannot hold the camera.
+    """
+    from sensorkit.exporters import to_json
+
+    notes = [f"{c.id}: {n}" for c in cameras for n in c.notes]
+    if fmt == "json":
+        data: dict[str, object] = {
+            "robot": info.robot.name,
+            "file": info.robot.document.display,
+            "target": info.target,
+            "target_reason": info.target_reason,
+            "convention": info.convention,
+            "cameras": [_camera_record(c, info.target) for c in cameras],
+        }
+        return to_json(data), notes
+    (view,) = cameras
+    extra: list[str] = []
+    text = camera_document(view, fmt, info, extra)
+    return text, notes + [f"{view.id}: {n}" for n in extra]
+
+
+# --------------------------------------------------------------------------- export
+
+
+@dataclass
+class ExportFiles:
+    """The export as text, before anything is written.
+
+    ``files`` maps a POSIX path relative to the output folder to its text; ``notes``
+    are for information; ``skipped`` names files a sensor should have had and why
+    they could not be produced (the robot needs a fix).
+    """
+
+    info: RobotInfo
+    files: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
+    folders: dict[str, str] = field(default_factory=dict)  # sensor name -> folder
+
+
+def _folder(name: str, taken: set[str]) -> str:
+    base = re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "sensor"
+    out, k = base, 2
+    while out.lower() in taken or out.lower() in _TOP_LEVEL_NAMES:
+        out, k = f"{base}_{k}", k + 1
+    taken.add(out.lower())
+    return out
+
+
+def _attempt(
+    plan: ExportFiles, path: str, what: str, make: Callable[[], str], *, limit: bool = False
+) -> None:
+    """Add ``path`` from ``make()``. An impossible value skips it with the reason: as a
+    note when the format cannot hold the camera (``limit``), else as a skipped file."""
+    try:
+        plan.files[path] = make()
+    except InvalidValue as exc:
+        if limit:
+            plan.notes.append(f"{path} not written: {what} cannot hold this camera: {exc}")
+        else:
+            plan.skipped.append(f"{path}: {what}: {exc}")
+
+
+def _sensor_record(s: SensorInfo, target: str) -> dict[str, object]:
+    from sensorkit.exporters import laser_scan_dict
+
+    record: dict[str, object] = {
+        "name": s.name,
+        "type": s.sensor.type,
+        "kind": s.sensor.kind,
+        "target": target,
+        "link": s.link,
+        "frame_id": s.frame,
+        "frame_from": s.frame_how,
+        "body_frame": s.body_frame,
+        "update_rate": s.sensor.update_rate,
+        "topics": dict(s.topics),
+        "cameras": [c.id for c in s.cameras],
+        "notes": list(s.notes),
+    }
+    if s.T_world_render is not None:
+        record["T_root_sensor"] = [[float(v) for v in row] for row in s.T_world_render]
+    if s.scan is not None:
+        record["scan"] = laser_scan_dict(s.scan)
+    if s.vertical is not None:
+        record["vertical"] = laser_scan_dict(s.vertical)
+    return record
+
+
+def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: str) -> None:
+    from sensorkit.exporters import depthimage_to_laserscan_yaml, to_json
+
+    info = plan.info
+    plan.notes.extend(f"{view.id}: {n}" for n in view.notes)
+    if view.intrinsics is None:
+        plan.skipped.append(f"{folder}/: camera files: {view.error}")
+        return
+    intr = view.intrinsics
+    notes: list[str] = []
+
+    def document(fmt: str, mode: str = "monocular") -> Callable[[], str]:
+        return lambda: camera_document(view, fmt, info, notes, mode=mode)
+
+    _attempt(plan, f"{folder}/camera_info.yaml", "camera_info", document("camera-info"))
+    _attempt(plan, f"{folder}/opencv.yaml", "OpenCV", document("opencv"))
+    _attempt(
+        plan,
+        f"{folder}/intrinsics.json",
+        "JSON",
+        lambda: to_json(_camera_record(view, info.target)),
+    )
+    if s.has_colour:
+        _attempt(plan, f"{folder}/orbslam3.yaml", "ORB-SLAM3", document("orbslam3"), limit=True)
+        _attempt(
+            plan, f"{folder}/orbslam3_v1.yaml", "ORB-SLAM3", document("orbslam3-v1"), limit=True
+        )
+        if view.image_topic is None:
+            plan.skipped.append(
+                f"{folder}/kalibr.yaml: no image topic for Kalibr's rostopic "
+                "(the camera publishes nothing to ROS)"
+            )
+        else:
+            _attempt(plan, f"{folder}/kalibr.yaml", "Kalibr", document("kalibr"), limit=True)
+    else:
+        plan.notes.append(
+            f"{view.id}: publishes a depth image only, so no ORB-SLAM3 or Kalibr files "
+            "(an rgbd_camera publishes colour and depth)"
+        )
+    if s.sensor.is_depth:
+        if s.has_colour:  # Gazebo's depth images are 32FC1 metres: DepthMapFactor 1.0
+            for name, fmt in (
+                ("orbslam3_rgbd.yaml", "orbslam3"),
+                ("orbslam3_rgbd_v1.yaml", "orbslam3-v1"),
+            ):
+                _attempt(plan, f"{folder}/{name}", "ORB-SLAM3", document(fmt, "rgbd"), limit=True)
+        lo, hi, range_notes = depth_range(s.sensor, view.spec, info.target)
+        notes.extend(range_notes)
+        depth_topic = s.topics.get("depth_image")
+        depth_info = s.topics.get("depth_camera_info")
+        path = f"{folder}/depthimage_to_laserscan.yaml"
+        if s.body_frame is None:
+            plan.skipped.append(
+                f"{path}: no link sits at the camera's pose with x forward to stamp the scan "
+                "with; add a fixed link there (the camera's body frame)"
+            )
+        elif depth_topic is None or depth_info is None:
+            plan.skipped.append(f"{path}: the camera publishes no depth image topic to ROS")
+        else:
+            body = s.body_frame
+            _attempt(
+                plan,
+                path,
+                "depthimage_to_laserscan",
+                lambda: depthimage_to_laserscan_yaml(
+                    intr,
+                    depth_topic=depth_topic,
+                    depth_camera_info_topic=depth_info,
+                    output_frame=body,
+                    range_min=lo,
+                    range_max=hi,
+                    fps=view.fps,
+                ),
+            )
+    plan.notes.extend(f"{view.id}: {n}" for n in dict.fromkeys(notes))
+
+
+def _export_lidar(plan: ExportFiles, s: SensorInfo, folder: str) -> None:
+    from sensorkit.exporters import (
+        amcl_yaml,
+        nav2_obstacle_layer_yaml,
+        scan_yaml,
+        slam_toolbox_yaml,
+    )
+
+    if s.scan is None:
+        plan.skipped.append(f"{folder}/: lidar files: {s.scan_error}")
+        return
+    scan = s.scan
+    plan.files[f"{folder}/scan.yaml"] = scan_yaml(scan, frame_id=s.frame)
+    consumers = ("slam_toolbox.yaml", "nav2_obstacle_layer.yaml", "amcl.yaml")
+    if s.vertical is not None:
+        plan.notes.append(
+            f"{s.name}: a 3D lidar ({s.vertical.samples} layers): no LaserScan consumer files "
+            f"({', '.join(consumers)}); feed its points to a 3D pipeline or pointcloud_to_laserscan"
+        )
+        return
+    topic = s.topics.get("scan")
+    if topic is None:
+        if s.topics:
+            published = ", ".join(f"{k} {v}" for k, v in s.topics.items())
+            why = f"it publishes no sensor_msgs/LaserScan ({published}); set <output_type>sensor_msgs/LaserScan</output_type>"
+        else:
+            why = "it publishes no LaserScan topic to ROS"
+        plan.skipped.extend(f"{folder}/{name}: {why}" for name in consumers)
+        return
+    _attempt(
+        plan,
+        f"{folder}/slam_toolbox.yaml",
+        "slam_toolbox",
+        lambda: slam_toolbox_yaml(scan, scan_topic=topic),
+    )
+    _attempt(
+        plan,
+        f"{folder}/nav2_obstacle_layer.yaml",
+        "Nav2",
+        lambda: nav2_obstacle_layer_yaml(scan, topic=topic),
+    )
+    _attempt(plan, f"{folder}/amcl.yaml", "AMCL", lambda: amcl_yaml(scan, scan_topic=topic))
+
+
+def _bridge(plan: ExportFiles) -> None:
+    from sensorkit.exporters import bridge_yaml
+    from sensorkit.generate.bridge import bridge_entries
+
+    info = plan.info
+    for s in info.sensors:
+        if not s.topics and s.sensor.kind in ("camera", "depth", "rgbd", "lidar", "imu"):
+            why = "; ".join(s.topic_notes) or "no topic"
+            plan.skipped.append(f"bridge.yaml: sensor {s.name!r} is not bridged: {why}")
+    try:
+        entries = bridge_entries(info.robot.document.root, info.target)
+        header = (
+            f"# ros_gz_bridge configuration for {info.robot.name} on Gazebo Sim ({info.target}),\n"
+            "# written by sensorkit export.\n"
+            "#   ros2 run ros_gz_bridge parameter_bridge --ros-args -p config_file:=bridge.yaml\n"
+        )
+        plan.files["bridge.yaml"] = header + bridge_yaml(entries)
+    except InvalidValue as exc:
+        plan.skipped.append(f"bridge.yaml: {exc}")
+
+
+def export_files(info: RobotInfo) -> ExportFiles:
+    """Every file ``sensorkit export`` writes, as text (nothing touches the disk).
+
+    Per sensor, in a folder named after it: ``sensor.json`` (frames, topics); cameras
+    ``camera_info.yaml``, ``opencv.yaml``, ``intrinsics.json`` and, with a colour image,
+    ``orbslam3.yaml`` (old format), ``orbslam3_v1.yaml``, ``kalibr.yaml``; depth and
+    RGB-D cameras ``depthimage_to_laserscan.yaml`` and, with colour,
+    ``orbslam3_rgbd.yaml``/``orbslam3_rgbd_v1.yaml``; each camera of a multicamera in a
+    subfolder; 2D lidars ``scan.yaml``, ``slam_toolbox.yaml``, ``nav2_obstacle_layer.yaml``,
+    ``amcl.yaml`` (3D lidars ``scan.yaml``). Gazebo Sim targets add ``bridge.yaml``.
+    """
+    from sensorkit.exporters import to_json
+    from sensorkit.model.targets import is_gz
+
+    plan = ExportFiles(info)
+    taken: set[str] = set()
+    for s in info.sensors:
+        folder = _folder(s.name, taken)
+        plan.folders[s.name] = folder
+        plan.files[f"{folder}/sensor.json"] = to_json(_sensor_record(s, info.target))
+        plan.notes.extend(f"{s.name}: {n}" for n in s.notes)
+        if s.frame_is_default and s.frame is not None and is_gz(info.target):
+            plan.notes.append(
+                f"{s.name}: its data is stamped {s.frame!r} (gz's scoped default), which is no TF frame"
+            )
+        if s.sensor.is_camera:
+            inner: set[str] = set()
+            multi = len(s.cameras) > 1
+            for view in s.cameras:
+                sub = f"{folder}/{_folder(view.spec.name or view.id, inner)}" if multi else folder
+                _export_camera(plan, s, view, sub)
+        elif s.sensor.kind == "lidar":
+            _export_lidar(plan, s, folder)
+    if is_gz(info.target):
+        _bridge(plan)
+    return plan
+
+
+def publish_export(
+    files: Mapping[str, str], out: Path, *, force: bool = False, inputs: Iterable[Path] = ()
+) -> list[Path]:
+    """Write ``files`` (relative POSIX path -> text) into the folder ``out``, atomically.
+
+    Everything is written into a temporary folder beside ``out`` and renamed into place
+    in one step, so ``out`` holds the old export or the new one, never a mix. ``out``
+    must be missing or empty unless ``force`` (then it is replaced whole; the current
+    folder, its parents, the home folder and any folder holding one of ``inputs`` are
+    never replaced).
+
+    Returns:
+        The paths written, under ``out``, in ``files`` order.
+
+    Raises:
+        UsageError: ``out`` is a file, or a non-empty folder without ``force``, or
+            protected; a path in ``files`` is absolute or climbs out.
+        OSError: the file system refused (nothing is left behind).
+    """
+    from sensorkit.atomic import check_replaceable, staged_folder, write_text
+
+    check_replaceable(out, force=force, inputs=inputs)
+    given, out = out, out.absolute()
+    for rel in files:
+        parts = Path(rel).parts
+        if Path(rel).is_absolute() or ".." in parts or not parts:
+            msg = f"export path {rel!r} must stay inside the output folder"
+            raise UsageError(msg)
+    with staged_folder(out) as temp:
+        for rel, text in files.items():
+            target = temp / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            write_text(target, text, fsync=False)  # the folder is published as a whole
+    return [given / rel for rel in files]
