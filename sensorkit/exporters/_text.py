@@ -35,13 +35,7 @@ def real(value: object, name: str = "value") -> str:
     Raises:
         InvalidValue: ``value`` is not a finite number.
     """
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        msg = f"{name} must be a finite number, got {value!r}"
-        raise InvalidValue(msg)
-    number = float(value)
-    if not math.isfinite(number):
-        msg = f"{name} must be a finite number, got {value!r}"
-        raise InvalidValue(msg)
+    number = _finite(name, value)
     text = repr(number + 0.0)
     if "." not in text:
         mantissa, _, exponent = text.partition("e")
