@@ -75,8 +75,11 @@ CASES: list[tuple[str, str, str, str, str]] = [
      robot(camera=camera_sensor(camera="<camera><horizontal_fov>2.5</horizontal_fov></camera>")), "classic", ".urdf"),
     ("SK405", robot(camera=camera_sensor(camera="<camera><clip><near>5</near><far>1</far></clip></camera>")),
      robot(camera=camera_sensor(camera="<camera><clip><near>0.05</near><far>100</far></clip></camera>")), "classic", ".urdf"),
-    ("SK405", robot(camera=camera_sensor(camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")),
-     robot(camera=camera_sensor(camera="<camera><clip><near>0.01</near><far>10</far></clip></camera>")), "classic", ".urdf"),
+    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")),
+     robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.01</near><far>10</far></clip></camera>")), "classic", ".urdf"),
+    # Depth precision is a depth sensor's concern: the same clip on a colour camera is fine.
+    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")),
+     robot(camera=camera_sensor(camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")), "classic", ".urdf"),
     ("SK405", robot(camera=camera_sensor(stype="depth", params="<frame_name>camera_optical_frame</frame_name><min_depth>0.01</min_depth>", camera="<camera><clip><near>0.1</near><far>10</far></clip></camera>")),
      robot(camera=camera_sensor(stype="depth", params="<frame_name>camera_optical_frame</frame_name><min_depth>0.1</min_depth>", camera="<camera><clip><near>0.1</near><far>10</far></clip></camera>")), "classic", ".urdf"),
     ("SK406", robot(lidar=lidar_sensor(min_angle="1", max_angle="-1")), robot(lidar=lidar_sensor(min_angle="-1", max_angle="1")), "classic", ".urdf"),
@@ -177,7 +180,7 @@ def test_sk601_names_the_replacement(check) -> None:
 
 
 def test_severity_of_sk405_warning_vs_error(check) -> None:
-    warn = check(robot(camera=camera_sensor(camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")), target="classic")
+    warn = check(robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")), target="classic")
     err = check(robot(camera=camera_sensor(camera="<camera><clip><near>5</near><far>1</far></clip></camera>")), target="classic")
     assert {f.severity for f in warn.findings if f.rule == "SK405"} == {Severity.WARNING}
     assert {f.severity for f in err.findings if f.rule == "SK405"} == {Severity.ERROR}

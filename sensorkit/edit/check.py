@@ -11,7 +11,6 @@ suppressions resolve exactly as they do for the original.
 
 from __future__ import annotations
 
-import difflib
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -29,8 +28,10 @@ if TYPE_CHECKING:
 
 def closest(name: str, candidates: Iterable[str], n: int = 3) -> list[str]:
     """Up to ``n`` of ``candidates`` that look most like ``name`` (never empty if any exist)."""
+    from sensorkit.suggest import closest as ranked
+
     pool = sorted(set(candidates))
-    hits = difflib.get_close_matches(name, pool, n=n, cutoff=0.5)
+    hits = ranked(name, pool, n=n)
     if not hits:
         lowered = name.lower()
         hits = [c for c in pool if lowered in c.lower() or c.lower() in lowered][:n]

@@ -96,9 +96,9 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
             if frame is None or (fr.is_default and how == fr.how) or _exists(robot, frame):
                 continue
-            import difflib
+            from sensorkit.suggest import closest
 
-            close = difflib.get_close_matches(frame, list(robot.link_map), n=1)
+            close = closest(frame, robot.link_map)
             yield ctx.finding(
                 "SK501",
                 Severity.ERROR,

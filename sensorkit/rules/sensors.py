@@ -49,9 +49,9 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
         ref = block.reference
         if ref is None or ref in robot.link_map or ref in robot.joint_map:
             continue
-        import difflib
+        from sensorkit.suggest import closest
 
-        close = difflib.get_close_matches(ref, [*robot.link_map, *robot.joint_map], n=1)
+        close = closest(ref, [*robot.link_map, *robot.joint_map])
         has_sensor = any(s.block is block.element for s in robot.sensors)
         yield ctx.finding(
             "SK401",
@@ -211,7 +211,9 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
                         fix="e.g. <clip><near>0.05</near><far>50</far></clip>",
                     )
                     continue
-                if near < 0.01:
+                if not s.is_depth:
+                    pass  # depth precision only matters to sensors that publish depth
+                elif near < 0.01:
                     yield ctx.finding(
                         "SK405",
                         Severity.WARNING,

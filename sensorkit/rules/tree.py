@@ -54,9 +54,9 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
                     fix=f'add <{role} link="LINK"/> to the joint',
                 )
             elif name not in links:
-                import difflib
+                from sensorkit.suggest import closest
 
-                close = difflib.get_close_matches(name, list(links), n=1)
+                close = closest(name, links)
                 yield ctx.finding(
                     "SK202",
                     Severity.ERROR,
@@ -307,7 +307,9 @@ def numbers(ctx: Context) -> Iterator[Finding]:
 def mimic(ctx: Context) -> Iterator[Finding]:
     joints = ctx.robot.joint_map
     for j in ctx.robot.joints:
-        if not j.has_mimic:
+        # A fixed joint never moves, so nothing reads its <mimic> (robot_state_publisher and
+        # Gazebo only mimic joints that have a position): only a moving mimic can break.
+        if not j.has_mimic or j.type == "fixed":
             continue
         target = joints.get(j.mimic or "")
         if not j.mimic or target is None:
