@@ -1,0 +1,184 @@
+"""gazebo_ros_pkgs by ROS generation: which plugin names exist, ROS 1 tags and their ROS 2 forms.
+
+Plugin names are the library base names without ``libgazebo_ros_`` and ``.so``. Read from
+ros-simulation/gazebo_ros_pkgs: ROS 2 ``gazebo_plugins/CMakeLists.txt`` (branch ``ros2``)
+and ROS 1 ``gazebo_plugins/CMakeLists.txt`` (branch ``noetic-devel``); per-plugin
+parameters and frames live in :mod:`sensorkit.knowledge.plugins`.
+"""
+
+from __future__ import annotations
+
+# Every plugin library gazebo_ros_pkgs builds, by generation (names without lib/.so).
+# ROS 1: ros-simulation/gazebo_ros_pkgs@noetic-devel (f9e1a46):gazebo_plugins/CMakeLists.txt:191-340
+# (add_library lines), gazebo_ros/CMakeLists.txt:91,97, gazebo_ros_control/CMakeLists.txt:69.
+ROS1_LIBRARIES = frozenset(
+    {
+        "gazebo_ros_camera", "gazebo_ros_triggered_camera", "gazebo_ros_elevator",
+        "gazebo_ros_multicamera", "gazebo_ros_triggered_multicamera", "gazebo_ros_depth_camera",
+        "gazebo_ros_openni_kinect", "gazebo_ros_gpu_laser", "gazebo_ros_harness",
+        "gazebo_ros_wheel_slip", "gazebo_ros_laser", "gazebo_ros_block_laser", "gazebo_ros_p3d",
+        "gazebo_ros_imu", "gazebo_ros_imu_sensor", "gazebo_ros_f3d", "gazebo_ros_bumper",
+        "gazebo_ros_projector", "gazebo_ros_prosilica", "gazebo_ros_force",
+        "gazebo_ros_joint_state_publisher", "gazebo_ros_joint_pose_trajectory",
+        "gazebo_ros_diff_drive", "gazebo_ros_tricycle_drive", "gazebo_ros_skid_steer_drive",
+        "gazebo_ros_video", "gazebo_ros_planar_move", "gazebo_ros_hand_of_god",
+        "gazebo_ros_ft_sensor", "gazebo_ros_range", "gazebo_ros_vacuum_gripper",
+        "gazebo_ros_template", "gazebo_ros_utils", "gazebo_ros_camera_utils",
+        "gazebo_ros_api_plugin", "gazebo_ros_paths_plugin", "gazebo_ros_control",
+    }
+)  # fmt: skip
+# ROS 2: ros-simulation/gazebo_ros_pkgs@ros2 (d52f7c4):gazebo_plugins/CMakeLists.txt:57-457
+# and gazebo_ros/CMakeLists.txt:42-144.
+ROS2_LIBRARIES = frozenset(
+    {
+        "gazebo_ros_joint_state_publisher", "gazebo_ros_diff_drive", "gazebo_ros_force",
+        "gazebo_ros_template", "gazebo_ros_camera", "gazebo_ros_imu_sensor",
+        "gazebo_ros_gps_sensor", "gazebo_ros_ray_sensor", "gazebo_ros_p3d",
+        "gazebo_ros_tricycle_drive", "gazebo_ros_video", "gazebo_ros_ft_sensor",
+        "gazebo_ros_bumper", "gazebo_ros_harness", "gazebo_ros_hand_of_god",
+        "gazebo_ros_ackermann_drive", "gazebo_ros_elevator", "gazebo_ros_vacuum_gripper",
+        "gazebo_ros_joint_pose_trajectory", "gazebo_ros_planar_move", "gazebo_ros_projector",
+        "gazebo_ros_wheel_slip", "gazebo_ros_node", "gazebo_ros_utils", "gazebo_ros_init",
+        "gazebo_ros_factory", "gazebo_ros_properties", "gazebo_ros_state",
+        "gazebo_ros_force_system",
+    }
+)  # fmt: skip
+
+# gazebo_plugins / gazebo_ros in ROS 2 (libgazebo_ros_<name>.so).
+ROS2_PLUGINS = {
+    "camera",
+    "ray_sensor",
+    "imu_sensor",
+    "gps_sensor",
+    "ft_sensor",
+    "bumper",
+    "p3d",
+    "diff_drive",
+    "ackermann_drive",
+    "tricycle_drive",
+    "planar_move",
+    "joint_state_publisher",
+    "joint_pose_trajectory",
+    "force",
+    "elevator",
+    "hand_of_god",
+    "harness",
+    "projector",
+    "template",
+    "vacuum_gripper",
+    "video",
+    "wheel_slip",
+    "multi_camera",
+    "init",
+    "factory",
+    "state",
+    "properties",
+    "force_system",
+}
+# ROS 1 only, with what replaces each in ROS 2.
+ROS1_ONLY: dict[str, str] = {
+    "depth_camera": "libgazebo_ros_camera.so on a sensor of type depth",
+    "openni_kinect": "libgazebo_ros_camera.so on a sensor of type depth",
+    "multicamera": "libgazebo_ros_camera.so on a sensor of type multicamera",
+    "triggered_camera": "libgazebo_ros_camera.so with <triggered>true</triggered>",
+    "triggered_multicamera": "libgazebo_ros_camera.so on a multicamera sensor with <triggered>true</triggered>",
+    "laser": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/LaserScan</output_type>",
+    "gpu_laser": "libgazebo_ros_ray_sensor.so on a gpu_ray sensor with <output_type>sensor_msgs/LaserScan</output_type>",
+    "block_laser": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/PointCloud2</output_type>",
+    "range": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/Range</output_type>",
+    "imu": "a sensor of type imu with libgazebo_ros_imu_sensor.so",
+    "skid_steer_drive": "libgazebo_ros_diff_drive.so with <num_wheel_pairs>2</num_wheel_pairs>",
+    "prosilica": "nothing in gazebo_plugins (use libgazebo_ros_camera.so)",
+    "f3d": "nothing in gazebo_plugins (libgazebo_ros_ft_sensor.so measures joint wrenches)",
+    "hokuyo_node": "nothing in gazebo_plugins (use libgazebo_ros_ray_sensor.so)",
+    "camera_synchronizer": "nothing in gazebo_plugins",
+    "vision_reconfigure": "nothing in gazebo_plugins",
+    "control": "gazebo_ros2_control (libgazebo_ros2_control.so)",
+}
+# ROS 2 gazebo_ros names that ROS 1 gazebo_plugins never had.
+ROS2_ONLY = {
+    "ray_sensor",
+    "gps_sensor",
+    "ackermann_drive",
+    "multi_camera",
+    "init",
+    "factory",
+    "state",
+    "properties",
+    "force_system",
+}
+ROS1_TO_ROS2_PARAMS: dict[str, str] = {
+    "frameName": "<frame_name>",
+    "cameraName": "<camera_name>",
+    "robotNamespace": "<ros><namespace>",
+    "hackBaseline": "<hack_baseline>",
+    "baseline": "<hack_baseline>",
+    "focalLength": "<focal_length>",
+    "Cx": "<cx>",
+    "Cy": "<cy>",
+    "CxPrime": "nothing (ROS 2 has no CxPrime)",
+    "pointCloudCutoff": "<min_depth>",
+    "pointCloudCutoffMax": "<max_depth>",
+    "imageTopicName": "the fixed name <camera_name>/image_raw plus <ros><remapping>",
+    "cameraInfoTopicName": "the fixed name <camera_name>/camera_info plus <ros><remapping>",
+    "depthImageTopicName": "the fixed name <camera_name>/depth/image_raw plus <ros><remapping>",
+    "depthImageInfoTopicName": "the fixed name <camera_name>/depth/camera_info plus <ros><remapping>",
+    "depthImageCameraInfoTopicName": "the fixed name <camera_name>/depth/camera_info plus <ros><remapping>",
+    "pointCloudTopicName": "the fixed name <camera_name>/points plus <ros><remapping>",
+    "distortionK1": "the SDF <camera><distortion><k1>",
+    "distortionK2": "the SDF <camera><distortion><k2>",
+    "distortionK3": "the SDF <camera><distortion><k3>",
+    "distortionT1": "the SDF <camera><distortion><p1>",
+    "distortionT2": "the SDF <camera><distortion><p2>",
+    "updateRate": "the sensor's <update_rate> (or <update_rate> for model plugins)",
+    "updateRateHZ": "the sensor's <update_rate>",
+    "alwaysOn": "the sensor's <always_on>",
+    "topicName": "<ros><remapping>~/out:=TOPIC</remapping>",
+    "bodyName": "<frame_name>",
+    "gaussianNoise": "an SDF <noise> block on the sensor",
+    "xyzOffset": "the sensor's <pose>",
+    "xyzOffsets": "the sensor's <pose>",
+    "rpyOffset": "the sensor's <pose>",
+    "rpyOffsets": "the sensor's <pose>",
+    "serviceName": "nothing (ROS 2 has no calibration service)",
+    "initialOrientationAsReference": "<initial_orientation_as_reference>",
+    "leftJoint": "<left_joint>",
+    "rightJoint": "<right_joint>",
+    "leftFrontJoint": "<left_joint> (with <num_wheel_pairs>)",
+    "rightFrontJoint": "<right_joint> (with <num_wheel_pairs>)",
+    "leftRearJoint": "<left_joint> (with <num_wheel_pairs>)",
+    "rightRearJoint": "<right_joint> (with <num_wheel_pairs>)",
+    "wheelSeparation": "<wheel_separation>",
+    "wheelDiameter": "<wheel_diameter>",
+    "wheelTorque": "<max_wheel_torque>",
+    "wheelAcceleration": "<max_wheel_acceleration>",
+    "commandTopic": "<ros><remapping>cmd_vel:=TOPIC</remapping>",
+    "odometryTopic": "<ros><remapping>odom:=TOPIC</remapping>",
+    "odometryFrame": "<odometry_frame>",
+    "robotBaseFrame": "<robot_base_frame>",
+    "publishWheelTF": "<publish_wheel_tf>",
+    "publishOdomTF": "<publish_odom_tf>",
+    "publishWheelJointState": "a joint_state_publisher plugin",
+    "odometrySource": "<odometry_source>",
+    "rosDebugLevel": "nothing (use --ros-args --log-level)",
+}
+RAY_OUTPUT_TYPES = {
+    "sensor_msgs/LaserScan",
+    "sensor_msgs/PointCloud",
+    "sensor_msgs/PointCloud2",
+    "sensor_msgs/Range",
+}
+PLUGIN_SENSOR_KINDS: dict[str, set[str]] = {
+    "gazebo_ros_camera": {"camera", "depth", "multicamera"},
+    "gazebo_ros_ray_sensor": {"ray", "gpu_ray"},
+    "gazebo_ros_imu_sensor": {"imu"},
+    "gazebo_ros_depth_camera": {"depth"},
+    "gazebo_ros_openni_kinect": {"depth"},
+    "gazebo_ros_laser": {"ray"},
+    "gazebo_ros_gpu_laser": {"gpu_ray"},
+    "gazebo_ros_block_laser": {"ray"},
+    "gazebo_ros_velodyne_laser": {"ray", "gpu_ray"},
+    "gazebo_ros_velodyne_gpu_laser": {"gpu_ray"},
+    "gazebo_ros_multicamera": {"multicamera"},
+    "gazebo_ros_gps_sensor": {"gps"},
+}
