@@ -21,8 +21,9 @@ from sensorkit.model import load_robot
 from sensorkit.model.frames import sensor_frames
 from sensorkit.model.robot import Robot
 from sensorkit.model.sdf import convert
-from sensorkit.model.targets import TARGETS, detect_target
+from sensorkit.model.targets import TARGETS, detect_target, is_gz
 from sensorkit.rules import RULES, Context, MissingFile
+from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
 
 
@@ -37,6 +38,7 @@ class Options:
     args: dict[str, str] = field(default_factory=dict)
     package_paths: tuple[str, ...] = ()
     timeout: float = 60.0
+    bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
 
     def __post_init__(self) -> None:
         if self.target not in ("auto", *TARGETS):
@@ -128,6 +130,25 @@ def find_missing_files(
     return missing, findings
 
 
+def load_bridges(robot: Robot, options: Options) -> Bridge:
+    """The ros_gz_bridge entries that apply: --bridge files, else the package's config/."""
+    from sensorkit.loading.bridge import BridgeError, find_bridge_files, read_bridge
+    from sensorkit.loading.packages import own_package
+
+    if options.bridges:
+        paths = [Path(b) for b in options.bridges]
+    else:
+        pkg = own_package(robot.document.path)
+        paths = find_bridge_files(pkg) if pkg is not None else []
+    out = Bridge(files=[display_path(p) for p in paths])
+    for p in paths:
+        try:
+            out.topics.extend(read_bridge(p, display_path(p)))
+        except BridgeError as exc:
+            raise UsageError(f"--bridge {exc}") from None
+    return out
+
+
 def check_robot(
     robot: Robot, options: Options, resolver: PackageResolver | None = None
 ) -> FileReport:
@@ -138,7 +159,14 @@ def check_robot(
     else:
         report.target, report.target_reason = options.target, "chosen with --target"
     conv = convert(robot)
-    ctx = Context(robot=robot, target=report.target, conversion=conv)
+    bridge = load_bridges(robot, options) if is_gz(report.target) else None
+    ctx = Context(
+        robot=robot,
+        target=report.target,
+        conversion=conv,
+        auto=options.target == "auto",
+        bridge=bridge,
+    )
     for s in robot.sensors:
         ctx.frames[id(s)] = sensor_frames(robot, s, report.target, conv)
     findings: list[Finding] = []

@@ -336,7 +336,7 @@ def _ros1_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
     """gazebo_ros_pkgs (ROS 1) names: ``/<robotNamespace>/<cameraName>/<...TopicName>``."""
     from sensorkit.model.frames import ros_plugin
 
-    plugin = ros_plugin(sensor)
+    plugin = ros_plugin(sensor, "ros1")
     if plugin is None:
         return {}, ["no ROS plugin: the sensor publishes nothing to ROS"]
     ns = (plugin.param("robotNamespace") or "").strip("/")
@@ -576,7 +576,7 @@ def _camera_views(
 
     views: list[CameraView] = []
     multi = sensor.kind == "multicamera" and len(sensor.cameras) > 1
-    plugin = None if is_gz(target) else ros_plugin(sensor)
+    plugin = None if is_gz(target) else ros_plugin(sensor, target)
     base_name = (plugin.param("camera_name") if plugin is not None else None) or sensor.name
     for index, spec in enumerate(sensor.cameras):
         cam_name = spec.name or f"camera{index}"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -42,6 +43,14 @@ def validate(
     timeout: Annotated[
         float, typer.Option("--timeout", help="seconds one xacro expansion may take")
     ] = 60.0,
+    bridge: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--bridge",
+            help="ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; "
+            "default: parameter_bridge YAMLs in the robot package's config/)",
+        ),
+    ] = None,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 
@@ -76,6 +85,7 @@ def validate(
         args=args,
         package_paths=tuple(package_path or cfg.package_paths),
         timeout=timeout,
+        bridges=tuple(str(b) for b in bridge or ()),
     )
     report = validate_paths(files, options)
     from sensorkit.cli import leave_quickly

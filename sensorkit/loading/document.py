@@ -256,7 +256,12 @@ def _expansion_finding(path: Path, outcome: object) -> Finding:
     elif outcome.error_kind == "timeout":
         fix = "look for an expression that computes something huge, e.g. ${10**10**10}"
     line = None
-    if outcome.error_file:
+    if outcome.macro_file and outcome.error_kind == "xacro":
+        # The error is in a macro's body: point at the macro's own file, at the line that
+        # names what xacro complains of, else at the macro's definition.
+        file = display_path(outcome.macro_file)
+        line = _guess_line(outcome.macro_file, msg, after=outcome.macro_line) or outcome.macro_line
+    elif outcome.error_file:
         line = _guess_line(outcome.error_file, msg)
     return Finding(
         "SK102",
@@ -267,7 +272,7 @@ def _expansion_finding(path: Path, outcome: object) -> Finding:
     )
 
 
-def _find_line(file: str | None, needle: str) -> int | None:
+def _find_line(file: str | None, needle: str, after: int | None = None) -> int | None:
     if not file:
         return None
     try:
@@ -275,12 +280,14 @@ def _find_line(file: str | None, needle: str) -> int | None:
     except OSError:
         return None
     for i, line in enumerate(text.splitlines(), 1):
+        if after is not None and i < after:
+            continue
         if needle in line and not line.lstrip().startswith("<!--"):
             return i
     return None
 
 
-def _guess_line(file: str, message: str) -> int | None:
+def _guess_line(file: str, message: str, after: int | None = None) -> int | None:
     """A best-effort line for a xacro error: the first line naming what it complains of."""
     for pattern in (
         r"Undefined substitution argument (\S+)",
@@ -293,5 +300,5 @@ def _guess_line(file: str, message: str) -> int | None:
             token = m.group(1).strip("'\"")
             if "/" in token:
                 token = os.path.basename(token)
-            return _find_line(file, token)
+            return _find_line(file, token, after)
     return None

@@ -74,6 +74,7 @@ def scan_packages(root: Path, *, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, P
 
 def own_package(path: Path) -> Path | None:
     """The package folder holding ``path`` (nearest ancestor with a package.xml)."""
+    path = path.resolve()  # a relative path has no parents to walk: same answer from any folder
     for folder in [path.parent, *path.parent.parents]:
         if (folder / "package.xml").is_file():
             return folder
@@ -87,6 +88,7 @@ def workspace_roots(path: Path) -> list[Path]:
     package's parent and grandparent (a repository of packages, and the folder of
     repositories beside it), or the file's own folder when it is in no package.
     """
+    path = path.resolve()
     pkg = own_package(path)
     start = pkg if pkg is not None else path.parent
     for folder in [start, *start.parents]:
@@ -132,7 +134,7 @@ class PackageResolver:
         return cls(
             explicit=explicit,
             scan_dirs=scan,
-            workspace_of=None if package_paths else near,
+            workspace_of=None if package_paths or near is None else near.resolve(),
         )
 
     def for_file(self, path: Path) -> PackageResolver:

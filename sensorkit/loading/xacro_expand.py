@@ -55,6 +55,8 @@ class ExpandOutcome:
     error_line: int | None = None
     error_column: int | None = None
     stack: list[str] = field(default_factory=list)
+    macro_file: str | None = None  # where the innermost macro being expanded was defined
+    macro_line: int | None = None
     package: str | None = None
     searched: list[str] = field(default_factory=list)
 
@@ -169,6 +171,7 @@ def expand_in_process(path: Path, args: dict[str, str], resolver: PackageResolve
         if out.error_file is None and stack_files:
             out.error_file = os.path.abspath(stack_files[-1])
         out.stack = _describe_stack(stack_files, macros, files)
+        out.macro_file, out.macro_line = _innermost_macro(macros, files)
     _reset_xacro()
     return out
 
@@ -208,6 +211,19 @@ def _classify(exc: BaseException, out: ExpandOutcome) -> None:
         text += "\n" + "".join(traceback.format_exception(exc))
     out.error_kind = "xacro"
     out.message = text.strip()
+
+
+def _innermost_macro(macros: list[Any], files: list[str]) -> tuple[str | None, int | None]:
+    """File and line of the definition of the macro whose body failed (the innermost)."""
+    for m in reversed(macros):
+        try:
+            loc = m.body.getAttribute(LOC_ATTR)
+        except Exception:
+            continue
+        idx, _, line = (loc or "").partition(":")
+        if idx.isdigit() and int(idx) < len(files) and line.isdigit():
+            return os.path.abspath(files[int(idx)]), int(line)
+    return None, None
 
 
 def _describe_stack(stack_files: list[str], macros: list[Any], files: list[str]) -> list[str]:

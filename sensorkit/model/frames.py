@@ -12,9 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from sensorkit.knowledge import plugins as known
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:
+    from sensorkit.knowledge.plugins import PluginSpec
     from sensorkit.model.robot import Robot
     from sensorkit.model.sdf import Conversion
     from sensorkit.model.sensors import Plugin, Sensor
@@ -28,24 +30,6 @@ GZ_FRAME_TAGS: dict[str, tuple[str, ...]] = {
 }
 # Versions that read <camera><optical_frame_id> for image, camera_info and cloud frames.
 GZ_OPTICAL_FRAME_ID = ("fortress", "harmonic")
-
-ROS_SENSOR_PLUGINS = {
-    "gazebo_ros_camera",
-    "gazebo_ros_ray_sensor",
-    "gazebo_ros_imu_sensor",
-    "gazebo_ros_depth_camera",
-    "gazebo_ros_openni_kinect",
-    "gazebo_ros_multicamera",
-    "gazebo_ros_laser",
-    "gazebo_ros_gpu_laser",
-    "gazebo_ros_block_laser",
-    "gazebo_ros_range",
-    "gazebo_ros_imu",
-    "gazebo_ros_velodyne_laser",
-    "gazebo_ros_velodyne_gpu_laser",
-    "gazebo_ros_triggered_camera",
-    "gazebo_ros_gps_sensor",
-}
 
 
 @dataclass
@@ -61,6 +45,12 @@ class SensorFrames:
     plugin: Plugin | None
     image_frame: str | None = None  # gz <optical_frame_id> overrides for image data
     image_how: str | None = None
+    spec: PluginSpec | None = None  # what sensorkit knows of ``plugin`` (None: unknown)
+
+    @property
+    def unknown(self) -> bool:
+        """A plugin publishes, but sensorkit does not know where it stamps its data."""
+        return self.plugin is not None and self.spec is None
 
     @property
     def camera_frame(self) -> str | None:
@@ -71,6 +61,8 @@ class SensorFrames:
         """Pose of link ``frame`` seen from the render pose (None if either is unknown)."""
         if frame is None or frame not in robot.link_map or self.T_world_render is None:
             return None
+        if self.link is not None and robot.tree_of(frame) != robot.tree_of(self.link):
+            return None  # in another tree (cut off by a joint to a missing link): no relation
         T_world_frame = robot.T_world_link(frame)
         if T_world_frame is None:
             return None
@@ -101,12 +93,28 @@ def optical_frame_at(
     return None
 
 
-def ros_plugin(sensor: Sensor) -> Plugin | None:
-    """The plugin that publishes a classic sensor's data to ROS, if any."""
+def ros_generation(target: str) -> str:
+    """Which plugin table a target reads: "ros1", "ros2" (Gazebo Classic) or "gz"."""
+    return "gz" if is_gz(target) else "ros1" if target == "ros1" else "ros2"
+
+
+def publishing_plugin(sensor: Sensor, target: str) -> tuple[Plugin | None, PluginSpec | None]:
+    """The plugin that publishes a sensor's data to ROS under ``target``, and its spec.
+
+    The first sensor-level plugin sensorkit knows for the target's ROS generation; when
+    none is known, the first plugin with no spec (its frame cannot be told).
+    """
+    ros = ros_generation(target)
     for p in sensor.plugins:
-        if p.library in ROS_SENSOR_PLUGINS or p.library.startswith("gazebo_ros"):
-            return p
-    return sensor.plugins[0] if sensor.plugins else None
+        spec = known.lookup(p.filename, ros)
+        if spec is not None and spec.level == "sensor":
+            return p, spec
+    return (sensor.plugins[0], None) if sensor.plugins else (None, None)
+
+
+def ros_plugin(sensor: Sensor, target: str = "classic") -> Plugin | None:
+    """The plugin that publishes a sensor's data to ROS, if any."""
+    return publishing_plugin(sensor, target)[0]
 
 
 def render_pose(robot: Robot, sensor: Sensor) -> Mat | None:
@@ -124,7 +132,6 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
     """Compute render pose and published frame of ``sensor`` for ``target``."""
     link = sensor.reference if sensor.reference in robot.link_map else None
     T = render_pose(robot, sensor)
-    default = conv.survivor(link) if link else None
     if is_gz(target):
         published: str | None = None
         how = "default"
@@ -140,16 +147,32 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
         if cam is not None and cam.optical_frame_id and target in GZ_OPTICAL_FRAME_ID:
             out.image_frame, out.image_how = cam.optical_frame_id, "optical_frame_id"
         return out
-    plugin = ros_plugin(sensor)
+    plugin, spec = publishing_plugin(sensor, target)
     if plugin is None:
         return SensorFrames(sensor, link, T, None, "no plugin", True, None)
-    names: tuple[str, ...] = ("frameName",) if target == "ros1" else ("frame_name",)
-    if target == "ros1":
-        names = ("frameName", "frame_name") if plugin.library == "gazebo_ros_imu_sensor" else names
-        if plugin.library in ("gazebo_ros_imu",):
-            names = ("frameName", "bodyName")
-    for name in names:
+    if spec is None:
+        return SensorFrames(sensor, link, T, None, "unknown plugin", True, plugin)
+    for name in spec.frame_params:
         value = plugin.param(name)
         if value:
-            return SensorFrames(sensor, link, T, value, name, False, plugin)
-    return SensorFrames(sensor, link, T, default, "default", True, plugin)
+            return SensorFrames(sensor, link, T, value, name, False, plugin, spec=spec)
+    return SensorFrames(
+        sensor, link, T, default_frame(spec, plugin, link, conv), "default", True, plugin, spec=spec
+    )
+
+
+def default_frame(
+    spec: PluginSpec, plugin: Plugin, link: str | None, conv: Conversion
+) -> str | None:
+    """The frame a known plugin stamps when none of its frame parameters is given."""
+    if spec.frame_default == known.LINK:
+        if link is None:
+            return None
+        return conv.survivor(link) if spec.lumped else link
+    if spec.frame_default == known.WORLD:
+        return "world"
+    if spec.frame_default == known.LITERAL:
+        return spec.frame_default_value
+    if spec.frame_default == known.PARAM and spec.frame_default_param:
+        return plugin.param(spec.frame_default_param)
+    return None

@@ -42,6 +42,24 @@ URDF_CHILDREN: dict[str, frozenset[str]] = {
         }
     ),
 }
+# What may stand directly under <robot>: urdfdom's link/joint/material, the ROS extensions
+# that other tools read (gazebo, transmission, ros2_control, urdfdom's experimental sensor)
+# and simulators' own sections (webots, mujoco). Anything else is read by nobody: typically
+# an ``xacro:element`` or macro that expanded to a literal tag, taking a sensor with it.
+ROBOT_CHILDREN = frozenset(
+    {
+        "link",
+        "joint",
+        "material",
+        "gazebo",
+        "transmission",
+        "ros2_control",
+        "sensor",
+        "webots",
+        "mujoco",
+    }
+)
+URDF_CHILDREN["robot"] = ROBOT_CHILDREN
 URDF_ATTRS: dict[str, frozenset[str]] = {
     "mass": frozenset({"value"}),
     "inertia": frozenset({"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}),
@@ -317,6 +335,21 @@ class Robot:
             cur = parent
         return out
 
+    def tree_of(self, link: str) -> str:
+        """The top of the tree ``link`` hangs in (a root link, or the missing parent of a cut)."""
+        up = self.ancestors(link)
+        return up[-1] if up else link
+
+    def cut_off(self) -> list[str]:
+        """Links whose parent joint names a parent link that does not exist (SK202)."""
+        return [
+            lk.name
+            for lk in self.links
+            if (j := self.parent_joint.get(lk.name)) is not None
+            and j.parent is not None
+            and j.parent not in self.link_map
+        ]
+
     def subtree(self, link: str) -> list[str]:
         """``link`` and every link below it (cycle-safe)."""
         out: list[str] = []
@@ -367,10 +400,17 @@ class Robot:
                 chain.pop()
                 break
             cur = joint.parent
-            if cur is None or cur not in self.link_map:
+            if cur is None:
                 for c in chain:
                     self._T_world[c] = None
                 return None
+            if cur not in self.link_map:
+                # A joint to a missing parent (SK202) cuts this subtree off: it is a tree of
+                # its own, rooted where the cut is, so its sensors can still be checked.
+                base = np.eye(4)
+                self._T_world[chain[-1]] = base
+                chain.pop()
+                break
         T = base
         for name in reversed(chain):
             joint = self.parent_joint[name]
@@ -551,6 +591,14 @@ def build_robot(doc: Document) -> Robot:
             gc.enable()
 
 
+def _own_namespace(el: etree._Element, root: etree._Element) -> bool:
+    """``el`` is in the robot's own namespace (none, or the file's default one)."""
+    tag, rtag = el.tag, root.tag
+    ns = tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else ""
+    rns = rtag[1:].split("}", 1)[0] if isinstance(rtag, str) and rtag.startswith("{") else ""
+    return ns == rns
+
+
 def _build_robot(doc: Document) -> Robot:
     from sensorkit.model.sensors import read_gazebo
 
@@ -564,6 +612,8 @@ def _build_robot(doc: Document) -> Robot:
             robot.joints.append(_read_joint(el, doc, robot.strays))
         elif name == "gazebo":
             robot.gazebo.append(GazeboBlock(el.get("reference"), el, doc.locate(el)))
+        elif name and name not in ROBOT_CHILDREN and _own_namespace(el, root):
+            robot.strays.append(Stray(el, "robot", None, None))
     for lk in robot.links:
         robot.link_map.setdefault(lk.name, lk)
     for j in robot.joints:

@@ -65,7 +65,11 @@ def convert(robot: Robot) -> Conversion:
             seen.add(cur)
             order.append(cur)
             for j in reversed(robot.child_joints.get(cur, [])):
-                if j.child is not None and robot.parent_joint.get(j.child) is j:
+                if (
+                    j.child is not None
+                    and j.child in robot.link_map  # a joint to a missing link (SK202) adds none
+                    and robot.parent_joint.get(j.child) is j
+                ):
                     stack.append(j.child)
     for name in order:
         joint = robot.parent_joint.get(name)

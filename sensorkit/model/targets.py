@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -44,13 +45,91 @@ def is_classic_plugin(filename: str) -> bool:
     return base.startswith(("libgazebo_ros", "gazebo_ros", "libgazebo_plugins"))
 
 
+# ROS 2-only parameters of gazebo_ros plugins (ROS 1 spells them in camelCase).
+ROS2_PARAMS = frozenset(
+    {
+        "ros",
+        "frame_name",
+        "camera_name",
+        "output_type",
+        "hack_baseline",
+        "min_depth",
+        "max_depth",
+        "odometry_frame",
+        "robot_base_frame",
+        "left_joint",
+        "right_joint",
+        "wheel_separation",
+        "wheel_diameter",
+        "publish_odom",
+        "publish_odom_tf",
+        "publish_wheel_tf",
+        "max_wheel_torque",
+        "max_wheel_acceleration",
+        "body_name",
+        "reference_link_name",
+    }
+)
+ROS1_MIN_EVIDENCE = (
+    3  # fewer ROS 1 tags than this are mistakes in a ROS 2 file, reported one by one
+)
+
+
+@dataclass
+class Ros1Evidence:
+    plugins: list[str] = field(default_factory=list)  # ROS 1-only gazebo_ros plugins
+    tags: list[str] = field(default_factory=list)  # ROS 1 parameter tags in gazebo_ros plugins
+    ros2: list[str] = field(default_factory=list)  # anything only ROS 2 has
+
+    @property
+    def is_ros1(self) -> bool:
+        return not self.ros2 and len(self.plugins) + len(self.tags) >= ROS1_MIN_EVIDENCE
+
+    def describe(self) -> str:
+        parts = []
+        if self.plugins:
+            parts.append(
+                f"{len(self.plugins)} ROS 1-only plugin{'s' if len(self.plugins) > 1 else ''}"
+            )
+        if self.tags:
+            parts.append(f"{len(self.tags)} ROS 1 tag{'s' if len(self.tags) > 1 else ''}")
+        return ", ".join(parts)
+
+
+def ros1_evidence(robot: Robot) -> Ros1Evidence:
+    """What marks the description's gazebo_ros plugins as ROS 1 or ROS 2."""
+    from sensorkit.knowledge.gazebo_ros import ROS1_ONLY, ROS1_TO_ROS2_PARAMS, ROS2_ONLY
+    from sensorkit.model.robot import local
+    from sensorkit.model.sensors import all_plugins
+
+    out = Ros1Evidence()
+    for p in all_plugins(robot):
+        lib = p.library
+        if not lib.startswith("gazebo_ros"):
+            continue
+        name = lib[len("gazebo_ros_") :] if lib.startswith("gazebo_ros_") else lib
+        if lib == "gazebo_ros_control" or name in ROS1_ONLY:
+            out.plugins.append(p.filename)
+        elif name in ROS2_ONLY or lib == "gazebo_ros2_control":
+            out.ros2.append(p.filename)
+        for el in p.param_elements():
+            tag = local(el)
+            if tag in ROS1_TO_ROS2_PARAMS:
+                out.tags.append(tag)
+            elif tag in ROS2_PARAMS:
+                out.ros2.append(f"<{tag}>")
+    return out
+
+
 def detect_target(robot: Robot) -> tuple[str, str]:
     """(target, why) for ``--target auto``.
 
     Gazebo Sim evidence (gz/ignition system plugins, gz-only sensor types, gz frame tags)
     against Gazebo Classic evidence (gazebo_ros plugins); the larger wins, a tie or no
-    evidence at all gives ``classic`` (ROS 2 with Gazebo Classic). ``ros1`` is never
-    guessed: sensorkit is for ROS 2, so ROS 1 plugins are reported, not accommodated.
+    evidence at all gives ``classic`` (ROS 2 with Gazebo Classic). ``ros1`` only for a
+    description written wholly for ROS 1 (at least ``ROS1_MIN_EVIDENCE`` ROS 1 plugins or
+    tags and nothing only ROS 2 has): SK611 then says so once, instead of one SK602 per
+    tag; a ROS 2 file with a few ROS 1 tags stays ``classic`` and each tag is reported.
     Among gz versions: ``ignition_*`` names mean fortress, a sensor ``<frame_id>`` jetty,
     anything else harmonic.
     """
@@ -76,5 +155,8 @@ def detect_target(robot: Robot) -> tuple[str, str]:
         version = "fortress" if fortress else "jetty" if jetty else "harmonic"
         return version, f"auto: {gz[0]}"
     if classic:
+        ev = ros1_evidence(robot)
+        if ev.is_ros1:
+            return "ros1", f"auto: written for ROS 1 ({ev.describe()})"
         return "classic", f"auto: {classic[0]}"
     return "classic", "auto: no simulator-specific tags; assuming ROS 2 with Gazebo Classic"

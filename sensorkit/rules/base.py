@@ -16,6 +16,7 @@ from sensorkit.findings import Finding, Severity, SourceRef
 if TYPE_CHECKING:
     from lxml import etree
 
+    from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sdf import Conversion
@@ -71,6 +72,14 @@ class MissingFile:
 
 
 @dataclass
+class Bridge:
+    """The ros_gz_bridge configuration known for a Gazebo Sim robot (files may be none)."""
+
+    files: list[str] = field(default_factory=list)
+    topics: list[BridgeTopic] = field(default_factory=list)
+
+
+@dataclass
 class Context:
     """Everything a rule may read. Computed once per robot by the engine."""
 
@@ -79,6 +88,8 @@ class Context:
     conversion: Conversion
     frames: dict[int, SensorFrames] = field(default_factory=dict)
     missing_files: list[MissingFile] = field(default_factory=list)
+    auto: bool = False  # the target was picked by --target auto
+    bridge: Bridge | None = None  # gz targets: what the bridge carries to ROS
 
     def frames_of(self, sensor: Sensor) -> SensorFrames:
         return self.frames[id(sensor)]

@@ -7,12 +7,14 @@ from collections.abc import Iterator
 from types import ModuleType
 from typing import TYPE_CHECKING
 
-from sensorkit.findings import Finding, Severity
-from sensorkit.model.frames import optical_frame_at
+from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
+from sensorkit.model.targets import is_gz
 from sensorkit.rules.base import Context, rule
 
 if TYPE_CHECKING:
+    from sensorkit.model.sensors import Sensor
     from sensorkit.model.transforms import Mat
 
 ANGLE_TOL = math.radians(0.5)
@@ -96,21 +98,60 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
             if frame is None or (fr.is_default and how == fr.how) or _exists(robot, frame):
                 continue
-            from sensorkit.suggest import closest
-
-            close = closest(frame, robot.link_map)
-            yield ctx.finding(
-                "SK501",
-                Severity.ERROR,
-                f"sensor {s.name!r} publishes in frame {frame!r} (<{how}>), which is not a link of this robot: "
-                "TF cannot place its data and RViz shows nothing",
-                s.source,
-                sensor=s.name,
-                frame=frame,
-                fix=f"did you mean {close[0]!r}?"
-                if close
-                else f"add a link {frame!r} or name an existing one",
+            if fr.spec is not None and fr.spec.world_frame_ok and frame.strip("/") in WORLD_FRAMES:
+                continue
+            yield _missing_frame(
+                ctx, frame, f"sensor {s.name!r} publishes in frame", how, s.source, s.name
             )
+    # Model-level plugins that stamp data with a frame they read (hector's frameId, p3d ...).
+    if is_gz(ctx.target):
+        return
+    from sensorkit.knowledge import plugins as known
+    from sensorkit.model.frames import ros_generation
+
+    for p in robot.model_plugins:
+        spec = known.lookup(p.filename, ros_generation(ctx.target))
+        if spec is None:
+            continue
+        for param in spec.frame_params:
+            frame = p.param(param)
+            if not frame or _exists(robot, frame):
+                continue
+            if spec.world_frame_ok and frame.strip("/") in WORLD_FRAMES:
+                continue
+            yield _missing_frame(
+                ctx,
+                frame,
+                f"plugin {p.name!r} ({p.filename}) stamps its data with",
+                param,
+                p.source,
+                None,
+            )
+            break
+
+
+# Frames outside the robot that a world-referenced plugin (p3d, bumper) may name.
+WORLD_FRAMES = frozenset({"world", "map", "odom"})
+
+
+def _missing_frame(
+    ctx: Context, frame: str, what: str, how: str | None, where: SourceRef, sensor: str | None
+) -> Finding:
+    from sensorkit.suggest import closest
+
+    close = closest(frame, ctx.robot.link_map)
+    return ctx.finding(
+        "SK501",
+        Severity.ERROR,
+        f"{what} {frame!r} (<{how}>), which is not a link of this robot: "
+        "TF cannot place its data and RViz shows nothing",
+        where,
+        sensor=sensor,
+        frame=frame,
+        fix=f"did you mean {close[0]!r}?"
+        if close
+        else f"add a link {frame!r} or name an existing one",
+    )
 
 
 @rule(
@@ -176,7 +217,7 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
             continue
         off = T[:3, 3]  # in the sensor's own frame
         dist = float(_np().linalg.norm(off))
-        if dist <= POSITION_TOL:
+        if dist <= POSITION_TOL or _stereo_right_eye(s, fr, off):
             continue
         yield ctx.finding(
             "SK503",
@@ -193,6 +234,30 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
                 else f'move {frame!r} to the sensor\'s origin: xyz="0 0 0" on its joint (and the same <pose> as the sensor)'
             ),
         )
+
+
+def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: Mat) -> bool:
+    """The ROS stereo convention: the right eye publishes in the left eye's optical frame.
+
+    Its camera_info carries the baseline instead, P[0][3] = Tx = -fx * baseline
+    (ROS 2 ``hack_baseline``: ros-simulation/gazebo_ros_pkgs@ros2:
+    gazebo_plugins/src/gazebo_ros_camera.cpp:399 reads it, :458 writes P[3] with it; ROS 1
+    ``hackBaseline``: @noetic-devel:gazebo_plugins/src/gazebo_ros_camera_utils.cpp:191-197,
+    :610).
+    Seen from the right eye's body frame (x forward, y left), the left eye sits the baseline
+    to its left: offset (0, +baseline, 0).
+    """
+    if not s.is_camera or fr.plugin is None:
+        return False
+    text = fr.plugin.param("hack_baseline") or fr.plugin.param("hackBaseline")
+    try:
+        baseline = float(text) if text is not None else 0.0
+    except ValueError:
+        return False
+    if not baseline > 0:
+        return False
+    np = _np()
+    return float(np.linalg.norm(off - np.array([0.0, baseline, 0.0]))) <= POSITION_TOL
 
 
 @rule(

@@ -6,7 +6,7 @@ import difflib
 from collections.abc import Iterator
 
 from sensorkit.findings import Finding, Severity
-from sensorkit.model.robot import URDF_ATTRS, URDF_CHILDREN, local
+from sensorkit.model.robot import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN, local
 from sensorkit.rules.base import Context, declare, rule
 
 declare("SK101", "error", "XML is well-formed; report file:line:column", "all parsers")
@@ -49,7 +49,8 @@ def missing_files(ctx: Context) -> Iterator[Finding]:
     "SK105",
     "warning",
     "unknown or misplaced element/attribute that URDF parsers silently ignore "
-    "(`<joint>` inside `<link>`, `<intertial>`, `<mass values=...>`, `<gazebo>` inside `<link>`)",
+    "(`<joint>` inside `<link>`, `<intertial>`, `<mass values=...>`, `<gazebo>` inside `<link>`, "
+    "a tag directly under `<robot>` that nothing reads)",
 )
 def unknown_elements(ctx: Context) -> Iterator[Finding]:
     for stray in ctx.robot.strays:
@@ -65,10 +66,17 @@ def unknown_elements(ctx: Context) -> Iterator[Finding]:
                     if close
                     else f"<{ptag}> takes only " + ", ".join(f"<{c}>" for c in allowed)
                 )
+            if ptag == "robot":
+                hint = (
+                    f"URDF reads only {', '.join(f'<{c}>' for c in sorted(ROBOT_CHILDREN))} here: "
+                    "if a macro or xacro:element produced this tag, make it produce the element you meant"
+                )
             yield ctx.finding(
                 "SK105",
                 Severity.WARNING,
-                f"<{tag}> inside <{ptag}> is silently ignored by URDF parsers",
+                f"<{tag}> directly under <robot> is read by no URDF parser or simulator: whatever it holds is lost"
+                if ptag == "robot"
+                else f"<{tag}> inside <{ptag}> is silently ignored by URDF parsers",
                 el,
                 link=stray.link,
                 fix=hint,

@@ -141,7 +141,8 @@ def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
     conv = ctx.conversion
     for sensor in ctx.robot.sensors:
         fr = ctx.frames_of(sensor)
-        if fr.link is None or fr.plugin is None or not fr.is_default:
+        # Only plugins whose default frame follows lumping (gazebo_ros::SensorFrameID) move.
+        if fr.link is None or fr.spec is None or not fr.spec.lumped or not fr.is_default:
             continue
         if conv.is_lumped(fr.link):
             survivor = conv.survivor(fr.link)

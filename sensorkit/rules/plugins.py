@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections import defaultdict
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -9,151 +10,20 @@ from dataclasses import dataclass
 from lxml import etree
 
 from sensorkit.findings import Finding, Severity
+from sensorkit.knowledge.gazebo_ros import (
+    PLUGIN_SENSOR_KINDS,
+    RAY_OUTPUT_TYPES,
+    ROS1_ONLY,
+    ROS1_TO_ROS2_PARAMS,
+    ROS2_ONLY,
+    ROS2_PLUGINS,
+)
 from sensorkit.model.frames import GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.robot import child, children, local, text_of
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
 from sensorkit.rules.base import Context, rule
 
-# gazebo_plugins / gazebo_ros in ROS 2 (libgazebo_ros_<name>.so).
-ROS2_PLUGINS = {
-    "camera",
-    "ray_sensor",
-    "imu_sensor",
-    "gps_sensor",
-    "ft_sensor",
-    "bumper",
-    "p3d",
-    "diff_drive",
-    "ackermann_drive",
-    "tricycle_drive",
-    "planar_move",
-    "joint_state_publisher",
-    "joint_pose_trajectory",
-    "force",
-    "elevator",
-    "hand_of_god",
-    "harness",
-    "projector",
-    "template",
-    "vacuum_gripper",
-    "video",
-    "wheel_slip",
-    "multi_camera",
-    "init",
-    "factory",
-    "state",
-    "properties",
-    "force_system",
-}
-# ROS 1 only, with what replaces each in ROS 2.
-ROS1_ONLY: dict[str, str] = {
-    "depth_camera": "libgazebo_ros_camera.so on a sensor of type depth",
-    "openni_kinect": "libgazebo_ros_camera.so on a sensor of type depth",
-    "multicamera": "libgazebo_ros_camera.so on a sensor of type multicamera",
-    "triggered_camera": "libgazebo_ros_camera.so with <triggered>true</triggered>",
-    "triggered_multicamera": "libgazebo_ros_camera.so on a multicamera sensor with <triggered>true</triggered>",
-    "laser": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/LaserScan</output_type>",
-    "gpu_laser": "libgazebo_ros_ray_sensor.so on a gpu_ray sensor with <output_type>sensor_msgs/LaserScan</output_type>",
-    "block_laser": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/PointCloud2</output_type>",
-    "range": "libgazebo_ros_ray_sensor.so with <output_type>sensor_msgs/Range</output_type>",
-    "imu": "a sensor of type imu with libgazebo_ros_imu_sensor.so",
-    "skid_steer_drive": "libgazebo_ros_diff_drive.so with <num_wheel_pairs>2</num_wheel_pairs>",
-    "prosilica": "nothing in gazebo_plugins (use libgazebo_ros_camera.so)",
-    "f3d": "nothing in gazebo_plugins (libgazebo_ros_ft_sensor.so measures joint wrenches)",
-    "hokuyo_node": "nothing in gazebo_plugins (use libgazebo_ros_ray_sensor.so)",
-    "camera_synchronizer": "nothing in gazebo_plugins",
-    "vision_reconfigure": "nothing in gazebo_plugins",
-    "control": "gazebo_ros2_control (libgazebo_ros2_control.so)",
-}
-# ROS 2 gazebo_ros names that ROS 1 gazebo_plugins never had.
-ROS2_ONLY = {
-    "ray_sensor",
-    "gps_sensor",
-    "ackermann_drive",
-    "wheel_slip",
-    "multi_camera",
-    "init",
-    "factory",
-    "state",
-    "properties",
-    "force_system",
-}
-ROS1_TO_ROS2_PARAMS: dict[str, str] = {
-    "frameName": "<frame_name>",
-    "cameraName": "<camera_name>",
-    "robotNamespace": "<ros><namespace>",
-    "hackBaseline": "<hack_baseline>",
-    "baseline": "<hack_baseline>",
-    "focalLength": "<focal_length>",
-    "Cx": "<cx>",
-    "Cy": "<cy>",
-    "CxPrime": "nothing (ROS 2 has no CxPrime)",
-    "pointCloudCutoff": "<min_depth>",
-    "pointCloudCutoffMax": "<max_depth>",
-    "imageTopicName": "the fixed name <camera_name>/image_raw plus <ros><remapping>",
-    "cameraInfoTopicName": "the fixed name <camera_name>/camera_info plus <ros><remapping>",
-    "depthImageTopicName": "the fixed name <camera_name>/depth/image_raw plus <ros><remapping>",
-    "depthImageInfoTopicName": "the fixed name <camera_name>/depth/camera_info plus <ros><remapping>",
-    "depthImageCameraInfoTopicName": "the fixed name <camera_name>/depth/camera_info plus <ros><remapping>",
-    "pointCloudTopicName": "the fixed name <camera_name>/points plus <ros><remapping>",
-    "distortionK1": "the SDF <camera><distortion><k1>",
-    "distortionK2": "the SDF <camera><distortion><k2>",
-    "distortionK3": "the SDF <camera><distortion><k3>",
-    "distortionT1": "the SDF <camera><distortion><p1>",
-    "distortionT2": "the SDF <camera><distortion><p2>",
-    "updateRate": "the sensor's <update_rate> (or <update_rate> for model plugins)",
-    "updateRateHZ": "the sensor's <update_rate>",
-    "alwaysOn": "the sensor's <always_on>",
-    "topicName": "<ros><remapping>~/out:=TOPIC</remapping>",
-    "bodyName": "<frame_name>",
-    "gaussianNoise": "an SDF <noise> block on the sensor",
-    "xyzOffset": "the sensor's <pose>",
-    "xyzOffsets": "the sensor's <pose>",
-    "rpyOffset": "the sensor's <pose>",
-    "rpyOffsets": "the sensor's <pose>",
-    "serviceName": "nothing (ROS 2 has no calibration service)",
-    "initialOrientationAsReference": "<initial_orientation_as_reference>",
-    "leftJoint": "<left_joint>",
-    "rightJoint": "<right_joint>",
-    "leftFrontJoint": "<left_joint> (with <num_wheel_pairs>)",
-    "rightFrontJoint": "<right_joint> (with <num_wheel_pairs>)",
-    "leftRearJoint": "<left_joint> (with <num_wheel_pairs>)",
-    "rightRearJoint": "<right_joint> (with <num_wheel_pairs>)",
-    "wheelSeparation": "<wheel_separation>",
-    "wheelDiameter": "<wheel_diameter>",
-    "wheelTorque": "<max_wheel_torque>",
-    "wheelAcceleration": "<max_wheel_acceleration>",
-    "commandTopic": "<ros><remapping>cmd_vel:=TOPIC</remapping>",
-    "odometryTopic": "<ros><remapping>odom:=TOPIC</remapping>",
-    "odometryFrame": "<odometry_frame>",
-    "robotBaseFrame": "<robot_base_frame>",
-    "publishWheelTF": "<publish_wheel_tf>",
-    "publishOdomTF": "<publish_odom_tf>",
-    "publishWheelJointState": "a joint_state_publisher plugin",
-    "odometrySource": "<odometry_source>",
-    "rosDebugLevel": "nothing (use --ros-args --log-level)",
-}
-RAY_OUTPUT_TYPES = {
-    "sensor_msgs/LaserScan",
-    "sensor_msgs/PointCloud",
-    "sensor_msgs/PointCloud2",
-    "sensor_msgs/Range",
-}
-PLUGIN_SENSOR_KINDS: dict[str, set[str]] = {
-    "gazebo_ros_camera": {"camera", "depth", "multicamera"},
-    "gazebo_ros_ray_sensor": {"ray", "gpu_ray"},
-    "gazebo_ros_imu_sensor": {"imu"},
-    "gazebo_ros_depth_camera": {"depth"},
-    "gazebo_ros_openni_kinect": {"depth"},
-    "gazebo_ros_laser": {"ray"},
-    "gazebo_ros_gpu_laser": {"gpu_ray"},
-    "gazebo_ros_block_laser": {"ray"},
-    "gazebo_ros_velodyne_laser": {"ray", "gpu_ray"},
-    "gazebo_ros_velodyne_gpu_laser": {"gpu_ray"},
-    "gazebo_ros_multicamera": {"multicamera"},
-    "gazebo_ros_gps_sensor": {"gps"},
-}
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
 
 
@@ -169,71 +39,118 @@ def _ros_name(p: Plugin) -> str | None:
 
 @rule(
     "SK601",
-    "error",
+    "error/warning",
     "plugin library exists for the target; name the replacement (ROS 1 `libgazebo_ros_depth_camera.so` -> "
     "`libgazebo_ros_camera.so` with a depth sensor, `libgazebo_ros_laser.so`/`gpu_laser` -> "
-    "`libgazebo_ros_ray_sensor.so`, `libgazebo_ros_*` under gz -> gz sensors + ros_gz_bridge)",
+    "`libgazebo_ros_ray_sensor.so`, `libgazebo_ros_*` under gz -> gz sensors + ros_gz_bridge); a placeholder "
+    "filename (`dummyfile`) exists for no target (a warning on gz, where the sensor still publishes)",
 )
 def plugin_exists(ctx: Context) -> Iterator[Finding]:
-    target = ctx.target
     for p in all_plugins(ctx.robot):
-        name = _ros_name(p)
-        sensor = p.sensor.name if p.sensor else None
+        problem = plugin_problem(p, ctx.target)
+        if problem is None:
+            continue
+        severity, message, fix = problem
+        if p.sensor is not None and severity == Severity.ERROR and not is_gz(ctx.target):
+            # Its frame findings are folded in here: the sensor's frame is checked once
+            # a plugin that loads names one.
+            fix += _frame_advice(ctx, p.sensor)
+        yield ctx.finding(
+            "SK601",
+            severity,
+            message,
+            p.source,
+            sensor=p.sensor.name if p.sensor else None,
+            fix=fix,
+        )
+
+
+# Filenames that name no library at all: copied placeholders. Gazebo Sim resolves a
+# plugin's filename through its plugin paths and logs "Failed to load system plugin"
+# when nothing matches, loading nothing (gazebosim/gz-sim@gz-sim8:src/SystemLoader.cc).
+PLACEHOLDERS = frozenset({"", "dummy", "dummyfile", "placeholder", "todo", "none", "null", "foo"})
+
+
+def _base(filename: str) -> str:
+    base = filename.rsplit("/", 1)[-1].strip()
+    base = base.removeprefix("lib")
+    return base.removesuffix(".so")
+
+
+def plugin_problem(p: Plugin, target: str) -> tuple[Severity, str, str] | None:
+    """Why ``p`` cannot load under ``target`` as (severity, message, fix), or None."""
+    base = _base(p.filename)
+    if base.lower() in PLACEHOLDERS:
         if is_gz(target):
-            if is_classic_plugin(p.filename):
-                yield ctx.finding(
-                    "SK601",
-                    Severity.ERROR,
-                    f"{p.filename} is a Gazebo Classic plugin: Gazebo Sim ({target}) never loads it",
-                    p.source,
-                    sensor=sensor,
-                    fix="remove it: Gazebo Sim sensors publish on <topic> by themselves; bridge them to ROS with ros_gz_bridge",
-                )
-            elif target == "fortress" and p.filename.rsplit("/", 1)[-1].startswith(
-                ("gz-sim", "libgz-sim")
-            ):
-                fixed = p.filename.replace("libgz-sim", "libignition-gazebo").replace(
-                    "gz-sim", "ignition-gazebo"
-                )
-                yield ctx.finding(
-                    "SK601",
-                    Severity.ERROR,
-                    f"{p.filename} does not exist in Fortress (gz-sim names start with Garden)",
-                    p.source,
-                    sensor=sensor,
-                    fix=f"use {fixed}",
-                )
-            continue
-        if is_gz_plugin(p.filename):
-            yield ctx.finding(
-                "SK601",
-                Severity.ERROR,
-                f"{p.filename} is a Gazebo Sim system: Gazebo Classic never loads it",
-                p.source,
-                sensor=sensor,
-                fix="use the gazebo_ros plugin for Classic, or validate with --target harmonic/fortress/jetty",
+            return (
+                Severity.WARNING,
+                f"plugin filename {p.filename!r} names no library: Gazebo Sim logs an error and loads "
+                "nothing (the sensor itself still publishes on its <topic>)",
+                "remove the placeholder <plugin>, or name the system you meant",
             )
-            continue
-        if name is None:
-            continue
-        if target == "classic" and name in ROS1_ONLY:
-            yield ctx.finding(
-                "SK601",
+        return (
+            Severity.ERROR,
+            f"plugin filename {p.filename!r} names no library: Gazebo cannot load it"
+            + (" and the sensor publishes nothing to ROS" if p.sensor is not None else ""),
+            "name the real plugin library (e.g. libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so)",
+        )
+    name = _ros_name(p)
+    if is_gz(target):
+        if is_classic_plugin(p.filename):
+            return (
                 Severity.ERROR,
-                f"{p.filename} exists only in ROS 1: ROS 2 Gazebo Classic cannot load it and the sensor publishes nothing",
-                p.source,
-                sensor=sensor,
-                fix=f"use {ROS1_ONLY[name]}",
+                f"{p.filename} is a Gazebo Classic plugin: Gazebo Sim ({target}) never loads it",
+                "remove it: Gazebo Sim sensors publish on <topic> by themselves; bridge them to ROS with ros_gz_bridge",
             )
-        elif target == "ros1" and name in ROS2_ONLY:
-            yield ctx.finding(
-                "SK601",
+        if target == "fortress" and p.filename.rsplit("/", 1)[-1].startswith(
+            ("gz-sim", "libgz-sim")
+        ):
+            fixed = p.filename.replace("libgz-sim", "libignition-gazebo").replace(
+                "gz-sim", "ignition-gazebo"
+            )
+            return (
                 Severity.ERROR,
-                f"{p.filename} exists only in ROS 2 gazebo_plugins",
-                p.source,
-                sensor=sensor,
-                fix="use the ROS 1 plugin (e.g. libgazebo_ros_laser.so), or --target classic",
+                f"{p.filename} does not exist in Fortress (gz-sim names start with Garden)",
+                f"use {fixed}",
             )
+        return None
+    if is_gz_plugin(p.filename):
+        return (
+            Severity.ERROR,
+            f"{p.filename} is a Gazebo Sim system: Gazebo Classic never loads it",
+            "use the gazebo_ros plugin for Classic, or validate with --target harmonic/fortress/jetty",
+        )
+    if name is None:
+        return None
+    if target == "classic" and name in ROS1_ONLY:
+        return (
+            Severity.ERROR,
+            f"{p.filename} exists only in ROS 1: ROS 2 Gazebo Classic cannot load it and the sensor publishes nothing",
+            f"use {ROS1_ONLY[name]}",
+        )
+    if target == "ros1" and name in ROS2_ONLY:
+        return (
+            Severity.ERROR,
+            f"{p.filename} exists only in ROS 2 gazebo_plugins",
+            "use the ROS 1 plugin (e.g. libgazebo_ros_laser.so), or --target classic",
+        )
+    return None
+
+
+def _frame_advice(ctx: Context, s: Sensor) -> str:
+    """The frame the replacement plugin should name (folded in, instead of frame findings)."""
+    from sensorkit.model.frames import optical_frame_at
+
+    fr = ctx.frames_of(s)
+    if fr.link is None:
+        return ""
+    if s.is_camera:
+        frame = optical_frame_at(ctx.robot, fr.T_world_render)
+        if frame is None:
+            return f"; then publish in an optical frame at the camera (add {fr.link}_optical_frame)"
+    else:
+        frame = fr.link
+    return f", with <frame_name>{frame}</frame_name>"
 
 
 @rule(
@@ -512,24 +429,134 @@ def ray_output_type(ctx: Context) -> Iterator[Finding]:
                 )
 
 
+# What a Gazebo Sim sensor with no <topic> publishes on: its scoped name plus a suffix
+# (gazebosim/gz-sim@gz-sim8:src/rendering/RenderUtil.cc:1723-1725 sets
+# scopedName(entity) + suffix, suffixes at :1737-1744; IMU: src/systems/imu/Imu.cc:201).
+# The scoped name is /world/WORLD/model/MODEL/link/LINK/sensor/NAME.
+GZ_DEFAULT_SUFFIX = {
+    "camera": "/image",
+    "depth": "/depth_image",
+    "rgbd": "/image",  # rgbd_camera's suffix is "" and it publishes BASE/image, BASE/depth_image
+    "lidar": "/scan",
+    "imu": "/imu",
+}
+
+
+def _norm(topic: str) -> str:
+    return "/" + topic.strip().strip("/")
+
+
+def gz_primary_topic(s: Sensor) -> str | None:
+    """The gz topic that carries a sensor's main data (None for kinds sensorkit does not know)."""
+    if s.kind not in GZ_DEFAULT_SUFFIX:
+        return None
+    if s.topic:
+        topics = gz_topics(s)
+        return topics[0] if topics else None
+    return f"/sensor/{s.name}{GZ_DEFAULT_SUFFIX[s.kind]}"  # the tail of the scoped name
+
+
+def _bridged(topic: str, scoped: bool, bridged: set[str]) -> bool:
+    """``topic`` is carried by one of the bridged gz topics.
+
+    A scoped topic is matched by its tail (``/sensor/NAME/image``): the world and model
+    names are the launch's. Placeholders that a launch file fills in before starting the
+    bridge (``<namespace>``, ``$(var x)``) match any one name.
+    """
+    if scoped:
+        tail = topic.rstrip("/") + "/"
+        return any(tail in b + "/" for b in bridged)
+    want = _norm(topic)
+    for b in bridged:
+        if "<" in b or "$(" in b:
+            parts = re.split(r"<[^>]*>|\$\([^)]*\)", b)
+            if re.fullmatch("[^/]*".join(re.escape(x) for x in parts), want):
+                return True
+        elif b == want:
+            return True
+    return False
+
+
+def _ros2_control_sensors(ctx: Context) -> set[str]:
+    """IMUs that gz_ros2_control reads by name: a <ros2_control><sensor name=...> matching the gz
+    sensor's name (ros-controls/gz_ros2_control@jazzy:gz_ros2_control/src/gz_system.cpp:426-448;
+    @humble:ign_ros2_control/src/ign_system.cpp:430-452). Only with its system plugin loaded."""
+    plugins = ("gz_ros2_control", "ign_ros2_control")
+    if not any(_base(p.filename).startswith(plugins) for p in ctx.robot.model_plugins):
+        return set()
+    root = ctx.robot.document.root
+    return {
+        el.get("name", "")
+        for block in root
+        if local(block) == "ros2_control"
+        for el in block
+        if local(el) == "sensor"
+    }
+
+
+def _is_published_by_model_plugin(ctx: Context, s: Sensor) -> bool:
+    """A model-level plugin names this sensor among its parameters (it publishes it by name)."""
+    for p in ctx.robot.model_plugins:
+        for el in p.element.iter():
+            if (
+                el is not p.element
+                and isinstance(el.tag, str)
+                and (el.text or "").strip() == s.name
+            ):
+                return True
+    return False
+
+
 @rule(
     "SK607",
     "warning",
-    "a sensor publishes nothing to ROS (no plugin on classic; no topic/bridge entry on gz)",
+    "a sensor publishes nothing to ROS (no plugin on classic, and no model-level plugin that "
+    "publishes it by name; on gz: no ros_gz_bridge entry for its topic when a bridge is known, "
+    "info on the scoped default topic when none is)",
 )
 def publishes_nothing(ctx: Context) -> Iterator[Finding]:
+    bridge = ctx.bridge
+    bridged = (
+        {_norm(t.gz) for t in bridge.topics if t.to_ros}
+        if bridge is not None and bridge.files
+        else None
+    )
+    via_control = _ros2_control_sensors(ctx) if is_gz(ctx.target) else set()
     for s in ctx.robot.sensors:
         if is_gz(ctx.target):
-            if not s.topic:
-                yield ctx.finding(
-                    "SK607",
-                    Severity.WARNING,
-                    f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes on a scoped default topic that no bridge entry names",
-                    s.source,
-                    sensor=s.name,
-                    fix=f"add <topic>{s.name}</topic> and a ros_gz_bridge entry for it",
-                )
-        elif not s.plugins:
+            topic = gz_primary_topic(s)
+            if topic is None or (s.kind == "imu" and s.name in via_control):
+                continue
+            if bridged is None:
+                if not s.topic:
+                    yield ctx.finding(
+                        "SK607",
+                        Severity.INFO,
+                        f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes it on its scoped default "
+                        f"/world/WORLD/model/MODEL/link/{s.reference}{topic}; a ros_gz_bridge entry must "
+                        "name that topic for ROS to see it (no bridge configuration is known: pass --bridge FILE)",
+                        s.source,
+                        sensor=s.name,
+                        fix=f"add <topic>{s.name}</topic> (a short, stable name) and bridge it",
+                    )
+                continue
+            # Any of its topics will do: images often travel through ros_gz_image's
+            # image_bridge, started by a launch file, while camera_info goes through the YAML.
+            topics = gz_topics(s) if s.topic else [topic, f"/sensor/{s.name}/"]
+            if any(_bridged(t, not s.topic, bridged) for t in topics):
+                continue
+            shown = topic if s.topic else f"/world/WORLD/model/MODEL/link/{s.reference}{topic}"
+            yield ctx.finding(
+                "SK607",
+                Severity.WARNING,
+                f"sensor {s.name!r} publishes on gz topic {shown}, and no entry of "
+                f"{', '.join(bridge.files) if bridge else ''} names any of its topics: unless a launch "
+                "file bridges them some other way, ROS never sees this sensor",
+                s.source,
+                sensor=s.name,
+                fix=f"add a GZ_TO_ROS entry with gz_topic_name: {topic.lstrip('/') if s.topic else '...' + topic}",
+            )
+        elif not s.plugins and not _is_published_by_model_plugin(ctx, s):
             yield ctx.finding(
                 "SK607",
                 Severity.WARNING,
@@ -538,6 +565,60 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 sensor=s.name,
                 fix="add the gazebo_ros plugin for its type (libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so, libgazebo_ros_imu_sensor.so)",
             )
+
+
+# ROS message types that carry sensor data: a bridge entry of one of these whose gz topic
+# no sensor publishes is probably a typo (or a sensor outside this robot).
+SENSOR_MSG_TYPES = frozenset(
+    {
+        "sensor_msgs/msg/Image",
+        "sensor_msgs/msg/CameraInfo",
+        "sensor_msgs/msg/LaserScan",
+        "sensor_msgs/msg/PointCloud2",
+        "sensor_msgs/msg/Imu",
+        "sensor_msgs/msg/NavSatFix",
+    }
+)
+
+
+@rule(
+    "SK612",
+    "info",
+    "a ros_gz_bridge entry of a sensor message type whose gz topic no sensor of the robot publishes "
+    "(a typo, or a sensor outside this description)",
+)
+def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
+    bridge = ctx.bridge
+    if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
+        return
+    from sensorkit.findings import SourceRef
+    from sensorkit.suggest import closest
+
+    explicit: set[str] = set()
+    scoped: list[str] = []
+    for s in ctx.robot.sensors:
+        if s.topic:
+            explicit.update(gz_topics(s))
+        else:
+            scoped.append(f"/sensor/{s.name}/")
+    for t in bridge.topics:
+        if (t.ros_type or "").replace("/msg/", "/") not in {
+            x.replace("/msg/", "/") for x in SENSOR_MSG_TYPES
+        }:
+            continue
+        gz = _norm(t.gz)
+        if gz in explicit or any(tail in gz + "/" for tail in scoped) or "$" in gz or "<" in gz:
+            continue
+        hint = closest(gz, explicit)
+        yield ctx.finding(
+            "SK612",
+            Severity.INFO,
+            f"bridge entry for gz topic {t.gz!r} ({t.ros_type}) matches no sensor of this robot",
+            SourceRef(t.file, t.line),
+            fix=f"did you mean {hint[0].lstrip('/')!r}?"
+            if hint
+            else "remove it, or check the sensor's <topic>",
+        )
 
 
 @rule(
@@ -614,3 +695,59 @@ def useless_remapping(ctx: Context) -> Iterator[Finding]:
                     sensor=s.name,
                     fix=f"remap the name it publishes: <remapping>{hint}:={dst}</remapping>",
                 )
+
+
+@rule(
+    "SK610",
+    "info",
+    "a sensor's plugin is one sensorkit does not know: it cannot tell the frame or topics it "
+    "publishes, so frame and topic rules stay silent for that sensor",
+)
+def unknown_plugin(ctx: Context) -> Iterator[Finding]:
+    if is_gz(ctx.target):
+        return  # Gazebo Sim sensors stamp and publish by themselves, whatever plugin rides along
+    from sensorkit.knowledge.gazebo_ros import ROS1_LIBRARIES, ROS2_LIBRARIES
+    from sensorkit.suggest import closest
+
+    for s in ctx.robot.sensors:
+        fr = ctx.frames_of(s)
+        p = fr.plugin
+        if not fr.unknown or p is None or plugin_problem(p, ctx.target) is not None:
+            continue
+        known_names = ROS1_LIBRARIES if ctx.target == "ros1" else ROS2_LIBRARIES
+        hint = closest(p.library, known_names) if p.library.startswith("gazebo_ros") else []
+        yield ctx.finding(
+            "SK610",
+            Severity.INFO,
+            f"unknown plugin {p.filename}: sensorkit cannot tell the frame or topics of sensor {s.name!r}",
+            p.source,
+            sensor=s.name,
+            fix=(
+                f"if you meant lib{hint[0]}.so, name it; otherwise check its frame by hand"
+                if hint
+                else "check the frame it publishes in by hand (ros2 topic echo --once ... header.frame_id)"
+            ),
+        )
+
+
+@rule(
+    "SK611",
+    "warning",
+    "under `--target auto`, a description written for ROS 1 (ROS 1-only plugins and tags, "
+    "nothing only ROS 2 has) is said once and validated as ROS 1, instead of one SK602 per tag",
+)
+def written_for_ros1(ctx: Context) -> Iterator[Finding]:
+    if not (ctx.auto and ctx.target == "ros1"):
+        return
+    from sensorkit.model.targets import ros1_evidence
+
+    ev = ros1_evidence(ctx.robot)
+    yield ctx.finding(
+        "SK611",
+        Severity.WARNING,
+        f"this description is written for ROS 1 ({ev.describe()}); validated as ROS 1 Gazebo "
+        "Classic. Under ROS 2 none of these plugins publish as written",
+        ctx.robot.document.root,
+        fix="on ROS 1, pass --target ros1 to say so; to port it to ROS 2, validate with "
+        "--target classic: every tag and plugin is listed with its ROS 2 form",
+    )

@@ -7,6 +7,7 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from sensorkit.findings import Finding, Severity
+from sensorkit.model.robot import local
 from sensorkit.model.sensors import LidarSpec, Noise, Sensor
 from sensorkit.rules.base import Context, rule
 
@@ -39,8 +40,9 @@ WIDE_ANGLE = {"wideanglecamera", "wide_angle_camera"}
 
 @rule(
     "SK401",
-    "error",
-    '`<gazebo reference="X">`: X is an existing link or joint',
+    "error/warning",
+    '`<gazebo reference="X">`: X is an existing link or joint (error when the block holds a sensor '
+    "or plugin, which is lost; warning for material/physics settings that apply to nothing)",
     "none (silently ignored)",
 )
 def gazebo_reference(ctx: Context) -> Iterator[Finding]:
@@ -53,9 +55,12 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
 
         close = closest(ref, [*robot.link_map, *robot.joint_map])
         has_sensor = any(s.block is block.element for s in robot.sensors)
+        # A sensor or plugin in the block is lost; material, friction or colour settings
+        # only apply to nothing (shared files often style every variant's links).
+        carries = has_sensor or any(local(el) == "plugin" for el in block.element)
         yield ctx.finding(
             "SK401",
-            Severity.ERROR,
+            Severity.ERROR if carries else Severity.WARNING,
             f'<gazebo reference="{ref}">: no link or joint is called {ref!r}; Gazebo silently '
             f"ignores this block{' and its sensor' if has_sensor else ''}",
             block.source,

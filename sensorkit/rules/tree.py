@@ -90,6 +90,24 @@ def single_root(ctx: Context) -> Iterator[Finding]:
             fix="add at least one <link>",
         )
         return
+    for top in robot.cut_off():
+        j = robot.parent_joint[top]
+        sub = robot.subtree(top)
+        below = (
+            f" and the {len(sub) - 1} links below it ({', '.join(sub[1:4])}{', ...' if len(sub) > 4 else ''})"
+            if len(sub) > 1
+            else ""
+        )
+        yield ctx.finding(
+            "SK203",
+            Severity.ERROR,
+            f"link {top!r}{below} is cut off from the robot: its joint {j.name!r} hangs it from "
+            f"{j.parent!r}, which does not exist",
+            robot.link_map[top].source,
+            link=top,
+            joint=j.name,
+            fix=f"fix the parent of joint {j.name!r} (see SK202); until then TF cannot place these links",
+        )
     roots = robot.roots()
     if len(roots) > 1:
         main = max(roots, key=lambda r: len(robot.subtree(r)))
@@ -281,7 +299,9 @@ def numbers(ctx: Context) -> Iterator[Finding]:
                 joint=j.name,
                 fix="write three finite numbers separated by spaces",
             )
-        if j.axis_problem:
+        # urdfdom reads <axis> only for moving joints (ros/urdfdom@9a1f5b4:
+        # urdf_parser/src/joint.cpp:425): a fixed or floating joint's axis is never used.
+        if j.axis_problem and j.type not in ("fixed", "floating"):
             yield ctx.finding(
                 "SK206",
                 Severity.ERROR,

@@ -1,0 +1,65 @@
+"""Precision of ``sensorkit validate`` on the labelled real-world corpora.
+
+Runs validate on every robot in tests/corpus/robots.yaml and tests/realworld/robots.yaml
+(as tests/labelled.py does) and prints, per corpus and per rule, how many findings are
+labelled true and false, and the precision. ``--skeleton`` prints label lines for
+findings that have none yet, to be judged by a person and pasted into labels.yaml.
+
+Run: ``.venv/bin/python benchmarks/corpus_precision.py [--skeleton]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections import Counter
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+
+from labelled import labels, robots, run, skeleton
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--skeleton", action="store_true", help="print label lines for unlabelled findings")
+    ns = ap.parse_args()
+    per_rule: dict[str, Counter[str]] = {}
+    per_corpus: dict[str, Counter[str]] = {}
+    crashes = 0
+    for robot in robots():
+        out = run(robot)
+        if out.error:
+            crashes += 1
+            print(f"ERROR {robot.id}: {out.error}", file=sys.stderr)
+            continue
+        known = labels(robot.corpus).get(robot.file, {})
+        todo = skeleton(out, known)
+        if ns.skeleton and todo:
+            print(f"- robot: {robot.file}\n  findings:\n{todo}")
+        for key, count in out.keys.items():
+            lab = known.get(key)
+            verdict = "unlabelled" if lab is None else "true" if lab.get("verdict") is True else "false"
+            per_rule.setdefault(key[0], Counter())[verdict] += count
+            per_corpus.setdefault(robot.corpus.name, Counter())[verdict] += count
+    if ns.skeleton:
+        return 0
+    total: Counter[str] = Counter()
+    print(f"{'':12} {'true':>5} {'false':>5} {'unlab':>5}  precision")
+    for name, c in sorted(per_corpus.items()):
+        total.update(c)
+        print(f"{name:12} {c['true']:5} {c['false']:5} {c['unlabelled']:5}  {_p(c)}")
+    print(f"{'all':12} {total['true']:5} {total['false']:5} {total['unlabelled']:5}  {_p(total)}")
+    print(f"robots: {len(robots())}, could not be validated: {crashes}\n")
+    for rule, c in sorted(per_rule.items()):
+        print(f"{rule:12} {c['true']:5} {c['false']:5} {c['unlabelled']:5}  {_p(c)}")
+    return 0
+
+
+def _p(c: Counter[str]) -> str:
+    judged = c["true"] + c["false"]
+    return f"{100 * c['true'] / judged:.1f} %" if judged else "-"
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
