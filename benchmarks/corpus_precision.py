@@ -33,10 +33,10 @@ def main() -> int:
             crashes += 1
             print(f"ERROR {robot.id}: {out.error}", file=sys.stderr)
             continue
-        known = labels(robot.corpus).get(robot.file, {})
+        known = labels(robot.corpus).get(robot.key, {})
         todo = skeleton(out, known)
         if ns.skeleton and todo:
-            print(f"- robot: {robot.file}\n  findings:\n{todo}")
+            print(f"- robot: {robot.key}\n  findings:\n{todo}")
         for key, count in out.keys.items():
             lab = known.get(key)
             verdict = "unlabelled" if lab is None else "true" if lab.get("verdict") is True else "false"

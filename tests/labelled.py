@@ -41,8 +41,14 @@ class Robot:
         return (self.corpus / self.file).resolve()
 
     @property
+    def key(self) -> str:
+        """How labels.yaml names this robot: the file, then its xacro args (one file may be
+        listed twice with different args)."""
+        return " ".join([self.file, *(f"{k}:={v}" for k, v in sorted(self.args.items()))])
+
+    @property
     def id(self) -> str:
-        return f"{self.corpus.name}/{self.file}"
+        return f"{self.corpus.name}/{self.key}"
 
 
 @dataclass
@@ -108,7 +114,7 @@ def run(robot: Robot) -> Outcome:
 
 
 def labels(corpus: Path) -> dict[str, dict[Key, dict[str, Any]]]:
-    """robot file -> key -> label (verdict, why)."""
+    """robot key (file and args) -> finding key -> label (verdict, why)."""
     path = corpus / "labels.yaml"
     if not path.is_file():
         return {}

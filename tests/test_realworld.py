@@ -34,11 +34,11 @@ def test_every_finding_is_labelled(robot_id: str) -> None:
     out = outcome(robot_id)
     assert out.error is None, out.error
     robot = out.robot
-    known = labels(robot.corpus).get(robot.file, {})
+    known = labels(robot.corpus).get(robot.key, {})
     missing = [k for k in out.keys if k not in known]
-    assert not missing, f"unlabelled findings on {robot.file}:\n" + skeleton(out, known)
+    assert not missing, f"unlabelled findings on {robot.key}:\n" + skeleton(out, known)
     stale = [k for k in known if k not in out.keys]
-    assert not stale, f"labels with no finding any more on {robot.file}: {stale}"
+    assert not stale, f"labels with no finding any more on {robot.key}: {stale}"
     for key, lab in known.items():
         assert lab.get("verdict") in (True, False), (key, lab)
         assert len(str(lab.get("why", ""))) >= 15, f"say why {key} is {lab.get('verdict')}"
@@ -48,7 +48,7 @@ def test_precision_is_at_least_95_percent() -> None:
     true = false = 0
     for robot in ROBOTS:
         out = outcome(robot.id)
-        known = labels(robot.corpus).get(robot.file, {})
+        known = labels(robot.corpus).get(robot.key, {})
         for key, count in out.keys.items():
             lab = known.get(key)
             if lab is None:

@@ -356,3 +356,36 @@ def test_axis_of_a_fixed_joint_is_not_read(check) -> None:
     assert "SK206" not in rules_of(check(fixed, target="classic"))
     moving = _tree(TB, link("b"), joint("j", "a", "b", type="continuous", extra='<axis xyz="0 0 0"/>'))
     assert "SK206" in rules_of(check(moving, target="classic"))
+
+
+def test_imu_read_by_ros2_control_counts_as_published(check) -> None:
+    # gazebo_ros2_control reads <ros2_control><sensor name> by the Gazebo sensor's name
+    # (ros-controls/gazebo_ros2_control@humble:gazebo_ros2_control/src/gazebo_system.cpp:554-589).
+    imu = '<gazebo reference="base_link"><sensor name="imu_sensor" type="imu"><update_rate>50</update_rate></sensor></gazebo>'
+    control = ('<ros2_control name="sys" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>'
+               '<sensor name="imu_sensor"><state_interface name="orientation.x"/></sensor></ros2_control>'
+               '<gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/></gazebo>')
+    assert "SK607" not in rules_of(check(robot(extra=imu + control), target="classic"))
+    no_plugin = control.split("<gazebo>", maxsplit=1)[0]  # the ros2_control block alone loads nothing in Gazebo
+    assert "SK607" in rules_of(check(robot(extra=imu + no_plugin), target="classic"))
+
+
+def test_sk402_only_for_sensors_that_share_a_link(check) -> None:
+    # sdformat refuses a duplicate sensor name within one link (gazebosim/sdformat@sdf14:
+    # src/Link.cc:167, src/Utils.hh:128-136); on different links the names are scoped apart.
+    apart = robot(lidar=__import__("builders").lidar_sensor(name="front_camera"), camera_joint_type="revolute")
+    assert "SK402" not in rules_of(check(apart, target="classic"))
+    merged = robot(lidar=__import__("builders").lidar_sensor(name="front_camera"))  # both lumped into base_link
+    assert "SK402" in rules_of(check(merged, target="classic"))
+
+
+def test_range_sensors_may_share_a_topic(check) -> None:
+    def sonar(name: str, link: str) -> str:
+        return (f'<gazebo reference="{link}"><sensor name="{name}" type="ray"><update_rate>10</update_rate><ray><scan><horizontal>'
+                '<samples>5</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle></horizontal></scan><range><min>0.02</min>'
+                f'<max>3</max></range></ray><plugin name="{name}_p" filename="libgazebo_ros_ray_sensor.so"><ros><remapping>~/out:=/sonar_base</remapping></ros>'
+                f"<output_type>{{t}}</output_type><frame_name>{link}</frame_name></plugin></sensor></gazebo>")
+    links = link("s1") + joint("s1j", "base_link", "s1", "0.2 0.1 0") + link("s2") + joint("s2j", "base_link", "s2", "0.2 -0.1 0")
+    two = links + sonar("sonar_1", "s1") + sonar("sonar_2", "s2")
+    assert "SK605" not in rules_of(check(robot(extra=two.replace("{t}", "sensor_msgs/Range")), target="classic"))
+    assert "SK605" in rules_of(check(robot(extra=two.replace("{t}", "sensor_msgs/LaserScan")), target="classic"))

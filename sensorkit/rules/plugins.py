@@ -125,7 +125,8 @@ def plugin_problem(p: Plugin, target: str) -> tuple[Severity, str, str] | None:
     if target == "classic" and name in ROS1_ONLY:
         return (
             Severity.ERROR,
-            f"{p.filename} exists only in ROS 1: ROS 2 Gazebo Classic cannot load it and the sensor publishes nothing",
+            f"{p.filename} exists only in ROS 1: ROS 2 Gazebo Classic cannot load it"
+            + (" and the sensor publishes nothing" if p.sensor is not None else ""),
             f"use {ROS1_ONLY[name]}",
         )
     if target == "ros1" and name in ROS2_ONLY:
@@ -344,6 +345,15 @@ def node_names(ctx: Context) -> Iterator[Finding]:
             seen[full] = p
 
 
+def _is_range(s: Sensor) -> bool:
+    """Range sensors (sonar, IR): many on one topic is the ROS habit, each message carries its
+    own frame_id (sensor_msgs/Range), and consumers such as range_sensor_layer expect it."""
+    return any(
+        p.library == "gazebo_ros_ray_sensor" and (p.param("output_type") or "").endswith("/Range")
+        for p in s.plugins
+    ) or any(p.library == "gazebo_ros_range" for p in s.plugins)
+
+
 @rule(
     "SK605",
     "error",
@@ -365,7 +375,7 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
             continue
         (first, _), (second, el) = items[0], items[1]
         key = (id(first), id(second))
-        if first is second or key in reported:
+        if first is second or key in reported or (_is_range(first) and _is_range(second)):
             continue
         reported.add(key)
         shared = [
@@ -477,11 +487,22 @@ def _bridged(topic: str, scoped: bool, bridged: set[str]) -> bool:
     return False
 
 
+def _scoped_link(ctx: Context, s: Sensor) -> str:
+    """The link a sensor belongs to in Gazebo: its own, or the one lumping merges it into."""
+    ref = s.reference or "LINK"
+    return ctx.conversion.survivor(ref) if ref in ctx.robot.link_map else ref
+
+
 def _ros2_control_sensors(ctx: Context) -> set[str]:
-    """IMUs that gz_ros2_control reads by name: a <ros2_control><sensor name=...> matching the gz
-    sensor's name (ros-controls/gz_ros2_control@jazzy:gz_ros2_control/src/gz_system.cpp:426-448;
-    @humble:ign_ros2_control/src/ign_system.cpp:430-452). Only with its system plugin loaded."""
-    plugins = ("gz_ros2_control", "ign_ros2_control")
+    """Sensors a ros2_control simulation plugin reads by name: a <ros2_control><sensor name=...>
+    matching the simulator sensor's name. Gazebo Classic's gazebo_ros2_control
+    (ros-controls/gazebo_ros2_control@humble:gazebo_ros2_control/src/gazebo_system.cpp:554-589,
+    IMU and force-torque) and Gazebo Sim's gz_ros2_control
+    (ros-controls/gz_ros2_control@jazzy:gz_ros2_control/src/gz_system.cpp:426-448;
+    @humble:ign_ros2_control/src/ign_system.cpp:430-452, IMU). Only with the plugin loaded."""
+    plugins = (
+        ("gz_ros2_control", "ign_ros2_control") if is_gz(ctx.target) else ("gazebo_ros2_control",)
+    )
     if not any(_base(p.filename).startswith(plugins) for p in ctx.robot.model_plugins):
         return set()
     root = ctx.robot.document.root
@@ -521,7 +542,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
         if bridge is not None and bridge.files
         else None
     )
-    via_control = _ros2_control_sensors(ctx) if is_gz(ctx.target) else set()
+    via_control = _ros2_control_sensors(ctx)
     for s in ctx.robot.sensors:
         if is_gz(ctx.target):
             topic = gz_primary_topic(s)
@@ -533,7 +554,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                         "SK607",
                         Severity.INFO,
                         f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes it on its scoped default "
-                        f"/world/WORLD/model/MODEL/link/{s.reference}{topic}; a ros_gz_bridge entry must "
+                        f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}; a ros_gz_bridge entry must "
                         "name that topic for ROS to see it (no bridge configuration is known: pass --bridge FILE)",
                         s.source,
                         sensor=s.name,
@@ -545,7 +566,9 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
             topics = gz_topics(s) if s.topic else [topic, f"/sensor/{s.name}/"]
             if any(_bridged(t, not s.topic, bridged) for t in topics):
                 continue
-            shown = topic if s.topic else f"/world/WORLD/model/MODEL/link/{s.reference}{topic}"
+            shown = (
+                topic if s.topic else f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}"
+            )
             yield ctx.finding(
                 "SK607",
                 Severity.WARNING,
@@ -556,7 +579,11 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 sensor=s.name,
                 fix=f"add a GZ_TO_ROS entry with gz_topic_name: {topic.lstrip('/') if s.topic else '...' + topic}",
             )
-        elif not s.plugins and not _is_published_by_model_plugin(ctx, s):
+        elif (
+            not s.plugins
+            and s.name not in via_control
+            and not _is_published_by_model_plugin(ctx, s)
+        ):
             yield ctx.finding(
                 "SK607",
                 Severity.WARNING,

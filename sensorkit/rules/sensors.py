@@ -69,31 +69,46 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
         )
 
 
-@rule("SK402", "error", "sensor names unique across the robot")
+@rule(
+    "SK402",
+    "error",
+    "sensor names unique within the link they end up on after fixed-joint lumping (sdformat "
+    "refuses a duplicate); every sensor has a name",
+)
 def unique_sensors(ctx: Context) -> Iterator[Finding]:
-    by_name: dict[str, list[Sensor]] = defaultdict(list)
+    # sdformat loads a link's sensors with loadUniqueRepeated: a second sensor of the same
+    # name in one link is a DUPLICATE_NAME error (gazebosim/sdformat@sdf14:src/Link.cc:167,
+    # src/Utils.hh:128-136). Sensors on different links are scoped apart (world::model::link::
+    # sensor), so equal names there collide only through topics or nodes: SK605 and SK604.
+    conv = ctx.conversion
+    by_link: dict[tuple[str, str], list[Sensor]] = defaultdict(list)
     for s in ctx.robot.sensors:
-        by_name[s.name].append(s)
-    for name, items in by_name.items():
-        if not name:
-            for s in items:
-                yield ctx.finding(
-                    "SK402",
-                    Severity.ERROR,
-                    "a <sensor> has no name",
-                    s.source,
-                    fix="give every sensor a unique name",
-                )
-            continue
-        for s in items[1:]:
+        if not s.name:
             yield ctx.finding(
                 "SK402",
                 Severity.ERROR,
-                f"sensor name {name!r} is used {len(items)} times (also on link {items[0].reference!r})",
+                "a <sensor> has no name",
+                s.source,
+                fix="give every sensor a unique name",
+            )
+            continue
+        link = conv.survivor(s.reference) if s.reference in ctx.robot.link_map else s.reference
+        by_link[(str(link), s.name)].append(s)
+    for (link, name), items in by_link.items():
+        for s in items[1:]:
+            where = (
+                f"on link {link!r}"
+                if all(x.reference == link for x in items)
+                else f"on links {', '.join(sorted({str(x.reference) for x in items}))}, which lumping merges into {link!r}"
+            )
+            yield ctx.finding(
+                "SK402",
+                Severity.ERROR,
+                f"sensor name {name!r} is used {len(items)} times {where}: sdformat refuses the duplicate",
                 s.source,
                 sensor=name,
                 link=s.reference,
-                fix="give every sensor a unique name (topics and nodes derive from it)",
+                fix="give every sensor on a link its own name",
             )
 
 
