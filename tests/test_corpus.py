@@ -91,3 +91,21 @@ def test_flir_blackfly_under_gz_reports_the_classic_plugin_and_misplaced_frame_t
     assert "SK601" in rules  # libgazebo_ros_camera.so never loads in Gazebo Sim
     assert "SK608" in rules  # <ignition_frame_id> inside <camera> is never read
     assert "SK105" in rules  # <intertial> with <mass values=...>
+
+
+REALWORLD = CORPUS.parent / "realworld"
+REAL_FILES = sorted(p for p in REALWORLD.rglob("*") if p.suffix in (".urdf", ".xacro"))
+
+
+def test_realworld_is_there() -> None:
+    assert len(REAL_FILES) > 300
+
+
+@pytest.mark.parametrize("path", REAL_FILES, ids=[str(p.relative_to(REALWORLD)) for p in REAL_FILES])
+def test_no_crash_on_any_realworld_file(path: Path) -> None:
+    # Every file on its own, as a user might point validate at it: macro files, files that
+    # need args. Findings are expected; a crash or an internal error never is.
+    report = validate_file(path, Options(package_paths=(str(CORPUS), str(REALWORLD))))
+    assert not report.internal_errors, report.internal_errors
+    for f in report.findings:
+        assert f.file and f.message and f.fix, f
