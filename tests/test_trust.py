@@ -389,3 +389,25 @@ def test_range_sensors_may_share_a_topic(check) -> None:
     two = links + sonar("sonar_1", "s1") + sonar("sonar_2", "s2")
     assert "SK605" not in rules_of(check(robot(extra=two.replace("{t}", "sensor_msgs/Range")), target="classic"))
     assert "SK605" in rules_of(check(robot(extra=two.replace("{t}", "sensor_msgs/LaserScan")), target="classic"))
+
+
+def test_topic_rules_read_the_plugin_table(check) -> None:
+    # gazebo_ros_gps_sensor publishes ~/out and ~/vel (sensorkit/knowledge/plugins.py, with its
+    # source): remapping ~/vel changes something, so SK609 stays quiet; a typo does not.
+    def gps(remap: str) -> str:
+        return ('<gazebo reference="base_link"><sensor name="gps" type="gps"><update_rate>5</update_rate>'
+                f'<plugin name="gps_p" filename="libgazebo_ros_gps_sensor.so"><ros><remapping>{remap}</remapping></ros>'
+                "<frame_name>base_link</frame_name></plugin></sensor></gazebo>")
+    assert "SK609" not in rules_of(check(robot(extra=gps("~/vel:=gps/vel")), target="classic"))
+    assert "SK609" in rules_of(check(robot(extra=gps("~/velocity:=gps/vel")), target="classic"))
+
+
+def test_ros1_topics_are_not_judged_with_ros2_names(check) -> None:
+    # ROS 1 topic names (robotNamespace, bumperTopicName, tf_prefix) are not modelled: the
+    # ROS 2 default 'bumper_states' must not make two ROS 1 bumpers collide (seen on PR2).
+    def bumper(name: str, lk: str) -> str:
+        return (f'<gazebo reference="{lk}"><sensor name="{name}" type="contact"><contact><collision>c</collision></contact>'
+                f'<plugin name="{name}_p" filename="libgazebo_ros_bumper.so"><bumperTopicName>{name}</bumperTopicName>'
+                "<frameName>world</frameName></plugin></sensor></gazebo>")
+    two = bumper("b1", "base_link") + bumper("b2", "camera_link")
+    assert "SK605" not in rules_of(check(robot(extra=two), target="ros1"))

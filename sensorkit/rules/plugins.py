@@ -259,14 +259,16 @@ def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
         ):
             names.append(f"{cam}/image_trigger")
         return names
-    if lib in (
-        "gazebo_ros_ray_sensor",
-        "gazebo_ros_imu_sensor",
-        "gazebo_ros_velodyne_laser",
-        "gazebo_ros_gps_sensor",
-    ):
-        return ["~/out"]
-    return []
+    # Other sensor plugins: the topics the plugin table lists (gazebo_ros_camera's depend on
+    # the sensor's kind, above). Parameters that rename a topic are ROS 1 only.
+    from sensorkit.knowledge import plugins as known
+
+    spec = known.lookup(p.filename, "ros2")
+    if spec is None or spec.level != "sensor":
+        return []
+    return [
+        p.param(param) or default if param else default for param, default in spec.topics if default
+    ]
 
 
 def plugin_services(p: Plugin) -> list[str]:
@@ -360,6 +362,8 @@ def _is_range(s: Sensor) -> bool:
     "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)",
 )
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
+    if ctx.target == "ros1":
+        return  # ROS 1 topic names (robotNamespace, *TopicName, tf_prefix) are not modelled
     owners: dict[str, list[tuple[Sensor, etree._Element]]] = defaultdict(list)
     for s in ctx.robot.sensors:
         if is_gz(ctx.target):
