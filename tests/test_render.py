@@ -407,9 +407,7 @@ def test_importing_the_cli_does_not_import_pybullet() -> None:
 def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
-        pytest.skip(
-            "Chromium is not installed: the headless screenshot of index.html cannot be taken"
-        )
+        pytest.fail("Chromium is missing: apt-get install chromium (bash tests/run installs it)")
     shot = tmp_path / "shot.png"
     subprocess.run(
         [
