@@ -411,3 +411,14 @@ def test_ros1_topics_are_not_judged_with_ros2_names(check) -> None:
                 "<frameName>world</frameName></plugin></sensor></gazebo>")
     two = bumper("b1", "base_link") + bumper("b2", "camera_link")
     assert "SK605" not in rules_of(check(robot(extra=two), target="ros1"))
+
+
+def test_third_party_frame_parameter_naming_a_missing_link_is_sk501(check) -> None:
+    # hector_gazebo_ros_imu reads <frameId> (sensorkit/knowledge/plugins.py cites
+    # tu-darmstadt-ros-pkg/hector_gazebo): a frame that is no link cannot be placed by TF.
+    def hector(frame: str) -> str:
+        return ('<gazebo><plugin name="imu" filename="libhector_gazebo_ros_imu.so"><bodyName>base_link</bodyName>'
+                f"<frameId>{frame}</frameId><topicName>imu</topicName></plugin></gazebo>")
+    f = next(f for f in check(robot(extra=hector("imu_lnk")), target="ros1").findings if f.rule == "SK501")
+    assert f.frame == "imu_lnk" and "<frameId>" in f.message
+    assert "SK501" not in rules_of(check(robot(extra=hector("base_link")), target="ros1"))
