@@ -422,3 +422,13 @@ def test_third_party_frame_parameter_naming_a_missing_link_is_sk501(check) -> No
     f = next(f for f in check(robot(extra=hector("imu_lnk")), target="ros1").findings if f.rule == "SK501")
     assert f.frame == "imu_lnk" and "<frameId>" in f.message
     assert "SK501" not in rules_of(check(robot(extra=hector("base_link")), target="ros1"))
+
+
+def test_vendor_gazebo_ros_plugins_parameters_are_not_ros2_evidence(check) -> None:
+    # kobuki's ROS 1 libgazebo_ros_kobuki.so spells wheel_separation in snake_case; only
+    # gazebo_ros_pkgs' own parameters (and a <ros> block) tell ROS 2 apart (seen on turtlebot).
+    kobuki = '<gazebo><plugin name="k" filename="libgazebo_ros_kobuki.so"><wheel_separation>0.23</wheel_separation></plugin></gazebo>'
+    report = check(robot(camera=ROS1_CAMERA, lidar=ROS1_LASER, extra=kobuki))
+    assert report.target == "ros1"
+    ros2_vendor = kobuki.replace("<wheel_separation>", "<ros><namespace>/</namespace></ros><wheel_separation>")
+    assert check(robot(camera=ROS1_CAMERA, lidar=ROS1_LASER, extra=ros2_vendor)).target == "classic"

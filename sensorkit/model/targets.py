@@ -98,7 +98,13 @@ class Ros1Evidence:
 
 def ros1_evidence(robot: Robot) -> Ros1Evidence:
     """What marks the description's gazebo_ros plugins as ROS 1 or ROS 2."""
-    from sensorkit.knowledge.gazebo_ros import ROS1_ONLY, ROS1_TO_ROS2_PARAMS, ROS2_ONLY
+    from sensorkit.knowledge.gazebo_ros import (
+        ROS1_LIBRARIES,
+        ROS1_ONLY,
+        ROS1_TO_ROS2_PARAMS,
+        ROS2_LIBRARIES,
+        ROS2_ONLY,
+    )
     from sensorkit.model.robot import local
     from sensorkit.model.sensors import all_plugins
 
@@ -112,6 +118,12 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
             out.plugins.append(p.filename)
         elif name in ROS2_ONLY or lib == "gazebo_ros2_control":
             out.ros2.append(p.filename)
+        if lib not in ROS1_LIBRARIES and lib not in ROS2_LIBRARIES:
+            # A vendor's gazebo_ros_* plugin has parameters of its own (kobuki's
+            # wheel_separation is ROS 1); only the <ros> block, gazebo_ros::Node's, says ROS 2.
+            if any(local(el) == "ros" for el in p.param_elements()):
+                out.ros2.append(f"{p.filename} <ros>")
+            continue
         for el in p.param_elements():
             tag = local(el)
             if tag in ROS1_TO_ROS2_PARAMS:
