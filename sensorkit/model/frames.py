@@ -22,12 +22,20 @@ if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor
     from sensorkit.model.transforms import Mat
 
-# Which sensor-level tag each gz version reads for the frame id, in order.
+# Which sensor-level tag each gz version reads for the frame id, first found wins:
+# Fortress ignition_frame_id, then gz_frame_id (gazebosim/gz-sensors@ign-sensors6:
+# src/Sensor.cc:146-166); Harmonic gz_frame_id only (@gz-sensors8 c8159af:src/Sensor.cc:
+# 184-195); Jetty <frame_id>, then the deprecated gz_frame_id with a warning
+# (@gz-sensors10 ff8c92b:src/Sensor.cc:181-196). With none, the frame is the sensor's name,
+# which gz-sim sets to its scoped name MODEL::LINK::SENSOR
+# (gazebosim/gz-sim@gz-sim8:src/rendering/RenderUtil.cc:1719-1721).
 GZ_FRAME_TAGS: dict[str, tuple[str, ...]] = {
     "fortress": ("ignition_frame_id", "gz_frame_id"),
     "harmonic": ("gz_frame_id",),
-    "jetty": ("frame_id",),
+    "jetty": ("frame_id", "gz_frame_id"),
 }
+# Tags a version still reads but has deprecated.
+GZ_DEPRECATED_FRAME_TAGS: dict[str, tuple[str, ...]] = {"jetty": ("gz_frame_id",)}
 # Versions that read <camera><optical_frame_id> for image, camera_info and cloud frames.
 GZ_OPTICAL_FRAME_ID = ("fortress", "harmonic")
 
@@ -141,7 +149,8 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
                 break
         is_default = published is None
         if is_default:
-            published = f"{robot.name}/{link or sensor.reference}/{sensor.name}"
+            where = conv.survivor(link) if link else sensor.reference
+            published = f"{robot.name}::{where}::{sensor.name}"
         out = SensorFrames(sensor, link, T, published, how, is_default, None)
         cam = sensor.camera
         if cam is not None and cam.optical_frame_id and target in GZ_OPTICAL_FRAME_ID:

@@ -18,7 +18,7 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS2_ONLY,
     ROS2_PLUGINS,
 )
-from sensorkit.model.frames import GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
+from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.robot import child, children, local, text_of
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
@@ -655,15 +655,40 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK608",
     "warning",
-    "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `gz_frame_id` on jetty, `optical_frame_id` on jetty)",
+    "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `frame_id` before jetty, "
+    "`optical_frame_id` on jetty, a tag another one overrides) or has deprecated (`gz_frame_id` on jetty)",
 )
 def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
     target = ctx.target
     if not is_gz(target):
         return
     read = GZ_FRAME_TAGS[target]
+    deprecated = GZ_DEPRECATED_FRAME_TAGS.get(target, ())
     for s in ctx.robot.sensors:
         for tag in GZ_FRAME_TAG_NAMES:
+            if tag not in s.frame_tags:
+                continue
+            first = next(t for t in read if t in s.frame_tags) if tag in read else None
+            if first is not None and first != tag:
+                yield ctx.finding(
+                    "SK608",
+                    Severity.WARNING,
+                    f"sensor {s.name!r}: <{tag}> is ignored by {target}: <{first}> takes precedence",
+                    child(s.element, tag),
+                    sensor=s.name,
+                    frame=s.frame_tags[tag],
+                    fix=f"keep one frame tag: <{first}>",
+                )
+            elif tag in deprecated:
+                yield ctx.finding(
+                    "SK608",
+                    Severity.WARNING,
+                    f"sensor {s.name!r}: <{tag}> is deprecated on {target}: still read, with a warning at every start",
+                    child(s.element, tag),
+                    sensor=s.name,
+                    frame=s.frame_tags[tag],
+                    fix=f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
+                )
             if tag in s.frame_tags and tag not in read:
                 yield ctx.finding(
                     "SK608",

@@ -1,0 +1,46 @@
+"""Issue 9: what Gazebo Sim really does, each test citing the source it pins."""
+
+from __future__ import annotations
+
+from builders import gz_robot
+from conftest import rules_of
+
+
+def test_jetty_still_reads_gz_frame_id_deprecated(check) -> None:
+    # gazebosim/gz-sensors@gz-sensors10 (ff8c92b):src/Sensor.cc:181-196: <frame_id> first,
+    # then gz_frame_id with "//sensor/gz_frame_id is deprecated".
+    report = check(gz_robot(), target="jetty")
+    cam = report.robot.sensors[0]  # type: ignore[union-attr]
+    assert cam.frame_tags["gz_frame_id"] == "camera_optical_frame"
+    sk608 = [f for f in report.findings if f.rule == "SK608"]
+    assert sk608 and all("deprecated" in f.message and "ignored" not in f.message for f in sk608)
+    # Its frame is used: the camera's optical frame is checked, nothing says "ignored".
+    assert "SK502" not in rules_of(report)
+    both = gz_robot(camera_tags="<topic>cam</topic><frame_id>camera_optical_frame</frame_id><gz_frame_id>camera_link</gz_frame_id>")
+    f = next(f for f in check(both, target="jetty").findings if f.rule == "SK608" and f.sensor == "front_camera")
+    assert "<frame_id> takes precedence" in f.message
+
+
+def test_harmonic_has_no_ignition_frame_id_fallback(check) -> None:
+    # gazebosim/gz-sensors@gz-sensors8 (c8159af):src/Sensor.cc:184-195 reads gz_frame_id only.
+    robot = gz_robot(camera_tags="<topic>cam</topic><ignition_frame_id>camera_optical_frame</ignition_frame_id>")
+    f = next(f for f in check(robot, target="harmonic").findings if f.rule == "SK608" and f.sensor == "front_camera")
+    assert "ignored by harmonic" in f.message
+    # Fortress reads ignition_frame_id first, then gz_frame_id
+    # (gazebosim/gz-sensors@ign-sensors6:src/Sensor.cc:146-166): no SK608 there.
+    assert not [f for f in check(robot, target="fortress").findings if f.rule == "SK608"]
+
+
+def test_gz_default_frame_is_the_scoped_sensor_name(check) -> None:
+    # No frame tag: the frame is the sensor's name (gz-sensors Sensor.cc above), which
+    # gz-sim sets to MODEL::LINK::SENSOR, the link after lumping
+    # (gazebosim/gz-sim@gz-sim8:src/rendering/RenderUtil.cc:1719-1721).
+    from sensorkit.model.frames import sensor_frames
+    from sensorkit.model.sdf import convert
+
+    report = check(gz_robot(camera_tags="<topic>cam</topic>"), target="harmonic")
+    robot = report.robot
+    assert robot is not None
+    cam = next(s for s in robot.sensors if s.name == "front_camera")
+    fr = sensor_frames(robot, cam, "harmonic", convert(robot))
+    assert fr.is_default and fr.published == "rover::base_footprint::front_camera"  # lumped into the root
