@@ -125,6 +125,7 @@ CASES: list[tuple[str, str, str, str, str]] = [
     ("SK607", gz_robot(lidar_tags="<gz_frame_id>laser_link</gz_frame_id>"), GZ_CLEAN, "harmonic", ".urdf"),
     ("SK608", gz_robot(lidar_tags="<topic>scan</topic><ignition_frame_id>laser_link</ignition_frame_id><gz_frame_id>laser_link</gz_frame_id>"), GZ_CLEAN, "harmonic", ".urdf"),
     ("SK608", GZ_CLEAN, GZ_CLEAN.replace("gz_frame_id", "frame_id"), "jetty", ".urdf"),
+    ("SK613", gz_robot().replace('type="gpu_lidar"', 'type="ray"'), GZ_CLEAN, "harmonic", ".urdf"),
     ("SK610", robot(camera=camera_sensor(plugin="libacme_camera.so", params="<frameId>camera_optical_frame</frameId>")),
      robot(camera=camera_sensor()), "classic", ".urdf"),
     ("SK611", robot(camera=camera_sensor(params="<cameraName>cam</cameraName><frameName>camera_optical_frame</frameName><updateRate>30</updateRate>"),

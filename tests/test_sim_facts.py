@@ -44,3 +44,31 @@ def test_gz_default_frame_is_the_scoped_sensor_name(check) -> None:
     cam = next(s for s in robot.sensors if s.name == "front_camera")
     fr = sensor_frames(robot, cam, "harmonic", convert(robot))
     assert fr.is_default and fr.published == "rover::base_footprint::front_camera"  # lumped into the root
+
+
+def test_sensor_types_gazebo_sim_never_creates(check) -> None:
+    # ray/lidar parse as SensorType::LIDAR (gazebosim/sdformat@sdf14:src/Sensor.cc:383-390) and
+    # gz-sim creates no CPU lidar (gazebosim/gz-sim@gz-sim8:src/SdfEntityCreator.cc:1092-1098);
+    # multicamera has no branch at all (:1227-1229). Seen on husarion's rplidar files.
+    ray = gz_robot().replace('type="gpu_lidar"', 'type="ray"')
+    f = next(f for f in check(ray, target="harmonic").findings if f.rule == "SK613")
+    assert f.sensor == "laser" and "gpu_lidar" in (f.fix or "")
+    assert "SK613" not in rules_of(check(gz_robot(), target="harmonic"))
+    assert "SK613" not in rules_of(check(ray, target="classic"))  # Classic creates ray sensors
+    # Never evidence for Gazebo Sim: a lone type="lidar" no longer makes auto pick gz.
+    from builders import lidar_sensor, robot
+
+    lone = robot(lidar=lidar_sensor(stype="lidar", plugin="", tag="lidar"), camera="")
+    assert check(lone).target == "classic"
+
+
+def test_bridge_never_carries_a_sensor_gz_never_creates() -> None:
+    from lxml import etree
+
+    from sensorkit.generate.bridge import sensor_entries
+
+    ray = etree.fromstring('<sensor name="l" type="ray"><topic>scan</topic><ray><scan><horizontal><samples>9</samples>'
+                           "</horizontal></scan></ray></sensor>")
+    assert sensor_entries(ray, "harmonic") == []
+    gpu = etree.fromstring(etree.tostring(ray).replace(b'type="ray"', b'type="gpu_lidar"'))
+    assert "sensor_msgs/msg/LaserScan" in [e.ros_type_name for e in sensor_entries(gpu, "harmonic")]

@@ -36,10 +36,8 @@ _SENSOR_TYPES = {
     "rgbd",
     "gpu_lidar",
     "gpu_ray",
-    "lidar",
-    "ray",
     "imu",
-}
+}  # not ray/lidar/multicamera: gz-sim never creates them (sensorkit/knowledge/gazebo_sim.py)
 
 
 def _msg_prefix(gz_version: str) -> str:

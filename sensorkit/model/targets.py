@@ -10,9 +10,10 @@ if TYPE_CHECKING:
 
 TARGETS = ("classic", "ros1", "fortress", "harmonic", "jetty")
 GZ_TARGETS = ("fortress", "harmonic", "jetty")
+# Sensor types only Gazebo Sim creates ("lidar" is not one: gz-sim never creates it,
+# see sensorkit/knowledge/gazebo_sim.py).
 GZ_SENSOR_TYPES = {
     "gpu_lidar",
-    "lidar",
     "rgbd_camera",
     "depth_camera",
     "boundingbox_camera",

@@ -448,3 +448,30 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
                         sensor=s.name,
                         fix=f"set {label} to {expected:.6f} or fix horizontal_fov",
                     )
+
+
+@rule(
+    "SK613",
+    "error",
+    "a sensor type Gazebo Sim never creates (`ray`, `lidar`, `multicamera` on Fortress, Harmonic "
+    "and Jetty): it publishes nothing; name the replacement (`gpu_lidar`, one `camera` per eye)",
+)
+def gz_unsupported_type(ctx: Context) -> Iterator[Finding]:
+    from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+    from sensorkit.model.targets import is_gz
+
+    if not is_gz(ctx.target):
+        return
+    for s in ctx.robot.sensors:
+        use = GZ_UNSUPPORTED_SENSOR_TYPES.get(s.type)
+        if use is None:
+            continue
+        yield ctx.finding(
+            "SK613",
+            Severity.ERROR,
+            f"sensor {s.name!r} has type {s.type!r}, which Gazebo Sim ({ctx.target}) never creates: "
+            "it logs 'not supported yet' and the sensor publishes nothing",
+            s.source,
+            sensor=s.name,
+            fix=f"use {use}",
+        )
