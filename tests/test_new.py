@@ -57,10 +57,12 @@ sim: classic
 DIFF_NONE = "name: bare_bot\nsim: none\n" + ALL_SENSORS
 
 # What each gz sensor type publishes for its <topic> T (gz-sensors), and which of those
-# a generated bridge must carry. A 3D lidar's LaserScan is left out on purpose.
+# a generated bridge must carry. A 3D lidar's LaserScan is left out on purpose, and so is an
+# RGB-D cloud: gz-sensors computes it x-forward but stamps it with the optical frame
+# (https://github.com/gazebosim/gz-sensors/issues/488), so the bridge must not carry it.
 GZ_OUTPUTS = {
     "camera": [""],
-    "rgbd_camera": ["/image", "/depth_image", "/points", "/camera_info"],
+    "rgbd_camera": ["/image", "/depth_image", "/camera_info"],
     "gpu_lidar": ["", "/points"],
     "imu": [""],
 }
@@ -216,10 +218,15 @@ def test_generated_package_expands_checks_and_validates(
             if stype == "gpu_lidar" and suffix == "" and vertical and int(vertical[0]) > 1:
                 continue  # a multi-layer LaserScan is not a LaserScan ROS can read
             assert f"{topic}{suffix}" in gz_names, (sensor, f"{topic}{suffix}", gz_names)
+        if stype == "rgbd_camera":
+            assert f"{topic}/points" not in gz_names, (sensor, "x-forward cloud bridged (gz-sensors#488)")
     # ... under the ROS names the same macros give on Gazebo Classic.
     ns = f"{spec.namespace}/" if spec.namespace else ""
     for s in spec.sensors:
         for t in CLASSIC_TOPICS[s.type]:
+            if s.type == "depth_camera" and t == "points":  # not bridged: gz-sensors#488
+                assert f"{ns}{s.name}/{t}" not in ros_names, (s.name, t)
+                continue
             assert f"{ns}{s.name}/{t}" in ros_names, (s.name, t, sorted(ros_names))
 
 
@@ -234,12 +241,15 @@ def test_harmonic_example_bridge_names_every_sensor_topic(tmp_path: Path) -> Non
         ("rgbd_camera/image_raw", "sensor_msgs/msg/Image"),
         ("rgbd_camera/depth/image_raw", "sensor_msgs/msg/Image"),
         ("rgbd_camera/camera_info", "sensor_msgs/msg/CameraInfo"),
-        ("rgbd_camera/points", "sensor_msgs/msg/PointCloud2"),
         ("lidar/points", "sensor_msgs/msg/PointCloud2"),
         ("imu/imu", "sensor_msgs/msg/Imu"),
         ("cmd_vel", "geometry_msgs/msg/Twist"),
         ("odom", "nav_msgs/msg/Odometry"),
     }
+    # The RGB-D cloud is x-forward but stamped optical on Gazebo Sim
+    # (https://github.com/gazebosim/gz-sensors/issues/488): left out, and the file says why.
+    assert ("rgbd_camera/points", "sensor_msgs/msg/PointCloud2") not in pairs
+    assert "gz-sensors#488" in (out / "config" / "bridge.yaml").read_text()
     by_ros = {e["ros_topic_name"]: e for e in entries}
     assert by_ros["rgbd_camera/depth/image_raw"]["gz_topic_name"] == "rgbd_camera/depth_image"
     assert by_ros["lidar/points"]["gz_topic_name"] == "lidar/scan/points"

@@ -72,3 +72,26 @@ def test_bridge_never_carries_a_sensor_gz_never_creates() -> None:
     assert sensor_entries(ray, "harmonic") == []
     gpu = etree.fromstring(etree.tostring(ray).replace(b'type="ray"', b'type="gpu_lidar"'))
     assert "sensor_msgs/msg/LaserScan" in [e.ros_type_name for e in sensor_entries(gpu, "harmonic")]
+
+
+def _rgbd(tmp_path, frame: str, bridge_points: bool):  # type: ignore[no-untyped-def]
+    from sensorkit.engine import Options, validate_file
+
+    robot = gz_robot(camera_type="rgbd_camera", camera_tags=f"<topic>rgbd</topic><gz_frame_id>{frame}</gz_frame_id>")
+    (tmp_path / "r.urdf").write_text(robot)
+    entries = ["rgbd/image", "rgbd/depth_image", "rgbd/camera_info", "scan"] + (["rgbd/points"] if bridge_points else [])
+    (tmp_path / "bridge.yaml").write_text("".join(f"- topic_name: {t}\n  ros_type_name: x\n  gz_type_name: y\n  direction: GZ_TO_ROS\n" for t in entries))
+    return validate_file(tmp_path / "r.urdf", Options(target="harmonic", bridges=(str(tmp_path / "bridge.yaml"),)))
+
+
+def test_bridged_xforward_cloud_is_sk614(tmp_path) -> None:
+    # gz-sensors computes the cloud x-forward and stamps it with the optical frame
+    # (https://github.com/gazebosim/gz-sensors/issues/488; @gz-sensors8:src/RgbdCameraSensor.cc:397).
+    (tmp_path / "a").mkdir()
+    f = next(f for f in _rgbd(tmp_path / "a", "camera_optical_frame", True).findings if f.rule == "SK614")
+    assert "depth_image_proc" in (f.fix or "") and "/rgbd/points" in f.message
+    # Near misses: the cloud not bridged, or stamped with the x-forward body frame (then it lands right).
+    (tmp_path / "b").mkdir()
+    assert "SK614" not in rules_of(_rgbd(tmp_path / "b", "camera_optical_frame", False))
+    (tmp_path / "c").mkdir()
+    assert "SK614" not in rules_of(_rgbd(tmp_path / "c", "camera_link", True))

@@ -401,8 +401,7 @@ def _export_lidar(plan: ExportFiles, s: SensorInfo, folder: str) -> None:
 
 
 def _bridge(plan: ExportFiles) -> None:
-    from sensorkit.exporters import bridge_yaml
-    from sensorkit.generate.bridge import bridge_entries
+    from sensorkit.generate.bridge import bridge_entries, bridge_file_text
 
     info = plan.info
     for s in info.sensors:
@@ -411,12 +410,9 @@ def _bridge(plan: ExportFiles) -> None:
             plan.skipped.append(f"bridge.yaml: sensor {s.name!r} is not bridged: {why}")
     try:
         entries = bridge_entries(info.robot.document.root, info.target)
-        header = (
-            f"# ros_gz_bridge configuration for {info.robot.name} on Gazebo Sim ({info.target}),\n"
-            "# written by sensorkit export.\n"
-            "#   ros2 run ros_gz_bridge parameter_bridge --ros-args -p config_file:=bridge.yaml\n"
+        plan.files["bridge.yaml"] = bridge_file_text(
+            entries, robot=info.robot.name, gz_version=info.target, by="sensorkit export"
         )
-        plan.files["bridge.yaml"] = header + bridge_yaml(entries)
     except InvalidValue as exc:
         plan.skipped.append(f"bridge.yaml: {exc}")
 

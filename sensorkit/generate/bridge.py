@@ -27,6 +27,7 @@ from collections.abc import Iterable
 from lxml import etree
 
 from sensorkit.exporters.bridge import BridgeEntry, bridge_yaml, sensor_bridge_entries
+from sensorkit.knowledge.gazebo_sim import GZ_XFORWARD_CLOUD_TYPES
 
 _SENSOR_TYPES = {
     "camera",
@@ -79,6 +80,8 @@ def sensor_entries(sensor: etree._Element, gz_version: str) -> list[BridgeEntry]
     vertical = _vertical_samples(sensor)
     info_topic = _text(sensor, "camera/camera_info_topic")
     for entry in sensor_bridge_entries(stype, topic, gz_version=gz_version):
+        if stype in GZ_XFORWARD_CLOUD_TYPES and entry.ros_type_name.endswith("/PointCloud2"):
+            continue  # x-forward cloud stamped optical: not bridged (see the file's header)
         gz_name = _rel(entry.gz_topic_name)
         ros_name = _rel(entry.ros_topic_name)
         kind = entry.ros_type_name
@@ -162,11 +165,21 @@ def bridge_entries(robot: etree._Element, gz_version: str) -> list[BridgeEntry]:
     return entries
 
 
-def bridge_file_text(entries: Iterable[BridgeEntry], *, robot: str, gz_version: str) -> str:
+CLOUD_HEADER = (
+    "# Depth-camera clouds are not bridged: Gazebo Sim computes them x-forward but stamps\n"
+    "# them with the optical frame (gz-sensors#488), so RViz would show them on their side.\n"
+    "# Build them from the depth image and camera_info with depth_image_proc.\n"
+)
+
+
+def bridge_file_text(
+    entries: Iterable[BridgeEntry], *, robot: str, gz_version: str, by: str = "sensorkit new"
+) -> str:
     """The ``config/bridge.yaml`` text: a short header, then the entries."""
     header = (
         f"# ros_gz_bridge configuration for {robot} on Gazebo Sim ({gz_version}),\n"
-        "# written by sensorkit new from the topics the robot description declares.\n"
+        f"# written by {by} from the topics the robot description declares.\n"
         "#   ros2 run ros_gz_bridge parameter_bridge --ros-args -p config_file:=bridge.yaml\n"
+        + CLOUD_HEADER
     )
     return header + bridge_yaml(entries)

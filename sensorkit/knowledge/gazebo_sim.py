@@ -21,3 +21,20 @@ GZ_UNSUPPORTED_SENSOR_TYPES: dict[str, str] = {
     "lidar": 'type="gpu_lidar" (the CPU lidar is not implemented)',
     "multicamera": 'one <sensor type="camera"> per eye, each with its own <topic>',
 }
+
+
+# Depth and RGB-D clouds: gz-sensors computes them in its rendering convention, x forward,
+# but stamps them with the camera's optical frame (z forward): "Gazebo uses the +x forward
+# convention for all rendering sensors" (https://github.com/gazebosim/gz-sensors/issues/488,
+# open; also #29). RgbdCameraSensor stamps the cloud with OpticalFrameId()
+# (gazebosim/gz-sensors@gz-sensors8:src/RgbdCameraSensor.cc:397) and fills x, y, z as rendered
+# (src/PointCloudUtil.cc:189-209); DepthCameraSensor likewise (src/DepthCameraSensor.cc:446-448).
+GZ_XFORWARD_CLOUD_TYPES = frozenset({"depth_camera", "depth", "rgbd_camera", "rgbd"})
+GZ_XFORWARD_CLOUD_NOTE = (
+    "Gazebo Sim computes depth-camera clouds x-forward but stamps them with the optical frame "
+    "(gz-sensors#488)"
+)
+CLOUD_FIX = (
+    "build the cloud in ROS from the depth image and camera_info with depth_image_proc "
+    "(point_cloud_xyz / point_cloud_xyzrgb), and do not bridge <topic>/points"
+)

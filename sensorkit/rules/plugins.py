@@ -807,3 +807,47 @@ def written_for_ros1(ctx: Context) -> Iterator[Finding]:
         fix="on ROS 1, pass --target ros1 to say so; to port it to ROS 2, validate with "
         "--target classic: every tag and plugin is listed with its ROS 2 form",
     )
+
+
+@rule(
+    "SK614",
+    "warning",
+    "on Gazebo Sim, a bridge carries a depth or RGB-D camera's point cloud, which gz-sensors computes "
+    "x-forward but stamps with the optical frame (gz-sensors#488): RViz shows it turned on its side",
+)
+def xforward_cloud(ctx: Context) -> Iterator[Finding]:
+    bridge = ctx.bridge
+    if not is_gz(ctx.target) or bridge is None or not bridge.files:
+        return
+    from sensorkit.knowledge.gazebo_sim import (
+        CLOUD_FIX,
+        GZ_XFORWARD_CLOUD_NOTE,
+        GZ_XFORWARD_CLOUD_TYPES,
+    )
+
+    bridged = {_norm(t.gz) for t in bridge.topics if t.to_ros}
+    for s in ctx.robot.sensors:
+        if s.type not in GZ_XFORWARD_CLOUD_TYPES or not s.topic:
+            continue
+        cloud = next((t for t in gz_topics(s) if t.endswith("/points")), None)
+        if cloud is None or not _bridged(cloud, False, bridged):
+            continue
+        fr = ctx.frames_of(s)
+        frame = fr.camera_frame
+        T = fr.T_render_frame(ctx.robot, frame)
+        if T is not None:
+            from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between
+
+            if angle_between(T[:3, :3], R_BODY_OPTICAL) > 0.0087:
+                continue  # stamped with an x-forward frame: the cloud lands right (SK502 covers images)
+        yield ctx.finding(
+            "SK614",
+            Severity.WARNING,
+            f"sensor {s.name!r}: the bridge carries its cloud {cloud}, but {GZ_XFORWARD_CLOUD_NOTE}: "
+            f"stamped {frame!r}, RViz shows the cloud turned on its side (depth along the camera's "
+            "right, the scene's up pointing ahead)",
+            s.source,
+            sensor=s.name,
+            frame=frame,
+            fix=CLOUD_FIX,
+        )
