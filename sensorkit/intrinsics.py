@@ -125,6 +125,10 @@ def _convention(value: object) -> Convention:
 # --------------------------------------------------------------------------- intrinsics
 
 
+def _or(value: float | None, default: float) -> float:
+    return default if value is None else value
+
+
 @dataclass(frozen=True)
 class Intrinsics:
     """A pinhole camera as published in ``sensor_msgs/CameraInfo``.
@@ -145,6 +149,13 @@ class Intrinsics:
     distortion: Distortion = _NO_DISTORTION
     baseline_tx: float = 0.0
     convention: Convention = "ideal"
+    # P's own values where the simulator lets them differ from K (Gazebo Classic's
+    # P_fx/P_fy/P_cx/P_cy/Ty, Gazebo Sim's <lens><projection>); None: as in K.
+    p_fx: float | None = None
+    p_fy: float | None = None
+    p_cx: float | None = None
+    p_cy: float | None = None
+    p_ty: float = 0.0
 
     def __post_init__(self) -> None:
         """Validate and normalise every field (ints stay ints, reals become floats)."""
@@ -159,6 +170,11 @@ class Intrinsics:
         set_(self, "distortion", _distortion(self.distortion))
         set_(self, "baseline_tx", _finite("baseline_tx", self.baseline_tx))
         set_(self, "convention", _convention(self.convention))
+        for name in ("p_fx", "p_fy", "p_cx", "p_cy"):
+            value = getattr(self, name)
+            if value is not None:
+                set_(self, name, _finite(name, value))
+        set_(self, "p_ty", _finite("p_ty", self.p_ty))
 
     @property
     def K(self) -> FloatArray:
@@ -178,12 +194,17 @@ class Intrinsics:
         """The 3x4 projection matrix; ``P[0][3]`` is ``baseline_tx``."""
         return np.array(
             [
-                [self.fx, self.skew, self.cx, self.baseline_tx],
-                [0.0, self.fy, self.cy, 0.0],
+                [_or(self.p_fx, self.fx), self.skew, _or(self.p_cx, self.cx), self.baseline_tx],
+                [0.0, _or(self.p_fy, self.fy), _or(self.p_cy, self.cy), self.p_ty],
                 [0.0, 0.0, 1.0, 0.0],
             ],
             dtype=np.float64,
         )
+
+    @property
+    def baseline(self) -> float:
+        """The stereo baseline P implies, ``-P[0][3] / P[0][0]`` (0 for a mono camera)."""
+        return -self.baseline_tx / _or(self.p_fx, self.fx) + 0.0
 
     @property
     def hfov(self) -> float:
@@ -284,6 +305,7 @@ def camera_intrinsics(
     lens_intrinsics: tuple[float, float, float, float, float] | None = None,
     distortion: tuple[float, float, float, float, float] | None = None,
     hack_baseline: float = 0.0,
+    projection: dict[str, float] | None = None,
 ) -> Intrinsics:
     """The intrinsics a simulated camera publishes on ``camera_info``.
 
@@ -382,6 +404,16 @@ def camera_intrinsics(
         px = (w - 1.0) / 2.0
         py = (h - 1.0) / 2.0
 
+    proj = dict(projection or {})
+    unknown = set(proj) - {"fx", "fy", "cx", "cy", "tx", "ty"}
+    if unknown:
+        msg = f"projection keys are fx, fy, cx, cy, tx, ty, got {sorted(unknown)}"
+        raise InvalidValue(msg)
+    if conv == "ideal" and proj:
+        msg = "projection overrides apply to the classic and gz conventions only"
+        raise InvalidValue(msg)
+    # Classic: P[0][3] = Tx if given, else -f * hack_baseline; gz: <projection><tx>, else 0.
+    tx = proj.get("tx", -fx * baseline)
     return Intrinsics(
         width=w,
         height=h,
@@ -391,8 +423,13 @@ def camera_intrinsics(
         cy=py,
         skew=skew,
         distortion=dist,
-        baseline_tx=-fx * baseline + 0.0,
+        baseline_tx=_finite("tx", tx) + 0.0,
         convention=conv,
+        p_fx=proj.get("fx"),
+        p_fy=proj.get("fy"),
+        p_cx=proj.get("cx"),
+        p_cy=proj.get("cy"),
+        p_ty=proj.get("ty", 0.0),
     )
 
 

@@ -178,6 +178,21 @@ def published_intrinsics(
         cy = plugin_number(sensor, ("Cy",) if ros1 else ("cy",), notes)
         focal = plugin_number(sensor, ("focalLength",) if ros1 else ("focal_length",), notes)
         baseline = plugin_number(sensor, ("hackBaseline",) if ros1 else ("hack_baseline",), notes)
+        # ROS 2 gazebo_ros_camera builds P from P_fx, P_fy, P_cx, P_cy, Tx, Ty when given
+        # (ros-simulation/gazebo_ros_pkgs@ros2:gazebo_plugins/src/gazebo_ros_camera.cpp:455-462).
+        projection: dict[str, float] = {}
+        if not ros1:
+            for tag, key in (
+                ("P_fx", "fx"),
+                ("P_fy", "fy"),
+                ("P_cx", "cx"),
+                ("P_cy", "cy"),
+                ("Tx", "tx"),
+                ("Ty", "ty"),
+            ):
+                value = plugin_number(sensor, (tag,), notes)
+                if value is not None:
+                    projection[key] = value
         if ros1:  # gazebo_ros_camera_utils (ROS 1) treats 0 as "compute it"
             cx = cx or None
             cy = cy or None
@@ -196,6 +211,7 @@ def published_intrinsics(
                 cy=cy,
                 distortion=distortion,
                 hack_baseline=baseline or 0.0,
+                projection=projection,
             ),
             notes,
         )
@@ -208,6 +224,10 @@ def published_intrinsics(
                 "gz",
                 lens_intrinsics=cam.lens_intrinsics,
                 distortion=distortion,
+                # gz-sensors fills camera_info P from <lens><projection> (p_fx, p_fy, p_cx,
+                # p_cy, tx, ty); without it, from the intrinsics, tx 0
+                # (gazebosim/gz-sensors@gz-sensors8:src/CameraSensor.cc:741-752, :876-890).
+                projection=dict(cam.lens_projection),
             ),
             notes,
         )

@@ -683,14 +683,14 @@ def test_stereo_eyes_render_at_their_optical_frames(
     if sim == "gz":
         proj = right.find("camera/lens/projection")
         assert left.find("camera/lens/projection") is None
-        if gz_version == "fortress":
-            assert proj is None
-        else:
-            fx = 640 / (2 * math.tan(1.3962634 / 2))
-            assert float(text_of(proj, "tx")) == pytest.approx(-fx * baseline, rel=1e-12)
-            assert float(text_of(proj, "p_fx")) == pytest.approx(fx, rel=1e-12)
-            assert float(text_of(proj, "p_cx")) == 320.0
-            assert float(text_of(proj, "p_cy")) == 240.0
+        # Every gz version fills camera_info P from <lens><projection>, tx included
+        # (gazebosim/gz-sensors@ign-sensors6:src/CameraSensor.cc:755-758 since 6.8.0 for
+        # Fortress; @gz-sensors8:src/CameraSensor.cc:741-752): the right eye carries its Tx.
+        fx = 640 / (2 * math.tan(1.3962634 / 2))
+        assert float(text_of(proj, "tx")) == pytest.approx(-fx * baseline, rel=1e-12)
+        assert float(text_of(proj, "p_fx")) == pytest.approx(fx, rel=1e-12)
+        assert float(text_of(proj, "p_cx")) == 320.0
+        assert float(text_of(proj, "p_cy")) == 240.0
     else:
         assert float(text_of(right, "plugin/hack_baseline")) == baseline
 

@@ -95,3 +95,59 @@ def test_bridged_xforward_cloud_is_sk614(tmp_path) -> None:
     assert "SK614" not in rules_of(_rgbd(tmp_path / "b", "camera_optical_frame", False))
     (tmp_path / "c").mkdir()
     assert "SK614" not in rules_of(_rgbd(tmp_path / "c", "camera_link", True))
+
+
+STEREO = """<?xml version="1.0"?>
+<robot name="s" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="{macros}/stereo_camera.urdf.xacro"/>
+  <link name="base_link"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <xacro:sensorkit_stereo_camera name="stereo" parent="base_link" baseline="0.12" sim="{sim}" gz_version="{ver}">
+    <origin xyz="0.2 0 0.3" rpy="0 0 0"/>
+  </xacro:sensorkit_stereo_camera>
+</robot>
+"""
+
+
+def _right_eye_p(tmp_path, sim: str, ver: str, target: str) -> tuple[list[list[float]], float]:  # type: ignore[no-untyped-def]
+    import json
+
+    from conftest import ROOT, run_cli
+
+    path = tmp_path / f"{sim}_{ver}.urdf.xacro"
+    path.write_text(STEREO.format(macros=ROOT / "macros", sim=sim, ver=ver))
+    res = run_cli("intrinsics", str(path), "--target", target, "--format", "json")
+    assert res.returncode == 0, res.stderr
+    doc = json.loads(res.stdout)
+    cams = doc["cameras"] if isinstance(doc, dict) and "cameras" in doc else doc
+    right = next(c for c in cams if "right" in json.dumps(c.get("sensor", c.get("name", ""))))
+    return right["P"], right["K"][0][0]
+
+
+def test_stereo_right_eye_p_on_gazebo_sim_carries_the_baseline(tmp_path) -> None:
+    # gz-sensors fills P from <lens><projection>, tx included (gazebosim/gz-sensors@
+    # gz-sensors8:src/CameraSensor.cc:741-752; @ign-sensors6:src/CameraSensor.cc:755-758);
+    # the stereo macro writes tx = -fx * baseline for the right eye on every gz version.
+    for ver in ("fortress", "harmonic", "jetty"):
+        P, fx = _right_eye_p(tmp_path, "gz", ver, ver)
+        assert P[0][3] == __import__("pytest").approx(-fx * 0.12, rel=1e-9), ver
+
+
+def test_classic_p_overrides_are_the_published_p(check, tmp_path) -> None:
+    # ROS 2 gazebo_ros_camera: P from P_fx, P_fy, P_cx, P_cy, Tx, Ty when given
+    # (ros-simulation/gazebo_ros_pkgs@ros2:gazebo_plugins/src/gazebo_ros_camera.cpp:455-462).
+    from builders import camera_sensor, robot
+
+    from sensorkit.model import load_robot
+    from sensorkit.sensorinfo import published_intrinsics
+
+    params = ("<frame_name>camera_optical_frame</frame_name><P_fx>500</P_fx><P_fy>501</P_fy>"
+              "<P_cx>320</P_cx><P_cy>240</P_cy><Tx>-60</Tx><Ty>1</Ty>")
+    path = tmp_path / "r.urdf"
+    path.write_text(robot(camera=camera_sensor(params=params)))
+    r = load_robot(path).robot
+    assert r is not None
+    s = next(s for s in r.sensors if s.name == "front_camera")
+    intr, _ = published_intrinsics(s, s.cameras[0], "classic")
+    assert intr.P.tolist() == [[500.0, 0.0, 320.0, -60.0], [0.0, 501.0, 240.0, 1.0], [0.0, 0.0, 1.0, 0.0]]
+    assert intr.K[0][0] != 500.0  # K keeps the focal length computed from the fov
+    assert intr.baseline == __import__("pytest").approx(60 / 500)

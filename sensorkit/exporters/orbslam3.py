@@ -136,7 +136,7 @@ def _baseline(intr: Intrinsics, mode: OrbSlam3Mode, baseline: float | None) -> f
         if mode == "rgbd":
             return DEFAULT_RGBD_BASELINE
         if intr.baseline_tx < 0.0:
-            return -intr.baseline_tx / intr.fx
+            return intr.baseline
         msg = (
             "stereo needs the baseline in metres: pass baseline= or use the right "
             f"camera's intrinsics (P[0][3] < 0), got baseline_tx={intr.baseline_tx!r}"

@@ -57,6 +57,7 @@ class CameraSpec:
     depth_near: float | None = None  # gz <depth_camera><clip>
     depth_far: float | None = None
     lens_intrinsics: tuple[float, float, float, float, float] | None = None
+    lens_projection: dict[str, float] = field(default_factory=dict)  # p_fx.. tx ty as written
     distortion: dict[str, float] = field(default_factory=dict)
     noise: Noise | None = None
     pose: Origin | None = None  # multicamera: each camera's own pose
@@ -234,6 +235,19 @@ def read_camera(el: etree._Element, locate: object) -> CameraSpec:
         if all(v is not None for v in vals[:4]):
             fx, fy, cx, cy = (float(v) for v in vals[:4])  # type: ignore[arg-type]
             cam.lens_intrinsics = (fx, fy, cx, cy, float(vals[4] or 0.0))
+    proj = child(child(el, "lens"), "projection")
+    if proj is not None:
+        for tag, key in (
+            ("p_fx", "fx"),
+            ("p_fy", "fy"),
+            ("p_cx", "cx"),
+            ("p_cy", "cy"),
+            ("tx", "tx"),
+            ("ty", "ty"),
+        ):
+            v = _num(text_of(proj, tag), f"lens projection {tag}", p)
+            if v is not None:
+                cam.lens_projection[key] = v
     dist = child(el, "distortion")
     if dist is not None:
         for k in ("k1", "k2", "k3", "p1", "p2"):
