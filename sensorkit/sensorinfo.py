@@ -250,6 +250,12 @@ def depth_range(sensor: Sensor, cam: CameraSpec, target: str) -> tuple[float, fl
         hi = plugin_number(sensor, ("pointCloudCutoffMax",) if ros1 else ("max_depth",), notes)
         lo = CLASSIC_MIN_DEPTH if lo is None else lo
         return max(lo, near), min(hi, far) if hi is not None else far, notes
+    from sensorkit.knowledge.gazebo_sim import GZ_READS_DEPTH_CLIP
+
+    if sensor.type not in GZ_READS_DEPTH_CLIP:  # depth_camera renders within <clip> only
+        if cam.depth_near is not None or cam.depth_far is not None:
+            notes.append(f"<depth_camera><clip> ignored: a gz {sensor.type} renders within <clip>")
+        return near, far, notes
     lo = cam.depth_near if cam.depth_near is not None and cam.depth_near > 0 else near
     hi = cam.depth_far if cam.depth_far is not None and cam.depth_far > lo else far
     return lo, hi, notes

@@ -151,3 +151,36 @@ def test_classic_p_overrides_are_the_published_p(check, tmp_path) -> None:
     assert intr.P.tolist() == [[500.0, 0.0, 320.0, -60.0], [0.0, 501.0, 240.0, 1.0], [0.0, 0.0, 1.0, 0.0]]
     assert intr.K[0][0] != 500.0  # K keeps the focal length computed from the fov
     assert intr.baseline == __import__("pytest").approx(60 / 500)
+
+
+def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None:
+    # DepthCameraSensor::Load calls Sensor::Load, not CameraSensor::Load, so
+    # <camera_info_topic> is never read (gazebosim/gz-sensors@gz-sensors8:
+    # src/DepthCameraSensor.cc:245-249; CameraSensor.cc:389-392 is where a camera reads it) and
+    # depth renders within <clip> (DepthCameraSensor.cc:349-358); RgbdCameraSensor reads
+    # <depth_camera><clip> (RgbdCameraSensor.cc:313-322) and publishes TOPIC/camera_info (:252).
+    from lxml import etree
+
+    from sensorkit.generate.bridge import sensor_entries
+    from sensorkit.rules.plugins import gz_topics
+    from sensorkit.sensorinfo import depth_range
+
+    cam = ("<camera><horizontal_fov>1</horizontal_fov><image><width>64</width><height>48</height></image>"
+           "<clip><near>0.1</near><far>10</far></clip><camera_info_topic>cam/info</camera_info_topic>"
+           "<depth_camera><clip><near>0.3</near><far>4</far></clip></depth_camera></camera>")
+
+    def sensor(stype: str) -> str:
+        return f'<sensor name="d" type="{stype}"><topic>d/depth_image</topic>{cam}</sensor>'
+
+    robot = gz_robot(extra=f'<gazebo reference="camera_link">{sensor("depth_camera")}{sensor("rgbd_camera").replace(chr(34) + "d" + chr(34), chr(34) + "r" + chr(34), 1)}</gazebo>')
+    report = check(robot, target="harmonic")
+    depth = next(s for s in report.robot.sensors if s.name == "d")  # type: ignore[union-attr]
+    rgbd = next(s for s in report.robot.sensors if s.name == "r")  # type: ignore[union-attr]
+    assert "/d/camera_info" in gz_topics(depth) and "/cam/info" not in gz_topics(depth)
+    entries = sensor_entries(etree.fromstring(sensor("depth_camera")), "harmonic")
+    assert "cam/info" not in {e.gz_topic_name for e in entries}
+    assert depth_range(depth, depth.cameras[0], "harmonic")[:2] == (0.1, 10.0)
+    assert depth_range(rgbd, rgbd.cameras[0], "harmonic")[:2] == (0.3, 4.0)
+    # A plain camera does read <camera_info_topic>.
+    plain = etree.fromstring(sensor("camera"))
+    assert "cam/info" in {e.gz_topic_name for e in sensor_entries(plain, "harmonic")}

@@ -27,7 +27,7 @@ from collections.abc import Iterable
 from lxml import etree
 
 from sensorkit.exporters.bridge import BridgeEntry, bridge_yaml, sensor_bridge_entries
-from sensorkit.knowledge.gazebo_sim import GZ_XFORWARD_CLOUD_TYPES
+from sensorkit.knowledge.gazebo_sim import GZ_READS_CAMERA_INFO_TOPIC, GZ_XFORWARD_CLOUD_TYPES
 
 _SENSOR_TYPES = {
     "camera",
@@ -78,7 +78,9 @@ def sensor_entries(sensor: etree._Element, gz_version: str) -> list[BridgeEntry]
     topic = _rel(topic)
     out: list[BridgeEntry] = []
     vertical = _vertical_samples(sensor)
-    info_topic = _text(sensor, "camera/camera_info_topic")
+    info_topic = (
+        _text(sensor, "camera/camera_info_topic") if stype in GZ_READS_CAMERA_INFO_TOPIC else None
+    )
     for entry in sensor_bridge_entries(stype, topic, gz_version=gz_version):
         if stype in GZ_XFORWARD_CLOUD_TYPES and entry.ros_type_name.endswith("/PointCloud2"):
             continue  # x-forward cloud stamped optical: not bridged (see the file's header)

@@ -38,3 +38,15 @@ CLOUD_FIX = (
     "build the cloud in ROS from the depth image and camera_info with depth_image_proc "
     "(point_cloud_xyz / point_cloud_xyzrgb), and do not bridge <topic>/points"
 )
+
+
+# Which camera sensors read <camera><camera_info_topic>: only CameraSensor::Load does
+# (gazebosim/gz-sensors@gz-sensors8:src/CameraSensor.cc:389-392). DepthCameraSensor::Load
+# calls Sensor::Load, not CameraSensor::Load (src/DepthCameraSensor.cc:245-249), so its
+# camera_info goes to the default, a sibling "camera_info" of its topic (CameraSensor.cc:
+# 662-674); RgbdCameraSensor always uses TOPIC/camera_info (src/RgbdCameraSensor.cc:252).
+GZ_READS_CAMERA_INFO_TOPIC = frozenset({"camera", "wideanglecamera", "wide_angle_camera"})
+# Which read <camera><depth_camera><clip>: RgbdCameraSensor does
+# (src/RgbdCameraSensor.cc:313-322); DepthCameraSensor renders depth within the camera's own
+# <clip> (src/DepthCameraSensor.cc:349-358).
+GZ_READS_DEPTH_CLIP = frozenset({"rgbd_camera", "rgbd"})

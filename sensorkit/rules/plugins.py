@@ -311,8 +311,10 @@ def gz_topics(s: Sensor) -> list[str]:
 
 
 def _info_topic(s: Sensor, base: str) -> str:
+    from sensorkit.knowledge.gazebo_sim import GZ_READS_CAMERA_INFO_TOPIC
+
     cam = s.camera
-    if cam is not None and cam.camera_info_topic:
+    if cam is not None and cam.camera_info_topic and s.type in GZ_READS_CAMERA_INFO_TOPIC:
         return "/" + cam.camera_info_topic.strip("/")
     parent = base.rsplit("/", 1)[0]
     return f"{parent}/camera_info"

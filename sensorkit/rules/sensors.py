@@ -274,8 +274,10 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     for p in s.plugins:
         lo = lo if lo is not None else parse_float(p.param("min_depth"))[0]
         hi = hi if hi is not None else parse_float(p.param("max_depth"))[0]
+    from sensorkit.knowledge.gazebo_sim import GZ_READS_DEPTH_CLIP
+
     cam = s.camera
-    if cam is not None:
+    if cam is not None and s.type in GZ_READS_DEPTH_CLIP:  # gz depth_camera ignores it
         lo = lo if lo is not None else cam.depth_near
         hi = hi if hi is not None else cam.depth_far
     return lo, hi
