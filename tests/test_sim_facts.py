@@ -184,3 +184,14 @@ def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None
     # A plain camera does read <camera_info_topic>.
     plain = etree.fromstring(sensor("camera"))
     assert "cam/info" in {e.gz_topic_name for e in sensor_entries(plain, "harmonic")}
+
+
+def test_gz_sensor_without_frame_tag_warns_its_frame_is_not_in_tf(check) -> None:
+    # The frame falls back to the sensor's name (gazebosim/gz-sensors@gz-sensors8:
+    # src/Sensor.cc:184-195), set by gz-sim to MODEL::LINK::SENSOR (gz-sim@gz-sim8:
+    # src/rendering/RenderUtil.cc:1719-1721); robot_state_publisher never publishes it.
+    f = next(f for f in check(gz_robot(camera_tags="<topic>cam</topic>"), target="harmonic").findings
+             if f.rule == "SK501" and f.sensor == "front_camera")
+    assert f.severity.label == "warning" and f.frame == "rover::base_footprint::front_camera"
+    assert f.fix == "add <gz_frame_id>camera_optical_frame</gz_frame_id> to the sensor (an optical frame at the camera)"
+    assert "SK501" not in rules_of(check(gz_robot(), target="harmonic"))  # near miss: frame tags set

@@ -8,6 +8,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
 from sensorkit.model.targets import is_gz
@@ -88,13 +89,20 @@ def _exists(robot: Robot, name: str) -> bool:
 
 @rule(
     "SK501",
-    "error",
-    "the published frame names an existing link (or is not one at all, for gz defaults)",
+    "error/warning",
+    "the published frame names an existing link (error); a Gazebo Sim sensor with no frame tag is "
+    "stamped MODEL::LINK::SENSOR, which TF does not have (warning)",
 )
 def frame_exists(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
+    gz = is_gz(ctx.target)
     for s in robot.sensors:
         fr = ctx.frames_of(s)
+        if gz and s.type in GZ_UNSUPPORTED_SENSOR_TYPES:
+            continue  # never created (SK613): it stamps nothing
+        if gz and fr.is_default and fr.image_frame is None and s.kind in GZ_FRAMED_KINDS:
+            yield _gz_default_frame(ctx, s, fr)
+            continue
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
             if frame is None or (fr.is_default and how == fr.how) or _exists(robot, frame):
                 continue
@@ -128,6 +136,34 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
                 None,
             )
             break
+
+
+GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", "imu"})
+
+
+def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:
+    """A gz sensor with no frame tag is stamped with its scoped name, which TF never has.
+
+    gz-sensors falls back to the sensor's name (gazebosim/gz-sensors@gz-sensors8:
+    src/Sensor.cc:184-195), which gz-sim sets to MODEL::LINK::SENSOR
+    (gazebosim/gz-sim@gz-sim8:src/rendering/RenderUtil.cc:1719-1721).
+    """
+    from sensorkit.model.frames import GZ_FRAME_TAGS
+
+    tag = GZ_FRAME_TAGS[ctx.target][0]
+    want = (optical_frame_at(ctx.robot, fr.T_world_render) if s.is_camera else fr.link) or fr.link
+    return ctx.finding(
+        "SK501",
+        Severity.WARNING,
+        f"sensor {s.name!r} has no frame tag: Gazebo Sim stamps its data {fr.published!r} "
+        "(MODEL::LINK::SENSOR), a frame robot_state_publisher never publishes: unless a launch "
+        "file adds a static transform for it, TF cannot place the data",
+        s.source,
+        sensor=s.name,
+        frame=fr.published,
+        fix=f"add <{tag}>{want}</{tag}> to the sensor"
+        + (" (an optical frame at the camera)" if s.is_camera else ""),
+    )
 
 
 # Frames outside the robot that a world-referenced plugin (p3d, bumper) may name.

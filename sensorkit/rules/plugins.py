@@ -18,6 +18,7 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS2_ONLY,
     ROS2_PLUGINS,
 )
+from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.robot import child, children, local, text_of
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
@@ -553,6 +554,8 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
         if is_gz(ctx.target):
             topic = gz_primary_topic(s)
             if topic is None or (s.kind == "imu" and s.name in via_control):
+                continue
+            if s.type in GZ_UNSUPPORTED_SENSOR_TYPES:  # never created (SK613): nothing to bridge
                 continue
             if bridged is None:
                 if not s.topic:
