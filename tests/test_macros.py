@@ -682,7 +682,8 @@ def test_stereo_eyes_render_at_their_optical_frames(
     left = sensors[f"{NAME}_left"]
     if sim == "gz":
         proj = right.find("camera/lens/projection")
-        assert left.find("camera/lens/projection") is None
+        # Both eyes pin P = K; only the right eye carries a Tx.
+        assert float(text_of(left.find("camera/lens/projection"), "tx")) == 0.0
         # Every gz version fills camera_info P from <lens><projection>, tx included
         # (gazebosim/gz-sensors@ign-sensors6:src/CameraSensor.cc:755-758 since 6.8.0 for
         # Fortress; @gz-sensors8:src/CameraSensor.cc:741-752): the right eye carries its Tx.
@@ -902,3 +903,20 @@ def test_macro_validates_clean_and_gazebo_keeps_every_sensor(
     assert not conv.dropped, conv.dropped  # every link keeps its mass through the conversion
     for sensor in robot.sensors:
         assert sensor.reference in robot.link_map and sensor.reference not in conv.dropped
+
+
+@pytest.mark.parametrize("gz_version", ["fortress", "harmonic", "jetty"])
+@pytest.mark.parametrize("case", [c for c in CASES if c.key in ("camera", "depth_camera", "stereo_camera")], ids=lambda c: c.key)
+def test_every_gz_camera_pins_its_projection(expanded: Callable[..., str], case: MacroCase, gz_version: str) -> None:
+    # gz-sensors fills camera_info P from <lens><projection> (gazebosim/gz-sensors@gz-sensors8:
+    # src/CameraSensor.cc:741-752); without it P comes from the render camera, and ign-sensors 6
+    # reads the projection only from 6.8.0 (@ign-sensors6:src/CameraSensor.cc:290-312, 755-758).
+    # Pinned, P = K on every version (issue 9).
+    root = etree.fromstring(expanded(case, sim="gz", gz_version=gz_version).encode())
+    cams = [c for c in root.iter("camera") if c.find("lens/intrinsics") is not None]
+    assert cams
+    for cam in cams:
+        proj, intr = cam.find("lens/projection"), cam.find("lens/intrinsics")
+        assert proj is not None
+        for p_tag, k_tag in (("p_fx", "fx"), ("p_fy", "fy"), ("p_cx", "cx"), ("p_cy", "cy")):
+            assert float(proj.findtext(p_tag)) == float(intr.findtext(k_tag)), p_tag

@@ -195,3 +195,4 @@ def test_gz_sensor_without_frame_tag_warns_its_frame_is_not_in_tf(check) -> None
     assert f.severity.label == "warning" and f.frame == "rover::base_footprint::front_camera"
     assert f.fix == "add <gz_frame_id>camera_optical_frame</gz_frame_id> to the sensor (an optical frame at the camera)"
     assert "SK501" not in rules_of(check(gz_robot(), target="harmonic"))  # near miss: frame tags set
+
