@@ -206,3 +206,24 @@ def test_fortress_maps_gz_sim_names_to_ignition_gazebo(check) -> None:
     assert f.severity.label == "info" and "6.16" in f.message
     ign = gz_robot().replace("gz-sim-sensors-system", "ignition-gazebo-sensors-system")
     assert "SK601" not in rules_of(check(ign, target="fortress"))
+
+
+def test_sk409_on_gazebo_sim_says_the_image_follows_the_intrinsics(check) -> None:
+    # gz-sensors builds the render projection from <lens><intrinsics> (gazebosim/gz-sensors@
+    # gz-sensors8:src/CameraSensor.cc:858-872): camera_info matches the image; horizontal_fov
+    # is what no longer holds. Gazebo Classic never reads the intrinsics: no SK409 there.
+    lens = "<lens><intrinsics><fx>400</fx><fy>400</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics></lens>"
+    robot = gz_robot().replace("<clip><near>0.05</near><far>50</far></clip></camera>", "<clip><near>0.05</near><far>50</far></clip>" + lens + "</camera>", 1)
+    f = next(f for f in check(robot, target="harmonic").findings if f.rule == "SK409")
+    assert "renders with the intrinsics" in f.message and "camera_info will not" not in f.message
+    assert "SK409" not in rules_of(check(robot.replace("<fx>400</fx>", "<fx>381.36</fx>"), target="harmonic"))
+
+
+def test_sk502_on_gazebo_sim_says_what_breaks_there(check) -> None:
+    # On Gazebo Sim the native cloud is x-forward (https://github.com/gazebosim/gz-sensors/issues/488),
+    # so a body frame breaks the image consumers, not Gazebo's own points.
+    body = gz_robot(camera_type="rgbd_camera", camera_tags="<topic>rgbd</topic><gz_frame_id>camera_link</gz_frame_id>")
+    f = next(f for f in check(body, target="harmonic").findings if f.rule == "SK502")
+    assert "depth_image_proc" in f.message and "camera_info" in f.message
+    classic = next(f for f in check(__import__("builders").robot(camera=__import__("builders").camera_sensor(params="<frame_name>camera_link</frame_name>")), target="classic").findings if f.rule == "SK502")
+    assert "depth_image_proc" not in classic.message and "points up at the sky" in classic.message

@@ -52,13 +52,22 @@ def _describe_axis(v: Mat) -> str:
     return names[(key[0], key[1], key[2])]
 
 
-def optical_consequence(R_render_frame: Mat) -> str:
+def optical_consequence(R_render_frame: Mat, gz: bool = False) -> str:
     """What consumers will see when optical data is stamped with this frame."""
     np, tf = _np(), _tf()
     forward = R_render_frame @ np.array([0.0, 0.0, 1.0])
     right = R_render_frame @ np.array([1.0, 0.0, 0.0])
     fwd = _describe_axis(forward)
     if tf.rotation_angle(R_render_frame) < ANGLE_TOL:
+        if gz:
+            # Gazebo Sim's own cloud is x-forward (gz-sensors#488), so with a body frame it
+            # lands right; what breaks is everything that reads image + camera_info.
+            return (
+                "the frame is x-forward (a body frame): images and camera_info say the camera "
+                "looks along its z, so depth_image_proc clouds and image_geometry rays point up "
+                "at the sky and RViz's Camera display overlays the wrong way (Gazebo's own "
+                "points topic, computed x-forward, happens to land right)"
+            )
         return (
             "the frame is x-forward (a body frame), so the camera's viewing axis (optical z) "
             "lands on z: the point cloud points up at the sky and images are rotated in RViz"
@@ -221,7 +230,7 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             "SK502",
             Severity.ERROR,
             f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
-            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R)}",
+            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}",
             s.source,
             sensor=s.name,
             frame=frame,

@@ -9,6 +9,7 @@ from collections.abc import Iterator
 from sensorkit.findings import Finding, Severity
 from sensorkit.model.robot import local
 from sensorkit.model.sensors import LidarSpec, Noise, Sensor
+from sensorkit.model.targets import is_gz
 from sensorkit.rules.base import Context, rule
 
 # sdformat's <image><format> values and the gz-rendering spellings it also accepts.
@@ -411,7 +412,9 @@ def noise(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK409",
     "warning",
-    "focal_length / lens intrinsics disagree with horizontal_fov and width",
+    "focal_length (Classic: camera_info then disagrees with the image) or gz lens intrinsics "
+    "(Gazebo Sim renders with them: the image does not span horizontal_fov) disagree with "
+    "horizontal_fov and width",
     "gazebo_ros_camera, at run time",
 )
 def focal_length(ctx: Context) -> Iterator[Finding]:
@@ -425,7 +428,8 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
         if not 0 < hfov < math.pi:
             continue
         expected = cam.width / (2.0 * math.tan(hfov / 2.0))
-        for p in s.plugins:
+        gz = is_gz(ctx.target)
+        for p in [] if gz else s.plugins:  # gazebo_ros_camera's focal_length: Classic only
             f, _ = parse_float(p.param("focal_length"))
             if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
                 yield ctx.finding(
@@ -437,19 +441,24 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
                     sensor=s.name,
                     fix=f"remove <focal_length> or write {expected!r}",
                 )
-        if cam.lens_intrinsics is not None:
-            fx, fy = cam.lens_intrinsics[0], cam.lens_intrinsics[1]
-            for label, value in (("fx", fx), ("fy", fy)):
-                if abs(value - expected) > 1e-3 * expected:
-                    yield ctx.finding(
-                        "SK409",
-                        Severity.WARNING,
-                        f"camera {s.name!r}: lens intrinsics {label} {value:g} disagrees with width {cam.width} and "
-                        f"horizontal_fov {hfov:g} (which give {expected:.4f}): camera_info will not describe the image",
-                        cam.source,
-                        sensor=s.name,
-                        fix=f"set {label} to {expected:.6f} or fix horizontal_fov",
-                    )
+        # Gazebo Sim renders with <lens><intrinsics> when given (gazebosim/gz-sensors@
+        # gz-sensors8:src/CameraSensor.cc:858-872 builds the projection from them), so image
+        # and camera_info agree and it is horizontal_fov that is not what the image spans.
+        # Gazebo Classic never reads them (camera_info comes from the plugin): no finding.
+        if gz and cam.lens_intrinsics is not None:
+            fx = cam.lens_intrinsics[0]
+            if fx > 0 and abs(fx - expected) > 1e-3 * expected:
+                spans = 2.0 * math.atan(cam.width / (2.0 * fx))
+                yield ctx.finding(
+                    "SK409",
+                    Severity.WARNING,
+                    f"camera {s.name!r}: lens intrinsics fx {fx:g} disagrees with width {cam.width} and "
+                    f"horizontal_fov {hfov:g} (which give {expected:.4f}): Gazebo Sim renders with the "
+                    f"intrinsics, so the image spans {spans:.4f} rad, not the horizontal_fov written",
+                    cam.source,
+                    sensor=s.name,
+                    fix=f"set fx to {expected:.6f}, or horizontal_fov to {spans:.6f}",
+                )
 
 
 @rule(
