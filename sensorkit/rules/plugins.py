@@ -678,36 +678,29 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
             if tag not in s.frame_tags:
                 continue
             first = next(t for t in read if t in s.frame_tags) if tag in read else None
-            if first is not None and first != tag:
-                yield ctx.finding(
-                    "SK608",
-                    Severity.WARNING,
-                    f"sensor {s.name!r}: <{tag}> is ignored by {target}: <{first}> takes precedence",
-                    child(s.element, tag),
-                    sensor=s.name,
-                    frame=s.frame_tags[tag],
-                    fix=f"keep one frame tag: <{first}>",
+            if tag not in read:
+                why, fix = f"is ignored by {target}; it reads <{read[0]}>", None
+            elif first != tag:
+                why, fix = (
+                    f"is ignored by {target}: <{first}> takes precedence",
+                    f"keep one frame tag: <{first}>",
                 )
             elif tag in deprecated:
-                yield ctx.finding(
-                    "SK608",
-                    Severity.WARNING,
-                    f"sensor {s.name!r}: <{tag}> is deprecated on {target}: still read, with a warning at every start",
-                    child(s.element, tag),
-                    sensor=s.name,
-                    frame=s.frame_tags[tag],
-                    fix=f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
+                why, fix = (
+                    f"is deprecated on {target}: still read, with a warning at every start",
+                    None,
                 )
-            if tag in s.frame_tags and tag not in read:
-                yield ctx.finding(
-                    "SK608",
-                    Severity.WARNING,
-                    f"sensor {s.name!r}: <{tag}> is ignored by {target}; it reads <{read[0]}>",
-                    child(s.element, tag),
-                    sensor=s.name,
-                    frame=s.frame_tags[tag],
-                    fix=f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
-                )
+            else:
+                continue
+            yield ctx.finding(
+                "SK608",
+                Severity.WARNING,
+                f"sensor {s.name!r}: <{tag}> {why}",
+                child(s.element, tag),
+                sensor=s.name,
+                frame=s.frame_tags[tag],
+                fix=fix or f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
+            )
         for tag, value, el in s.misplaced_frame_tags:
             yield ctx.finding(
                 "SK608",
