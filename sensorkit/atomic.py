@@ -16,7 +16,16 @@ from pathlib import Path
 
 from sensorkit.errors import UsageError
 
-__all__ = ["check_replaceable", "staged_folder", "write_bytes", "write_text"]
+__all__ = [
+    "check_editable",
+    "check_replaceable",
+    "editing",
+    "staged_folder",
+    "write_bytes",
+    "write_text",
+]
+
+LOCK_WAIT_S = 60.0  # how long a second writer waits for the first before giving up
 
 
 def _umask() -> int:
@@ -47,6 +56,7 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
                 out.flush()
                 os.fsync(out.fileno())
         os.chmod(tmp, stat.S_IMODE(mode))
+        _keep_owner(real, tmp)
         os.replace(tmp, real)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -59,6 +69,79 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
                 os.fsync(dir_fd)
             finally:
                 os.close(dir_fd)
+
+
+def _keep_owner(real: Path, tmp: str) -> None:
+    """As root, give the new file the old one's owner and group (else it becomes root's)."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        return
+    try:
+        st = real.stat()
+    except FileNotFoundError:
+        return
+    os.chown(tmp, st.st_uid, st.st_gid)
+
+
+def check_editable(path: Path) -> None:
+    """Refuse to edit a file in place that an editor would not touch silently.
+
+    A file without its owner's write permission (0444: what ``chmod a-w`` means, even to
+    root) and a hard-linked file (replacing it would split the links: the other names
+    keep the old content) are refused with a one-line reason. A symlink is fine: its
+    target is edited and the link stays a link.
+    """
+    real = Path(os.path.realpath(path))
+    try:
+        st = real.stat()
+    except FileNotFoundError:
+        return
+    if not st.st_mode & stat.S_IWUSR:
+        msg = f"{path}: is read-only (mode {stat.S_IMODE(st.st_mode):o}); nothing was written"
+        raise UsageError(msg)
+    if st.st_nlink > 1:
+        msg = (
+            f"{path}: has {st.st_nlink} hard links; editing it would leave the other names "
+            "with the old content, so nothing was written (edit a copy, or use -o)"
+        )
+        raise UsageError(msg)
+
+
+@contextlib.contextmanager
+def editing(*paths: Path, wait_s: float = LOCK_WAIT_S) -> Iterator[None]:
+    """Hold an advisory lock on the folders of ``paths`` from reading to the last rename.
+
+    Two sensorkit writers on one file take turns: the second waits (at most ``wait_s``),
+    then reads what the first wrote, so no update is lost. The lock is ``flock`` on the
+    folder itself, which has a stable inode (the file's is replaced by every write) and
+    leaves nothing behind. Stale ``*.sensorkit-tmp`` files a killed run left there are
+    removed once the lock is held.
+    """
+    import fcntl
+    import time
+
+    folders = sorted({os.path.realpath(Path(p).parent) for p in paths})
+    fds: list[int] = []
+    try:
+        for folder in folders:
+            fd = os.open(folder, os.O_RDONLY)
+            fds.append(fd)
+            deadline = time.monotonic() + wait_s
+            while True:
+                try:
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    break
+                except BlockingIOError:
+                    if time.monotonic() > deadline:
+                        msg = f"{folder}: another sensorkit is still writing there after {wait_s:g} s; try again"
+                        raise UsageError(msg) from None
+                    time.sleep(0.02)
+            for stale in Path(folder).glob(".*.sensorkit-tmp"):
+                with contextlib.suppress(OSError):
+                    stale.unlink()
+        yield
+    finally:
+        for fd in fds:
+            os.close(fd)  # closing releases the flock
 
 
 def write_text(

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.atomic import write_bytes
+from sensorkit.atomic import check_editable, editing, write_bytes
 from sensorkit.edit.check import Verdict, check_names, check_parent, compare, describe
 from sensorkit.edit.fragment import Fragment, expand_fragment
 from sensorkit.edit.kinds import KINDS, XACRO_NS, MacroInfo, SensorKind, read_macro, shipped_macro
@@ -509,8 +509,16 @@ def apply_add(result: AddResult) -> AddResult:
 
 
 def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
-    """Plan an add and, unless ``dry_run``, publish it. Raises EditRefused on refusal."""
-    result = plan_add(req)
-    if not dry_run:
+    """Plan an add and, unless ``dry_run``, publish it. Raises EditRefused on refusal.
+
+    A real add holds the folder lock from reading the file to the last rename, so two adds
+    on one file take turns and both land (``sensorkit.atomic.editing``).
+    """
+    if dry_run:
+        return plan_add(req)
+    target = req.output if req.output is not None else req.path
+    check_editable(target)
+    with editing(req.path, target):
+        result = plan_add(req)
         apply_add(result)
     return result

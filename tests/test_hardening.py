@@ -1,0 +1,119 @@
+"""Issue 10: edits that cannot lose updates and keep the file's identity.
+
+Concurrent adds take turns on a folder lock held from reading the file to the last rename
+(``sensorkit.atomic.editing``); read-only and hard-linked files are refused byte-identical;
+owner, group, mode and symlinks survive an edit.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import shutil
+import stat
+from pathlib import Path
+
+import pytest
+
+from sensorkit.edit import AddRequest, add_sensor
+from sensorkit.errors import UsageError
+
+ROBOTS = Path(__file__).resolve().parent / "edit_robots"
+
+
+def _add(path: str, name: str, y: float, out: object) -> None:
+    try:
+        add_sensor(AddRequest(path=Path(path), kind="camera", name=name, parent="base_link", xyz=(0.2, y, 0.05)))
+    except Exception as exc:  # a clean failure is allowed; a lost update is not
+        out.put((name, f"failed: {exc}"))  # type: ignore[attr-defined]
+        return
+    out.put((name, "added"))  # type: ignore[attr-defined]
+
+
+def _pair(ctx: multiprocessing.context.BaseContext, path: Path) -> dict[str, str]:
+    """Two adds on one file at once, in two processes (each forks xacro children)."""
+    out = ctx.Queue()
+    procs = [ctx.Process(target=_add, args=(str(path), name, y, out)) for name, y in (("cam_a", 0.1), ("cam_b", -0.1))]
+    for p in procs:
+        p.start()
+    for p in procs:
+        p.join(120)
+    return dict(out.get(timeout=5) for _ in procs)
+
+
+def _sensors(path: Path) -> set[str]:
+    from sensorkit.engine import validate_file
+
+    report = validate_file(path)
+    assert report.robot is not None, report.error
+    return {s.name for s in report.robot.sensors}
+
+
+@pytest.mark.parametrize("kind", ["urdf", "xacro"])
+def test_concurrent_adds_never_lose_an_update(tmp_path: Path, kind: str) -> None:
+    # Issue 10 measured 8 lost updates in 65 pairs; 30 pairs per file kind here (60 in all).
+    ctx = multiprocessing.get_context("fork")
+    pairs = 30
+    lost = 0
+    for i in range(pairs):
+        folder = tmp_path / f"p{i}"
+        if kind == "urdf":
+            folder.mkdir()
+            path = folder / "rover.urdf"
+            shutil.copyfile(ROBOTS / "rover.urdf", path)
+        else:
+            shutil.copytree(ROBOTS / "xacro_robot", folder)
+            path = folder / "robot.urdf.xacro"
+        results = _pair(ctx, path)
+        present = _sensors(path)
+        lost += sum(1 for name, outcome in results.items() if outcome == "added" and name not in present)
+        assert set(results.values()) == {"added"}, results  # the second waits, then lands
+    assert lost == 0
+
+
+def test_read_only_file_is_refused_byte_identical(tmp_path: Path) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    path.chmod(0o444)
+    before = path.read_bytes()
+    with pytest.raises(UsageError, match="read-only"):
+        add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link"))
+    assert path.read_bytes() == before and stat.S_IMODE(path.stat().st_mode) == 0o444
+
+
+def test_hard_linked_file_is_refused(tmp_path: Path) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    os.link(path, tmp_path / "other.urdf")
+    before = path.read_bytes()
+    with pytest.raises(UsageError, match="hard links"):
+        add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link"))
+    assert path.read_bytes() == before
+
+
+def test_owner_group_mode_and_symlink_survive_an_edit(tmp_path: Path) -> None:
+    real = tmp_path / "real" / "rover.urdf"
+    real.parent.mkdir()
+    shutil.copyfile(ROBOTS / "rover.urdf", real)
+    real.chmod(0o640)
+    root = os.geteuid() == 0
+    if root:
+        os.chown(real, 1234, 5678)  # a user's file, edited by root (as in CI)
+    link = tmp_path / "robot.urdf"
+    link.symlink_to(real)
+    add_sensor(AddRequest(path=link, kind="camera", name="cam", parent="base_link"))
+    assert link.is_symlink() and os.readlink(link) == str(real)
+    st = real.stat()
+    assert stat.S_IMODE(st.st_mode) == 0o640
+    if root:
+        assert (st.st_uid, st.st_gid) == (1234, 5678)
+    assert "cam" in _sensors(real)
+
+
+def test_stale_temp_files_are_cleaned_by_the_next_edit(tmp_path: Path) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    stale = tmp_path / ".rover.urdf.abc123.sensorkit-tmp"
+    stale.write_text("left by a killed run")
+    add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link"))
+    assert not stale.exists()
