@@ -41,6 +41,9 @@ class Options:
     bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
 
     def __post_init__(self) -> None:
+        if not self.timeout >= 1:
+            msg = f"--timeout {self.timeout:g}: give at least 1 second for one xacro expansion"
+            raise UsageError(msg)
         if self.target not in ("auto", *TARGETS):
             msg = f"unknown target {self.target!r}: use auto, " + ", ".join(TARGETS)
             raise UsageError(msg)

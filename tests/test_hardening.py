@@ -117,3 +117,42 @@ def test_stale_temp_files_are_cleaned_by_the_next_edit(tmp_path: Path) -> None:
     stale.write_text("left by a killed run")
     add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link"))
     assert not stale.exists()
+
+
+def test_dtd_ban_covers_the_whole_file_and_large_comments_parse(tmp_path: Path) -> None:
+    from sensorkit.engine import validate_file
+
+    big = "<!-- " + "x" * (25 * 1024 * 1024) + " -->\n"
+    plain = (ROBOTS / "rover.urdf").read_text()
+    body = plain[plain.index("<robot"):]
+    ok = tmp_path / "big_comment.urdf"
+    ok.write_text('<?xml version="1.0"?>\n' + big + body)
+    report = validate_file(ok)
+    assert report.error is None and report.robot is not None and not [f for f in report.findings if f.rule == "SK101"]
+    bomb = tmp_path / "late_dtd.urdf"
+    bomb.write_text('<?xml version="1.0"?>\n' + big + '<!DOCTYPE robot [<!ENTITY a "aaaaaaaa">]>\n' + body.replace("<robot", "<robot x='&a;'", 1))
+    report = validate_file(bomb)
+    text = (report.error or "") + " ".join(f.message for f in report.findings)
+    assert "DTD entity declarations are not allowed" in text
+
+
+@pytest.mark.parametrize("namespace", ["${1/0}", "$(env HOME)", "1robot", "a//b", "my robot"])
+def test_add_refuses_injection_and_bad_namespaces_byte_identical(tmp_path: Path, namespace: str) -> None:
+    # Once: add-camera --namespace '${1/0}' wrote a file that no longer validated (issue 10).
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    before = path.read_bytes()
+    with pytest.raises(UsageError):
+        add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link", params={"namespace": namespace}))
+    assert path.read_bytes() == before
+    add_sensor(AddRequest(path=path, kind="camera", name="cam", parent="base_link", params={"namespace": "robot1/sensors"}))
+
+
+@pytest.mark.parametrize("value", ["0", "0.5", "-3", "nan"])
+def test_timeout_below_one_second_is_a_usage_error(tmp_path: Path, value: str) -> None:
+    from conftest import run_cli
+
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    res = run_cli("validate", str(path), "--timeout", value)
+    assert res.returncode == 2 and "--timeout" in res.stderr and "Traceback" not in res.stderr

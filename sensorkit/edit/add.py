@@ -272,6 +272,11 @@ def _splice(data: bytes, layout: Layout, block: str, at: int, ns_decl: str | Non
     return out
 
 
+# rcl's namespace rules: "/"-separated tokens of letters, digits and "_", not starting
+# with a digit; an optional leading "/" (a trailing one is tolerated by the macros).
+ROS_NAMESPACE_RE = re.compile(r"^/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*/?$")
+
+
 def plan_add(req: AddRequest) -> AddResult:
     """Work out an add without writing anything (see the module doc)."""
     from sensorkit.model import load_robot
@@ -281,6 +286,18 @@ def plan_add(req: AddRequest) -> AddResult:
         msg = (
             f"--name {req.name!r}: use letters, digits and '_', starting with a letter "
             "(it becomes link, frame and topic names)"
+        )
+        raise UsageError(msg)
+    for key, value in req.params.items():
+        # Values are written into xacro: ${...} or $(...) would be evaluated there.
+        if "${" in str(value) or "$(" in str(value):
+            msg = f"--{key.replace('_', '-')} {value!r}: '${{' and '$(' are not allowed (xacro would evaluate them)"
+            raise UsageError(msg)
+    namespace = str(req.params.get("namespace") or "")
+    if namespace and not ROS_NAMESPACE_RE.match(namespace):
+        msg = (
+            f"--namespace {namespace!r}: not a ROS namespace (letters, digits and '_', "
+            "segments separated by '/', each starting with a letter or '_')"
         )
         raise UsageError(msg)
     if not req.parent or req.parent != req.parent.strip():

@@ -41,7 +41,10 @@ def strict_parser() -> etree.XMLParser:
         no_network=True,
         load_dtd=False,
         dtd_validation=False,
-        huge_tree=False,
+        # Large comments and text nodes (over libxml2's 10 MB default) must parse; the
+        # limits huge_tree lifts also guard entity expansion, which is off here and whose
+        # DTDs are refused before parsing (forbid_entities). Files stay under MAX_FILE_BYTES.
+        huge_tree=True,
         remove_blank_text=False,
         recover=False,
     )

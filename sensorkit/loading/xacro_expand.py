@@ -62,9 +62,11 @@ class ExpandOutcome:
 
 
 def forbid_entities(data: bytes) -> str | None:
-    """A reason to refuse the bytes, or None. URDF never needs a DTD with entities."""
-    head = data[:65536]
-    if b"<!DOCTYPE" in head and _ENTITY_RE.search(data):
+    """A reason to refuse the bytes, or None. URDF never needs a DTD with entities.
+
+    The whole file is searched: a DOCTYPE may follow any amount of comment.
+    """
+    if b"<!DOCTYPE" in data and _ENTITY_RE.search(data):
         return (
             "DTD entity declarations are not allowed (entity expansion and external "
             "entities are refused for safety); remove the <!DOCTYPE ...> block"
