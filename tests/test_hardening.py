@@ -156,3 +156,42 @@ def test_timeout_below_one_second_is_a_usage_error(tmp_path: Path, value: str) -
     shutil.copyfile(ROBOTS / "rover.urdf", path)
     res = run_cli("validate", str(path), "--timeout", value)
     assert res.returncode == 2 and "--timeout" in res.stderr and "Traceback" not in res.stderr
+
+
+def _render_cli(tmp_path: Path, robot_text: str) -> tuple[int, str, float]:
+    import resource
+    import subprocess
+    import sys
+    import time
+
+    path = tmp_path / "r.urdf"
+    path.write_text(robot_text)
+    start = time.monotonic()
+    res = subprocess.run([sys.executable, "-m", "sensorkit", "render", "preview", str(path), "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True, timeout=120, check=False)
+    took = time.monotonic() - start
+    rss_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024 / 1024
+    assert took < 20 and rss_gb < 1.0, (took, rss_gb)
+    return res.returncode, res.stderr, took
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        ("<width>640</width><height>480</height>", "<width>100000</width><height>100000</height>", "--max-pixels"),
+        ("<samples>360</samples>", "<samples>1000000000</samples>", "--max-rays"),
+        ('xyz="0.25 0 0.1"', 'xyz="1e308 0 0.1"', "not a finite place"),
+        ("</robot>", '<joint name="j"/></robot>', "kinematic tree is broken"),  # segfaulted pybullet
+    ],
+    ids=["huge-camera", "huge-lidar", "far-camera", "typeless-joint"],
+)
+def test_render_refuses_what_would_exhaust_the_machine(tmp_path: Path, change: tuple[str, str, str]) -> None:
+    # Issue 10: these used 16-24 GB and were killed, or ended in tracebacks.
+    from builders import robot
+
+    old, new, says = change
+    text = robot()
+    assert old in text
+    code, err, _ = _render_cli(tmp_path, text.replace(old, new, 1))
+    lines = [ln for ln in err.splitlines() if ln.startswith("sensorkit:")]
+    assert code == 2 and len(lines) == 1 and says in lines[0] and "Traceback" not in err, err

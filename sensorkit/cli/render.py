@@ -89,6 +89,13 @@ def preview(
             help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, frames)",
         ),
     ] = "auto",
+    max_pixels: Annotated[
+        int,
+        typer.Option("--max-pixels", help="most pixels one camera may have (default 4096x4096)"),
+    ] = 4096 * 4096,
+    max_rays: Annotated[
+        int, typer.Option("--max-rays", help="most rays one lidar may cast per scan")
+    ] = 1_000_000,
 ) -> None:
     """Render every camera and cast every lidar of FILE into --out, with checks.
 
@@ -131,6 +138,8 @@ def preview(
         target=target,
         progress=log,
         workers=min(4, os.cpu_count() or 1),
+        max_pixels=max_pixels,
+        max_rays=max_rays,
     )
     for s in result.sensors:
         typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))

@@ -586,6 +586,70 @@ def _validate(
     return list(report.findings), None
 
 
+# Budgets checked before anything is allocated. Real sensors sit far below: a 4K camera has
+# 8.3 MP, an Ouster OS2-128 casts 128 x 2048 = 262,144 rays.
+MAX_CAMERA_PIXELS = 4096 * 4096
+MAX_LIDAR_RAYS = 1_000_000
+# Sensors further than this from the robot's root are not on a robot (1e308 m overflows).
+MAX_POSE_M = 1e4
+
+
+def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
+    """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
+    pose is not a finite place near the robot, naming the sensor and the option to raise."""
+    from sensorkit.model.frames import render_pose
+    from sensorkit.sensorinfo import SDF_DEFAULTS
+
+    for s in robot.sensors:
+        if only and s.name not in only:
+            continue
+        for cam in s.cameras:
+            w = cam.width if cam.width and cam.width > 0 else int(SDF_DEFAULTS["width"])
+            h = cam.height if cam.height and cam.height > 0 else int(SDF_DEFAULTS["height"])
+            if w * h > max_pixels:
+                msg = (
+                    f"sensor {s.name!r}: a {w}x{h} camera is {w * h:,} pixels, over the render "
+                    f"budget of {max_pixels:,}; pass --max-pixels {w * h} to render it anyway"
+                )
+                raise UsageError(msg)
+        if s.lidar is not None:
+            rays = max(s.lidar.samples or 1, 1) * max(s.lidar.v_samples or 1, 1)
+            if rays > max_rays:
+                msg = (
+                    f"sensor {s.name!r}: a lidar of {rays:,} rays per scan is over the render "
+                    f"budget of {max_rays:,}; pass --max-rays {rays} to cast it anyway"
+                )
+                raise UsageError(msg)
+        T = render_pose(robot, s)
+        if T is not None:
+            import numpy as np
+
+            if not np.all(np.isfinite(T)) or float(np.abs(T[:3, 3]).max()) > MAX_POSE_M:
+                msg = (
+                    f"sensor {s.name!r} sits at {T[:3, 3].tolist()} m from the robot's root: not a "
+                    f"finite place within {MAX_POSE_M:g} m, so it cannot be rendered (check its joint origins)"
+                )
+                raise UsageError(msg)
+
+
+def check_structure(robot: Robot, target: str) -> None:
+    """Never hand pybullet a structurally broken robot (a typeless joint segfaults it):
+    validate's SK2xx errors stop the render with one line (exit 2)."""
+    from sensorkit.engine import Options, check_robot
+    from sensorkit.findings import Severity
+
+    report = check_robot(robot, Options(target=target, select=("SK2",)))
+    errors = [f for f in report.findings if f.severity == Severity.ERROR]
+    if errors:
+        first = errors[0]
+        more = f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""
+        msg = (
+            f"{first.file}:{first.line}: {first.rule} {first.message}{more}: the kinematic tree is "
+            "broken, so nothing is rendered; run sensorkit validate"
+        )
+        raise InputError(msg)
+
+
 def render_preview(
     path: Path,
     out_dir: Path,
@@ -598,6 +662,8 @@ def render_preview(
     target: str = "auto",
     progress: Progress | None = None,
     workers: int = 1,
+    max_pixels: int = MAX_CAMERA_PIXELS,
+    max_rays: int = MAX_LIDAR_RAYS,
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -616,6 +682,9 @@ def render_preview(
         workers: processes to render cameras in (Linux; the others are forked from this
             one after the world is built, so each renders from the same state). 1 renders
             everything here; results are the same either way.
+        max_pixels: the most pixels one camera may have (checked before anything is
+            allocated: a 100000 x 100000 camera would need hundreds of GB).
+        max_rays: the most rays one lidar may cast per scan.
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
@@ -644,6 +713,8 @@ def render_preview(
     else:
         msg = f"unknown target {target!r}: use auto, " + ", ".join(TARGETS)
         raise UsageError(msg)
+    check_budget(robot, sensors, max_pixels=max_pixels, max_rays=max_rays)
+    check_structure(robot, target)
     positions = joint_positions(robot, dict(joints or {}))
     poses = link_poses(robot, positions)
     robot_shapes = _robot_shapes(robot, poses)
