@@ -183,9 +183,15 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
     """Yield an empty folder beside ``out`` to fill; on success it replaces ``out`` whole.
 
     On an exception (or with ``publish=False``) the staging folder is deleted and ``out``
-    is untouched. Folders get the usual 0o777 less the umask.
+    is untouched. Folders get the usual 0o777 less the umask. The folder lock of
+    :func:`editing` is held on ``out``'s parent throughout.
     """
     out.parent.mkdir(parents=True, exist_ok=True)
+    with editing(out):  # two writers of one folder take turns (new, export)
+        yield from _staged(out, publish)
+
+
+def _staged(out: Path, publish: bool) -> Iterator[Path]:
     temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
     try:
         yield temp

@@ -195,3 +195,32 @@ def test_render_refuses_what_would_exhaust_the_machine(tmp_path: Path, change: t
     code, err, _ = _render_cli(tmp_path, text.replace(old, new, 1))
     lines = [ln for ln in err.splitlines() if ln.startswith("sensorkit:")]
     assert code == 2 and len(lines) == 1 and says in lines[0] and "Traceback" not in err, err
+
+
+def _hold(folder: str, ready: object, seconds: float) -> None:
+    import time
+
+    from sensorkit.atomic import editing
+
+    with editing(Path(folder) / "x"):
+        ready.set()  # type: ignore[attr-defined]
+        time.sleep(seconds)
+
+
+def test_folder_writers_take_turns(tmp_path: Path) -> None:
+    # new and export publish whole folders through staged_folder, which holds the same lock.
+    import time
+
+    from sensorkit.atomic import staged_folder
+
+    ctx = multiprocessing.get_context("fork")
+    ready = ctx.Event()
+    holder = ctx.Process(target=_hold, args=(str(tmp_path), ready, 1.0))
+    holder.start()
+    assert ready.wait(10)
+    start = time.monotonic()
+    with staged_folder(tmp_path / "pkg") as temp:
+        (temp / "f").write_text("x")
+    waited = time.monotonic() - start
+    holder.join(10)
+    assert waited >= 0.5 and (tmp_path / "pkg" / "f").read_text() == "x"
