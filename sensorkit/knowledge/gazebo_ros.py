@@ -44,37 +44,8 @@ ROS2_LIBRARIES = frozenset(
     }
 )  # fmt: skip
 
-# gazebo_plugins / gazebo_ros in ROS 2 (libgazebo_ros_<name>.so).
-ROS2_PLUGINS = {
-    "camera",
-    "ray_sensor",
-    "imu_sensor",
-    "gps_sensor",
-    "ft_sensor",
-    "bumper",
-    "p3d",
-    "diff_drive",
-    "ackermann_drive",
-    "tricycle_drive",
-    "planar_move",
-    "joint_state_publisher",
-    "joint_pose_trajectory",
-    "force",
-    "elevator",
-    "hand_of_god",
-    "harness",
-    "projector",
-    "template",
-    "vacuum_gripper",
-    "video",
-    "wheel_slip",
-    "multi_camera",
-    "init",
-    "factory",
-    "state",
-    "properties",
-    "force_system",
-}
+# ROS 2 plugin names (libgazebo_ros_<name>.so), derived from the cited list above.
+ROS2_PLUGINS = frozenset(lib.removeprefix("gazebo_ros_") for lib in ROS2_LIBRARIES)
 # ROS 1 only, with what replaces each in ROS 2.
 ROS1_ONLY: dict[str, str] = {
     "depth_camera": "libgazebo_ros_camera.so on a sensor of type depth",
@@ -95,18 +66,8 @@ ROS1_ONLY: dict[str, str] = {
     "vision_reconfigure": "nothing in gazebo_plugins",
     "control": "gazebo_ros2_control (libgazebo_ros2_control.so)",
 }
-# ROS 2 gazebo_ros names that ROS 1 gazebo_plugins never had.
-ROS2_ONLY = {
-    "ray_sensor",
-    "gps_sensor",
-    "ackermann_drive",
-    "multi_camera",
-    "init",
-    "factory",
-    "state",
-    "properties",
-    "force_system",
-}
+# ROS 2 gazebo_ros names that ROS 1 gazebo_plugins never had, derived likewise.
+ROS2_ONLY = frozenset(lib.removeprefix("gazebo_ros_") for lib in ROS2_LIBRARIES - ROS1_LIBRARIES)
 ROS1_TO_ROS2_PARAMS: dict[str, str] = {
     "frameName": "<frame_name>",
     "cameraName": "<camera_name>",
@@ -167,18 +128,4 @@ RAY_OUTPUT_TYPES = {
     "sensor_msgs/PointCloud",
     "sensor_msgs/PointCloud2",
     "sensor_msgs/Range",
-}
-PLUGIN_SENSOR_KINDS: dict[str, set[str]] = {
-    "gazebo_ros_camera": {"camera", "depth", "multicamera"},
-    "gazebo_ros_ray_sensor": {"ray", "gpu_ray"},
-    "gazebo_ros_imu_sensor": {"imu"},
-    "gazebo_ros_depth_camera": {"depth"},
-    "gazebo_ros_openni_kinect": {"depth"},
-    "gazebo_ros_laser": {"ray"},
-    "gazebo_ros_gpu_laser": {"gpu_ray"},
-    "gazebo_ros_block_laser": {"ray"},
-    "gazebo_ros_velodyne_laser": {"ray", "gpu_ray"},
-    "gazebo_ros_velodyne_gpu_laser": {"gpu_ray"},
-    "gazebo_ros_multicamera": {"multicamera"},
-    "gazebo_ros_gps_sensor": {"gps"},
 }

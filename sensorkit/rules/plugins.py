@@ -11,7 +11,6 @@ from lxml import etree
 
 from sensorkit.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import (
-    PLUGIN_SENSOR_KINDS,
     RAY_OUTPUT_TYPES,
     ROS1_ONLY,
     ROS1_TO_ROS2_PARAMS,
@@ -72,16 +71,9 @@ def plugin_exists(ctx: Context) -> Iterator[Finding]:
 PLACEHOLDERS = frozenset({"", "dummy", "dummyfile", "placeholder", "todo", "none", "null", "foo"})
 
 
-def _base(filename: str) -> str:
-    base = filename.rsplit("/", 1)[-1].strip()
-    base = base.removeprefix("lib")
-    return base.removesuffix(".so")
-
-
 def plugin_problem(p: Plugin, target: str) -> tuple[Severity, str, str] | None:
     """Why ``p`` cannot load under ``target`` as (severity, message, fix), or None."""
-    base = _base(p.filename)
-    if base.lower() in PLACEHOLDERS:
+    if p.library.strip().lower() in PLACEHOLDERS:
         if is_gz(target):
             return (
                 Severity.WARNING,
@@ -206,10 +198,14 @@ def ros1_params(ctx: Context) -> Iterator[Finding]:
 def plugin_sensor_type(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
+    from sensorkit.knowledge import plugins as known
+    from sensorkit.model.frames import ros_generation
+
     for s in ctx.robot.sensors:
         for p in s.plugins:
-            kinds = PLUGIN_SENSOR_KINDS.get(p.library)
-            if kinds is None or s.type in kinds:
+            spec = known.lookup(p.filename, ros_generation(ctx.target))
+            kinds = spec.sensor_types if spec is not None and spec.level == "sensor" else None
+            if not kinds or s.type in kinds:
                 continue
             yield ctx.finding(
                 "SK603",
@@ -514,7 +510,7 @@ def _ros2_control_sensors(ctx: Context) -> set[str]:
     plugins = (
         ("gz_ros2_control", "ign_ros2_control") if is_gz(ctx.target) else ("gazebo_ros2_control",)
     )
-    if not any(_base(p.filename).startswith(plugins) for p in ctx.robot.model_plugins):
+    if not any(p.library.startswith(plugins) for p in ctx.robot.model_plugins):
         return set()
     root = ctx.robot.document.root
     return {
