@@ -432,3 +432,15 @@ def test_vendor_gazebo_ros_plugins_parameters_are_not_ros2_evidence(check) -> No
     assert report.target == "ros1"
     ros2_vendor = kobuki.replace("<wheel_separation>", "<ros><namespace>/</namespace></ros><wheel_separation>")
     assert check(robot(camera=ROS1_CAMERA, lidar=ROS1_LASER, extra=ros2_vendor)).target == "classic"
+
+
+def test_sk604_only_for_plugins_that_load(check) -> None:
+    # pmb2's two openni_kinect plugins share a name, but under ROS 2 neither loads (SK601):
+    # no node is made, so no node-name clash either.
+    two = (camera_sensor("a", stype="depth", plugin="{p}", plugin_name="same")
+           + camera_sensor("b", stype="depth", plugin="{p}", plugin_name="same"))
+    extra = f'<gazebo reference="base_link">{two}</gazebo>'
+    ros1 = robot(extra=extra.replace("{p}", "libgazebo_ros_openni_kinect.so"))
+    assert "SK604" not in rules_of(check(ros1, target="classic"))
+    ros2 = robot(extra=extra.replace("{p}", "libgazebo_ros_camera.so"))
+    assert "SK604" in rules_of(check(ros2, target="classic"))

@@ -330,9 +330,17 @@ def _info_topic(s: Sensor, base: str) -> str:
 def node_names(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
+    from sensorkit.knowledge import plugins as known
+    from sensorkit.knowledge.gazebo_ros import ROS2_LIBRARIES
+
     seen: dict[str, Plugin] = {}
     for p in all_plugins(ctx.robot):
         if not _is_ros2_gazebo_plugin(p) or not p.name:
+            continue
+        # Only plugins that load and that sensorkit knows make a ROS 2 node of their name.
+        if plugin_problem(p, ctx.target) is not None or (
+            p.library not in ROS2_LIBRARIES and known.lookup(p.filename, "ros2") is None
+        ):
             continue
         full = _resolve(p.name, p.namespace(), "")
         if full in seen:
