@@ -33,6 +33,27 @@ class Config:
     args: dict[str, str] = field(default_factory=dict)
 
 
+    def confined_package_paths(self) -> tuple[str, ...]:
+        """``package-path`` for ``--untrusted``: only folders inside the pyproject's folder.
+
+        The pyproject.toml comes with the pull request, so a ``package-path = ["/"]`` in
+        it must not widen what an untrusted xacro may read; a folder outside has to be
+        given on the command line.
+        """
+        if self.path is None:
+            return tuple(self.package_paths)
+        home = self.path.parent.resolve()
+        for item in self.package_paths:
+            folder = Path(item.partition("=")[2] or item).resolve()
+            if folder != home and home not in folder.parents:
+                msg = (
+                    f"{self.path}: [tool.sensorkit] package-path {item!r} lies outside "
+                    f"{home}; with --untrusted pass it as --package-path on the command line"
+                )
+                raise UsageError(msg)
+        return tuple(self.package_paths)
+
+
 def find_pyproject(start: Path) -> Path | None:
     for folder in [start, *start.parents]:
         candidate = folder / "pyproject.toml"

@@ -16,6 +16,7 @@ from sensorkit.errors import InputError, UsageError
 from sensorkit.findings import Finding, Severity
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.untrusted import Untrusted
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import load_robot
 from sensorkit.model.frames import sensor_frames
@@ -39,6 +40,7 @@ class Options:
     package_paths: tuple[str, ...] = ()
     timeout: float = 60.0
     bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
+    untrusted: Untrusted | None = None  # --untrusted: see sensorkit.loading.untrusted
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -202,7 +204,11 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
     options = options or Options()
     try:
         loaded = load_robot(
-            path, args=options.args, package_paths=options.package_paths, timeout=options.timeout
+            path,
+            args=options.args,
+            package_paths=options.package_paths,
+            timeout=options.timeout,
+            untrusted=options.untrusted,
         )
     except InputError as exc:
         return FileReport(path=path, error=str(exc))

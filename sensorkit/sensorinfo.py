@@ -46,6 +46,7 @@ from sensorkit.intrinsics import (
 
 if TYPE_CHECKING:
     from sensorkit.exporters.bridge import BridgeEntry
+    from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
     from sensorkit.model.transforms import Mat
@@ -556,7 +557,11 @@ class RobotInfo:
 
 
 def load(
-    path: Path, *, args: Mapping[str, str] | None = None, package_paths: Sequence[str] = ()
+    path: Path,
+    *,
+    args: Mapping[str, str] | None = None,
+    package_paths: Sequence[str] = (),
+    untrusted: Untrusted | None = None,
 ) -> Robot:
     """Load and model a URDF/xacro file.
 
@@ -565,7 +570,9 @@ def load(
     """
     from sensorkit.model import load_robot
 
-    loaded = load_robot(path, args=dict(args or {}), package_paths=tuple(package_paths))
+    loaded = load_robot(
+        path, args=dict(args or {}), package_paths=tuple(package_paths), untrusted=untrusted
+    )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None
         msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"

@@ -27,6 +27,21 @@ PackagePathOpt = Annotated[
         metavar="DIR|NAME=DIR",
     ),
 ]
+UntrustedOpt = Annotated[
+    bool,
+    typer.Option(
+        "--untrusted",
+        help="input from people you do not trust (pull-request CI): xacro sees no environment "
+        "but --env names and reads no file outside the workspace and resolved packages",
+    ),
+]
+EnvOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--env", help="with --untrusted: an environment variable xacro may read (repeatable)",
+        metavar="NAME",
+    ),
+]
 FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
 FileArg = Annotated[Path, typer.Argument(help="a URDF or xacro file", show_default=False)]
 
@@ -40,6 +55,17 @@ def parse_xacro_args(items: list[str] | None) -> dict[str, str]:
             die(f"--arg {item!r}: expected NAME:=VALUE")
         out[name] = value
     return out
+
+
+def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
+    """The ``Untrusted`` setting for ``--untrusted``/``--env``, or None (trusted input)."""
+    if env and not untrusted:
+        die("--env only means something with --untrusted (trusted input sees the whole environment)")
+    if not untrusted:
+        return None
+    from sensorkit.loading.untrusted import Untrusted
+
+    return Untrusted(env=frozenset(env or ()))
 
 
 def die(message: str, code: int = 2) -> None:

@@ -15,10 +15,13 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    EnvOpt,
     FileArg,
     PackagePathOpt,
+    UntrustedOpt,
     die,
     handle_errors,
+    make_untrusted,
     parse_xacro_args,
 )
 
@@ -322,6 +325,8 @@ def _run(
     output: Path | None,
     arg: list[str] | None,
     package_path: list[str] | None,
+    untrusted: bool = False,
+    env: list[str] | None = None,
 ) -> None:
     from sensorkit.config import load_config
     from sensorkit.edit import AddRequest, add_sensor
@@ -340,13 +345,19 @@ def _run(
     cfg = load_config()
     args = dict(cfg.args)
     args.update(parse_xacro_args(arg))
-    package_paths = tuple(package_path or cfg.package_paths)
+    trust = make_untrusted(untrusted, env)
+    package_paths = tuple(package_path or ())
+    if not package_paths:
+        package_paths = (
+            cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
+        )
     validation = Options(
         target=cfg.target or "auto",
         select=tuple(cfg.select),
         ignore=tuple(cfg.ignore),
         args=args,
         package_paths=package_paths,
+        untrusted=trust,
     )
     req = AddRequest(
         path=file,
@@ -414,6 +425,8 @@ def add_camera(
     output: OutOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Add a pinhole RGB camera (sensorkit_camera macro) to FILE."""
     options = {
@@ -434,6 +447,8 @@ def add_camera(
         output=output,
         arg=arg,
         package_path=package_path,
+        untrusted=untrusted,
+        env=env,
     )
 
 
@@ -464,6 +479,8 @@ def add_depth_camera(
     output: OutOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Add an RGB-D camera (sensorkit_depth_camera macro) to FILE."""
     options = {
@@ -485,6 +502,8 @@ def add_depth_camera(
         output=output,
         arg=arg,
         package_path=package_path,
+        untrusted=untrusted,
+        env=env,
     )
 
 
@@ -518,6 +537,8 @@ def add_lidar(
     output: OutOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Add a 2D lidar (sensorkit_lidar_2d macro), or with --3d a 3D one (sensorkit_lidar_3d)."""
     vertical = {
@@ -552,6 +573,8 @@ def add_lidar(
         output=output,
         arg=arg,
         package_path=package_path,
+        untrusted=untrusted,
+        env=env,
     )
 
 
@@ -581,6 +604,8 @@ def add_stereo(
     output: OutOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Add a stereo camera pair (sensorkit_stereo_camera macro) to FILE."""
     options = {
@@ -602,6 +627,8 @@ def add_stereo(
         output=output,
         arg=arg,
         package_path=package_path,
+        untrusted=untrusted,
+        env=env,
     )
 
 
@@ -625,6 +652,8 @@ def add_imu(
     output: OutOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Add an IMU (sensorkit_imu macro) to FILE."""
     options = {
@@ -646,6 +675,8 @@ def add_imu(
         output=output,
         arg=arg,
         package_path=package_path,
+        untrusted=untrusted,
+        env=env,
     )
 
 

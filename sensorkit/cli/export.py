@@ -13,7 +13,16 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import ArgOpt, FileArg, PackagePathOpt, handle_errors, parse_xacro_args
+from sensorkit.cli.common import (
+    ArgOpt,
+    EnvOpt,
+    FileArg,
+    PackagePathOpt,
+    UntrustedOpt,
+    handle_errors,
+    make_untrusted,
+    parse_xacro_args,
+)
 
 TargetOpt = Annotated[
     str,
@@ -54,6 +63,8 @@ def intrinsics(
     target: TargetOpt = "auto",
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Print the camera_info each camera of FILE publishes, for a tool to read.
 
@@ -68,7 +79,12 @@ def intrinsics(
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
-    robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))
+    robot = load(
+        file,
+        args=xacro_args,
+        package_paths=tuple(package_path or ()),
+        untrusted=make_untrusted(untrusted, env),
+    )
     info = describe(robot, target, convention=convention)  # type: ignore[arg-type]
     cameras = select_cameras(info, sensor, fmt)
     text, notes = intrinsics_document(info, cameras, fmt)
@@ -89,6 +105,8 @@ def export(
     target: TargetOpt = "auto",
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Write each sensor's config files into one folder per sensor.
 
@@ -104,7 +122,12 @@ def export(
     from sensorkit.sensorinfo import describe, load
 
     xacro_args = parse_xacro_args(arg)
-    robot = load(file, args=xacro_args, package_paths=tuple(package_path or ()))
+    robot = load(
+        file,
+        args=xacro_args,
+        package_paths=tuple(package_path or ()),
+        untrusted=make_untrusted(untrusted, env),
+    )
     info = describe(robot, target)
     plan = export_files(info)
     inputs = [file, *(Path(f) for f in robot.document.files)]  # --force must spare them

@@ -8,7 +8,16 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import ArgOpt, FilesArg, PackagePathOpt, handle_errors, parse_xacro_args
+from sensorkit.cli.common import (
+    ArgOpt,
+    EnvOpt,
+    FilesArg,
+    PackagePathOpt,
+    UntrustedOpt,
+    handle_errors,
+    make_untrusted,
+    parse_xacro_args,
+)
 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
 
@@ -51,6 +60,8 @@ def validate(
             "default: parameter_bridge YAMLs in the robot package's config/)",
         ),
     ] = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 
@@ -77,15 +88,20 @@ def validate(
         raise UsageError(f"--fail-on: {exc}") from None
     args = dict(cfg.args)
     args.update(parse_xacro_args(arg))
+    trust = make_untrusted(untrusted, env)
+    paths = tuple(package_path or ())
+    if not paths and cfg.package_paths:
+        paths = cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
     options = Options(
         target=target or cfg.target or "auto",
         select=tuple(sep),
         ignore=tuple(ign),
         fail_on=threshold,
         args=args,
-        package_paths=tuple(package_path or cfg.package_paths),
+        package_paths=paths,
         timeout=timeout,
         bridges=tuple(str(b) for b in bridge or ()),
+        untrusted=trust,
     )
     report = validate_paths(files, options)
     from sensorkit.cli import leave_quickly

@@ -317,7 +317,10 @@ def plan_add(req: AddRequest) -> AddResult:
     layout = read_layout(data, where)
     xacro_style = looks_like_xacro(source, data)
 
-    loaded = load_robot(source, args=dict(req.args), package_paths=req.package_paths)
+    untrusted = req.validation.untrusted if req.validation is not None else None
+    loaded = load_robot(
+        source, args=dict(req.args), package_paths=req.package_paths, untrusted=untrusted
+    )
     robot = loaded.robot
     if robot is None:
         first = loaded.findings[0] if loaded.findings else None

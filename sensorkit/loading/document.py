@@ -17,6 +17,7 @@ from lxml import etree
 from sensorkit.errors import InputError
 from sensorkit.findings import Finding, Severity, SourceRef
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.untrusted import Untrusted
 from sensorkit.loading.xacro_expand import LOC_ATTR, expand, forbid_entities
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
@@ -194,6 +195,7 @@ def load_description(
     args: dict[str, str] | None = None,
     resolver: PackageResolver | None = None,
     timeout: float = 60.0,
+    untrusted: Untrusted | None = None,
 ) -> LoadResult:
     """Read ``path`` (URDF or xacro) into a Document, or findings explaining why not.
 
@@ -210,7 +212,7 @@ def load_description(
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
-    outcome = expand(path, dict(args or {}), resolver, timeout=timeout)
+    outcome = expand(path, dict(args or {}), resolver, timeout=timeout, untrusted=untrusted)
     if outcome.error_kind is not None:
         return LoadResult(None, [_expansion_finding(path, outcome)])
     assert outcome.xml is not None
@@ -256,6 +258,12 @@ def _expansion_finding(path: Path, outcome: object) -> Finding:
         fix = f'declare <xacro:arg name="{m.group(1)}" default="..."/> or pass --arg {m.group(1)}:=VALUE'
     elif "include loop" in msg:
         fix = "remove the include that brings a file back into itself"
+    elif "not allowed with --untrusted" in msg:
+        fix = "pass --env NAME if CI may share that variable, or use $(optenv NAME default)"
+    elif "--untrusted:" in msg and "outside the workspace" in msg:
+        fix = "keep included files inside the repository, or pass --package-path for a trusted package"
+    elif "--untrusted:" in msg:
+        fix = "use plain arithmetic, properties and math in expressions (see README, --untrusted)"
     elif outcome.error_kind == "timeout":
         fix = "look for an expression that computes something huge, e.g. ${10**10**10}"
     line = None
@@ -293,6 +301,8 @@ def _find_line(file: str | None, needle: str, after: int | None = None) -> int |
 def _guess_line(file: str, message: str, after: int | None = None) -> int | None:
     """A best-effort line for a xacro error: the first line naming what it complains of."""
     for pattern in (
+        r"(\$\(env [^)\s]+)\)",
+        r"--untrusted: (\S+) is outside",
         r"Undefined substitution argument (\S+)",
         r"name '([^']+)' is not defined",
         r"unknown macro name:? (\S+)",

@@ -112,6 +112,7 @@ class PackageResolver:
     scan_dirs: list[Path] = field(default_factory=list)
     use_environment: bool = True
     workspace_of: Path | None = None
+    frozen_env: dict[str, str] | None = None
     _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
     _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
 
@@ -146,6 +147,7 @@ class PackageResolver:
             scan_dirs=list(self.scan_dirs),
             use_environment=self.use_environment,
             workspace_of=path.resolve(),
+            frozen_env=self.frozen_env,
         )
 
     def _scan(self, root: Path, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, Path]:
@@ -153,10 +155,15 @@ class PackageResolver:
             self._scanned[root] = scan_packages(root, max_depth=max_depth)
         return self._scanned[root]
 
+    def freeze_environment(self) -> None:
+        """Remember the package path variables now (before an untrusted child drops them)."""
+        self.frozen_env = {v: os.environ.get(v, "") for v in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH")}
+
     def _env_paths(self, var: str) -> list[Path]:
         if not self.use_environment:
             return []
-        return [Path(p) for p in os.environ.get(var, "").split(os.pathsep) if p]
+        env = self.frozen_env if self.frozen_env is not None else os.environ
+        return [Path(p) for p in env.get(var, "").split(os.pathsep) if p]
 
     def _workspace(self) -> list[Path]:
         return workspace_roots(self.workspace_of) if self.workspace_of is not None else []

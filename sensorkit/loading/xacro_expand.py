@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.untrusted import Confinement, Untrusted
 
 LOC_ATTR = "sk_loc_"
 MAX_INCLUDE_DEPTH = 64
@@ -74,7 +75,7 @@ def forbid_entities(data: bytes) -> str | None:
     return None
 
 
-def _loc_parser(files: list[str], orig_parse: Any) -> Any:
+def _loc_parser(files: list[str], orig_parse: Any, confine: Confinement | None = None) -> Any:
     import xml.dom.minidom
     from xml.dom import expatbuilder
 
@@ -101,6 +102,10 @@ def _loc_parser(files: list[str], orig_parse: Any) -> Any:
             raise xacro.XacroException(f"include loop: {chain}")
         if len(stack) > MAX_INCLUDE_DEPTH:
             raise xacro.XacroException(f"includes nested deeper than {MAX_INCLUDE_DEPTH}")
+        if confine is not None and not confine.allows(full):
+            if xacro.filestack:
+                xacro.filestack.pop()
+            raise xacro.XacroException(confine.refuse(full))
         try:
             data = Path(full).read_bytes()
         except OSError as exc:
@@ -130,28 +135,47 @@ def _reset_xacro() -> None:
     xacro.verbosity = 0
 
 
-def expand_in_process(path: Path, args: dict[str, str], resolver: PackageResolver) -> ExpandOutcome:
-    """Expand ``path`` with xacro in this process (resets xacro's globals first)."""
+def expand_in_process(
+    path: Path,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    untrusted: Untrusted | None = None,
+) -> ExpandOutcome:
+    """Expand ``path`` with xacro in this process (resets xacro's globals first).
+
+    With ``untrusted``, xacro's ways of reading the machine are narrowed for the duration
+    (see ``sensorkit.loading.untrusted``); everything patched is restored afterwards.
+    """
     import xacro
     import xacro.substitution_args as sa
 
     files: list[str] = []
     out = ExpandOutcome(files=files)
-    orig_parse = xacro.parse
-    orig_find = sa._eval_find
-    orig_dict_find = sa._eval_dict.get("find")
+    saved_sa = {k: getattr(sa, k) for k in ("_eval_find", "_eval_env", "_eval_optenv", "_eval")}
+    saved_dict = {k: sa._eval_dict.get(k) for k in ("find", "env", "optenv")}
+    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval")}
+    saved_python: dict[str, Any] = {}
     orig_stderr = sys.stderr
+    confine = None
+    if untrusted is not None:
+        from sensorkit.loading.untrusted import confinement_for
+
+        confine = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs)
 
     def find(pkg: str) -> str:
         hit = resolver.find(pkg)
         if hit is None:
             raise PackageMissing(pkg, resolver.searched())
+        if confine is not None:
+            confine.add(hit)
         return str(hit)
 
     _reset_xacro()
-    xacro.parse = _loc_parser(files, orig_parse)
+    xacro.parse = _loc_parser(files, saved_x["parse"], confine)
     sa._eval_find = find
     sa._eval_dict["find"] = find
+    if untrusted is not None and confine is not None:
+        _narrow(xacro, sa, untrusted, confine, saved_sa, saved_x, saved_python)
     sys.stderr = io.StringIO()
     try:
         doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
@@ -164,10 +188,15 @@ def expand_in_process(path: Path, args: dict[str, str], resolver: PackageResolve
     finally:
         stack_files = [f for f in (xacro.filestack or []) if f]
         macros = list(xacro.macrostack or [])
-        xacro.parse = orig_parse
-        sa._eval_find = orig_find
-        if orig_dict_find is not None:
-            sa._eval_dict["find"] = orig_dict_find
+        for k, v in saved_x.items():
+            setattr(xacro, k, v)
+        xacro.__dict__.pop("open", None)
+        xacro._global_symbols.get("python", {}).update(saved_python)
+        for k, v in saved_sa.items():
+            setattr(sa, k, v)
+        for k, v in saved_dict.items():
+            if v is not None:
+                sa._eval_dict[k] = v
         sys.stderr = orig_stderr
     if out.error_kind is not None:
         if out.error_file is None and stack_files:
@@ -176,6 +205,64 @@ def expand_in_process(path: Path, args: dict[str, str], resolver: PackageResolve
         out.macro_file, out.macro_line = _innermost_macro(macros, files)
     _reset_xacro()
     return out
+
+
+def _narrow(
+    xacro: Any,
+    sa: Any,
+    untrusted: Untrusted,
+    confine: Confinement,
+    saved_sa: dict[str, Any],
+    saved_x: dict[str, Any],
+    saved_python: dict[str, Any],
+) -> None:
+    """Patch xacro for an untrusted expansion (``expand_in_process`` restores it all)."""
+    from sensorkit.loading.untrusted import HIDDEN_PYTHON_NAMES, UnsafeExpression, check_expression
+
+    def env(name: str) -> str:
+        if name not in untrusted.env:
+            msg = f"$(env {name}): not allowed with --untrusted (pass --env {name} to allow it)"
+            raise sa.SubstitutionException(msg)
+        value: str = saved_sa["_eval_env"](name)
+        return value
+
+    def optenv(name: str, default: str = "") -> str:
+        if name not in untrusted.env:
+            return default
+        value: str = saved_sa["_eval_optenv"](name, default)
+        return value
+
+    def guarded_open(file: Any, *a: Any, **kw: Any) -> Any:
+        # xacro.load_yaml calls the module-level name ``open`` (xacro/__init__.py load_yaml)
+        if not confine.allows(str(file)):
+            raise xacro.XacroException(confine.refuse(str(file)))
+        return open(file, *a, **kw)
+
+    def safe_eval(expr: str, symbols: Any, local: Any = None) -> Any:
+        try:
+            check_expression(expr)
+        except UnsafeExpression as exc:
+            raise xacro.XacroException(str(exc)) from None
+        return saved_x["safe_eval"](expr, symbols, local)
+
+    def eval_sub(s: str, context: Any) -> Any:
+        try:
+            check_expression(s, builtins_reachable=True)
+        except UnsafeExpression as exc:
+            raise sa.SubstitutionException(str(exc)) from None
+        return saved_sa["_eval"](s, context)
+
+    sa._eval_env = env
+    sa._eval_optenv = optenv
+    sa._eval_dict["env"] = env
+    sa._eval_dict["optenv"] = optenv
+    sa._eval = eval_sub
+    xacro.safe_eval = safe_eval
+    xacro.open = guarded_open
+    python = xacro._global_symbols.get("python", {})
+    for name in HIDDEN_PYTHON_NAMES:  # restored by expand_in_process
+        if name in python:
+            saved_python[name] = python.pop(name)
 
 
 def _classify(exc: BaseException, out: ExpandOutcome) -> None:
@@ -208,11 +295,27 @@ def _classify(exc: BaseException, out: ExpandOutcome) -> None:
         out.error_kind = "memory"
         out.message = "xacro ran out of memory evaluating an expression"
         return
-    text = str(exc) or repr(exc)
+    text = _tidy(str(exc) or repr(exc))
     if os.environ.get("SENSORKIT_DEBUG"):
         text += "\n" + "".join(traceback.format_exception(exc))
     out.error_kind = "xacro"
     out.message = text.strip()
+
+
+_CLASS_PREFIX = re.compile(r"^<class '[\w.]+'>: ")
+
+
+def _tidy(text: str) -> str:
+    """xacro's wrapped message without the exception class and the repeated text.
+
+    ``XacroException(exc=e)`` prints as ``<class 'X'>: MESSAGE MESSAGE``.
+    """
+    text = _CLASS_PREFIX.sub("", text.strip())
+    head, _, rest = text.partition("\n")
+    half = (len(head) - 1) // 2
+    if len(head) % 2 == 1 and head[half] == " " and head[:half] == head[half + 1 :]:
+        head = head[:half]
+    return head + ("\n" + rest if rest else "")
 
 
 def _innermost_macro(macros: list[Any], files: list[str]) -> tuple[str | None, int | None]:
@@ -253,16 +356,17 @@ def expand(
     resolver: PackageResolver,
     *,
     timeout: float = DEFAULT_TIMEOUT,
+    untrusted: Untrusted | None = None,
 ) -> ExpandOutcome:
     """Expand ``path`` isolated from this process where possible (see the module doc)."""
     if not hasattr(os, "fork") or os.environ.get("SENSORKIT_XACRO_INPROCESS"):
-        return expand_in_process(path, args, resolver)
+        return expand_in_process(path, args, resolver, untrusted)
     import multiprocessing as mp
     import pickle
 
     ctx = mp.get_context("fork")
     recv, send = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(path, args, resolver, send), daemon=True)
+    proc = ctx.Process(target=_child, args=(path, args, resolver, send, untrusted), daemon=True)
     proc.start()
     send.close()
     outcome: ExpandOutcome | None = None
@@ -292,8 +396,20 @@ def expand(
     return outcome
 
 
-def _child(path: Path, args: dict[str, str], resolver: PackageResolver, send: Any) -> None:
+def _child(
+    path: Path,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    send: Any,
+    untrusted: Untrusted | None = None,
+) -> None:
     import pickle
+
+    if untrusted is not None:  # nothing but the allowed names stays in this process
+        from sensorkit.loading.untrusted import keep_only_environment
+
+        resolver.freeze_environment()  # installed packages stay findable
+        keep_only_environment(untrusted.env)
 
     try:
         import resource
@@ -302,7 +418,7 @@ def _child(path: Path, args: dict[str, str], resolver: PackageResolver, send: An
     except (ImportError, ValueError, OSError):
         pass
     try:
-        outcome = expand_in_process(path, args, resolver)
+        outcome = expand_in_process(path, args, resolver, untrusted)
     except BaseException as exc:
         outcome = ExpandOutcome(error_kind="xacro", message=str(exc) or repr(exc))
     try:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from sensorkit.findings import Finding
 from sensorkit.loading import PackageResolver, load_description
+from sensorkit.loading.untrusted import Untrusted
 from sensorkit.model.robot import Robot, build_robot
 
 
@@ -24,10 +25,13 @@ def load_robot(
     args: dict[str, str] | None = None,
     package_paths: tuple[str, ...] | list[str] = (),
     timeout: float = 60.0,
+    untrusted: Untrusted | None = None,
 ) -> Loaded:
     """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input."""
     resolver = PackageResolver.from_options(list(package_paths), near=path)
-    result = load_description(path, args=args, resolver=resolver, timeout=timeout)
+    result = load_description(
+        path, args=args, resolver=resolver, timeout=timeout, untrusted=untrusted
+    )
     if result.document is None:
         return Loaded(None, result.findings)
     return Loaded(build_robot(result.document), result.findings)
