@@ -11,11 +11,13 @@ import multiprocessing
 import os
 import shutil
 import stat
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from sensorkit.edit import AddRequest, add_sensor
+from sensorkit.engine import FileReport
 from sensorkit.errors import UsageError
 
 ROBOTS = Path(__file__).resolve().parent / "edit_robots"
@@ -162,17 +164,18 @@ def _render_cli(tmp_path: Path, robot_text: str) -> tuple[int, str, float]:
     import resource
     import subprocess
     import sys
-    import time
 
     path = tmp_path / "r.urdf"
     path.write_text(robot_text)
-    start = time.monotonic()
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     res = subprocess.run([sys.executable, "-m", "sensorkit", "render", "preview", str(path), "--out", str(tmp_path / "out")],
                          capture_output=True, text=True, timeout=120, check=False)
-    took = time.monotonic() - start
-    rss_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024 / 1024
-    assert took < 20 and rss_gb < 1.0, (took, rss_gb)
-    return res.returncode, res.stderr, took
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    # CPU seconds, not wall-clock: the bound holds however loaded the CI machine is.
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    rss_gb = after.ru_maxrss / 1024 / 1024
+    assert cpu < 20 and rss_gb < 1.0, (cpu, rss_gb)
+    return res.returncode, res.stderr, cpu
 
 
 @pytest.mark.parametrize(
@@ -224,3 +227,41 @@ def test_folder_writers_take_turns(tmp_path: Path) -> None:
     waited = time.monotonic() - start
     holder.join(10)
     assert waited >= 0.5 and (tmp_path / "pkg" / "f").read_text() == "x"
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "rule", "warns"),
+    [
+        ("<width>640</width><height>480</height>", "<width>100000</width><height>100000</height>", "SK403", True),
+        ("<width>640</width><height>480</height>", "<width>4096</width><height>4096</height>", "SK403", False),
+        ("<samples>360</samples>", "<samples>1000000000</samples>", "SK406", True),
+        ("<samples>360</samples>", "<samples>1000000</samples>", "SK406", False),  # 1e6 rays: the edge
+    ],
+    ids=["huge-camera", "4096-square-camera", "huge-lidar", "million-ray-lidar"],
+)
+def test_validate_warns_of_sensors_beyond_any_real_one(
+    check: Callable[..., FileReport], old: str, new: str, rule: str, warns: bool
+) -> None:
+    # The budget render preview enforces (sensorkit/knowledge/limits.py); validate warns first.
+    from builders import robot
+
+    text = robot()
+    assert old in text
+    report = check(text.replace(old, new, 1))
+    hits = [f for f in report.findings if f.rule == rule and "beyond any real" in f.message]
+    assert bool(hits) is warns, [f.message for f in report.findings]
+    assert all(f.severity.label == "warning" for f in hits)
+
+
+def test_gazebo_sim_cannot_publish_a_frame_over_2_gb(check: Callable[..., FileReport]) -> None:
+    # gz-sensors@9ba02f2 src/CameraSensor.cc:511 copies each frame into one protobuf message;
+    # protobuf message_lite.cc SerializePartialToCodedStream refuses size > INT_MAX.
+    from builders import gz_robot
+
+    size = "<width>640</width><height>480</height>"
+    big = gz_robot().replace(size, "<width>30000</width><height>30000</height>")  # 2.7 GB
+    small = gz_robot().replace(size, "<width>20000</width><height>20000</height>")  # 1.2 GB
+    big_msgs = [f.message for f in check(big, target="harmonic").findings if f.rule == "SK403"]
+    small_msgs = [f.message for f in check(small, target="harmonic").findings if f.rule == "SK403"]
+    assert any("cannot publish it at all" in m for m in big_msgs), big_msgs
+    assert small_msgs and not any("cannot publish" in m for m in small_msgs), small_msgs

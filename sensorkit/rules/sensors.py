@@ -7,8 +7,14 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from sensorkit.findings import Finding, Severity
+from sensorkit.knowledge.limits import (
+    PLAUSIBLE_CAMERA_PIXELS,
+    PLAUSIBLE_LIDAR_RAYS,
+    PROTOBUF_MAX_BYTES,
+    frame_bytes,
+)
 from sensorkit.model.robot import local
-from sensorkit.model.sensors import LidarSpec, Noise, Sensor
+from sensorkit.model.sensors import CameraSpec, LidarSpec, Noise, Sensor
 from sensorkit.model.targets import is_gz
 from sensorkit.rules.base import Context, rule
 
@@ -122,7 +128,8 @@ def _cameras(ctx: Context) -> Iterator[Sensor]:
 @rule(
     "SK403",
     "error",
-    "camera image width/height positive integers; format known",
+    "camera image width/height positive integers; format known; above 4096x4096 (warning: "
+    "beyond any real camera; over 2 GB Gazebo Sim cannot publish)",
     "sdformat (format)",
 )
 def camera_image(ctx: Context) -> Iterator[Finding]:
@@ -148,6 +155,8 @@ def camera_image(ctx: Context) -> Iterator[Finding]:
                         sensor=s.name,
                         fix="write a positive whole number",
                     )
+            if cam.width and cam.height and cam.width > 0 and cam.height > 0:
+                yield from _too_large_camera(ctx, s, cam)
             if cam.format is not None and cam.format not in IMAGE_FORMATS:
                 yield ctx.finding(
                     "SK403",
@@ -157,6 +166,30 @@ def camera_image(ctx: Context) -> Iterator[Finding]:
                     sensor=s.name,
                     fix="use R8G8B8 (or B8G8R8, L8, L16, R_FLOAT32, BAYER_*)",
                 )
+
+
+def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Finding]:
+    """A warning for a frame beyond any real camera (``knowledge.limits``)."""
+    assert cam.width is not None and cam.height is not None
+    pixels = cam.width * cam.height
+    if pixels <= PLAUSIBLE_CAMERA_PIXELS:
+        return
+    size = frame_bytes(cam.width, cam.height, cam.format, s.is_depth)
+    rate = f" ({size * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)" if s.update_rate else ""
+    msg = (
+        f"sensor {s.name!r}: {cam.width}x{cam.height} = {pixels / 1e6:.3g} MP per frame is beyond "
+        f"any real camera (4K is 8.3 MP): {size / 1e6:.3g} MB per image{rate}"
+    )
+    if size > PROTOBUF_MAX_BYTES and is_gz(ctx.target):
+        msg += "; Gazebo Sim cannot publish it at all (a frame over 2 GB exceeds protobuf's message limit)"
+    yield ctx.finding(
+        "SK403",
+        Severity.WARNING,
+        msg,
+        cam.source,
+        sensor=s.name,
+        fix="check width and height for a typo (render preview refuses it unless --max-pixels allows)",
+    )
 
 
 @rule(
@@ -288,7 +321,7 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     "SK406",
     "error",
     "lidar: samples >= 1, min_angle < max_angle, 0 < range min < max; vertical block sane; "
-    "resolution yields a whole beam count (warning)",
+    "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
 )
 def lidar_block(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:
@@ -335,6 +368,18 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                         sensor=s.name,
                         fix="pick samples and resolution whose product is whole",
                     )
+        rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
+        if rays > PLAUSIBLE_LIDAR_RAYS:
+            per_s = f", {rays * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz" if s.update_rate else ""
+            yield ctx.finding(
+                "SK406",
+                Severity.WARNING,
+                f"lidar {s.name!r}: {rays:,} rays per scan{per_s} is beyond any real lidar "
+                "(an Ouster OS2-128 casts 262,144)",
+                spec.source,
+                sensor=s.name,
+                fix="check samples for a typo (render preview refuses it unless --max-rays allows)",
+            )
         rmin, rmax = spec.range_min, spec.range_max
         if rmin is not None and rmax is not None and not 0 < rmin < rmax:
             yield err(

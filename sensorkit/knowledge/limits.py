@@ -1,0 +1,38 @@
+"""How large a sensor can plausibly be: one place for validate's warnings and render's budget.
+
+The plausibility limits are not simulator constants: they sit well above every real sensor
+sensorkit knows (a 4K camera has 3840 x 2160 = 8.3 MP; an Ouster OS2-128 casts 128 x 2048 =
+262,144 rays per scan, a Hesai Pandar128 128 x 1800 = 230,400), so a description beyond them
+is almost surely a typo, and rendering it would exhaust a workstation. ``render preview``
+refuses above them unless raised with ``--max-pixels`` / ``--max-rays``.
+
+The one hard limit is the message size on Gazebo Sim:
+- gz-sensors copies each camera frame into one gz-msgs ``Image`` protobuf
+  (gazebosim/gz-sensors@9ba02f2 src/CameraSensor.cc:511
+  ``msg.set_data(data, this->dataPtr->camera->ImageMemorySize())``);
+- protobuf refuses to serialize a message over ``INT_MAX`` bytes
+  (protocolbuffers/protobuf@4c9df8e src/google/protobuf/message_lite.cc,
+  ``MessageLite::SerializePartialToCodedStream``: ``if (size > INT_MAX)`` logs
+  "exceeded maximum protobuf size of 2GB" and returns false), so such a frame is never
+  published.
+"""
+
+from __future__ import annotations
+
+PLAUSIBLE_CAMERA_PIXELS = 4096 * 4096
+PLAUSIBLE_LIDAR_RAYS = 1_000_000
+PROTOBUF_MAX_BYTES = 2**31 - 1
+
+# Bytes per pixel of sdformat's <image><format> values (gz-rendering PixelUtil spellings).
+BYTES_PER_PIXEL = {
+    "L8": 1, "L_INT8": 1, "BAYER_RGGB8": 1, "BAYER_BGGR8": 1, "BAYER_GBRG8": 1,
+    "BAYER_GRBG8": 1, "L16": 2, "L_INT16": 2, "R_FLOAT16": 2, "R_FLOAT32": 4,
+    "R8G8B8": 3, "B8G8R8": 3, "RGB_INT8": 3, "BGR_INT8": 3, "RGB_INT16": 6,
+    "R16G16B16": 6, "RGB_FLOAT16": 6, "RGB_FLOAT32": 12, "RGBA_INT8": 4, "BGRA_INT8": 4,
+}  # fmt: skip
+
+
+def frame_bytes(width: int, height: int, fmt: str | None, depth: bool) -> int:
+    """Bytes of one image: depth images are 32-bit floats, colour R8G8B8 unless said."""
+    per = 4 if depth else BYTES_PER_PIXEL.get(fmt or "R8G8B8", 3)
+    return width * height * per
