@@ -185,7 +185,12 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
     On an exception (or with ``publish=False``) the staging folder is deleted and ``out``
     is untouched. Folders get the usual 0o777 less the umask. The folder lock of
     :func:`editing` is held on ``out``'s parent throughout.
+
+    A symlink ``out`` stays a symlink: its target folder is the one replaced (renaming
+    the link itself would swap the link for a folder and leave the target stale).
     """
+    if out.is_symlink():
+        out = Path(os.path.realpath(out))
     out.parent.mkdir(parents=True, exist_ok=True)
     with editing(out):  # two writers of one folder take turns (new, export)
         yield from _staged(out, publish)

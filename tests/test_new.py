@@ -513,3 +513,22 @@ def test_numbers_reach_the_xacro_exactly(xyz: list[float], rpy: list[float]) -> 
     sensor = parse_spec(text, Path("robot.yaml")).sensors[0]
     assert [float(v) for v in sensor.xyz.split()] == xyz
     assert [float(v) for v in sensor.rpy.split()] == rpy
+
+
+def test_force_through_a_symlinked_output_edits_the_target(tmp_path: Path) -> None:
+    # Issue 10: `new -o LINK --force` used to rename the link away and put a folder in its
+    # place, leaving the target with the old package and a stray link beside it.
+    spec = tmp_path / "robot.yaml"
+    spec.write_text(GOOD)
+    target = tmp_path / "real" / "pkg"
+    target.mkdir(parents=True)
+    (target / "stale.txt").write_text("old")
+    link = tmp_path / "pkg"
+    link.symlink_to(target, target_is_directory=True)
+    result = CliRunner().invoke(app, ["new", str(spec), "-o", str(link), "--force"])
+    assert result.exit_code == 0, result.output
+    assert link.is_symlink() and link.resolve() == target.resolve()
+    assert (target / "urdf" / "my_robot.urdf.xacro").is_file()
+    assert not (target / "stale.txt").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pkg", "real", "robot.yaml"]
+    assert [p.name for p in (tmp_path / "real").iterdir()] == ["pkg"]  # no staging left
