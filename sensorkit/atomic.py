@@ -7,6 +7,7 @@ configs, preview images, and whole generated folders (``new``, ``export``).
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import shutil
 import stat
@@ -14,7 +15,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from sensorkit.errors import UsageError
+from sensorkit.errors import UsageError, WriteFailed
 
 __all__ = [
     "check_editable",
@@ -25,6 +26,8 @@ __all__ = [
     "write_text",
 ]
 
+# Errors of the medium, not of the request: disk full, quota, file too large, I/O.
+_WRITE_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS}
 LOCK_WAIT_S = 60.0  # how long a second writer waits for the first before giving up
 
 
@@ -48,7 +51,12 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
             mode = real.stat().st_mode
         except FileNotFoundError:
             mode = 0o666 & ~_umask()
-    fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".sensorkit-tmp")
+    try:
+        fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".sensorkit-tmp")
+    except OSError as exc:  # a read-only or full folder: say so of the user's file
+        why = os.strerror(exc.errno or 0)
+        msg = f"{path}: cannot write in its folder {real.parent} ({why}); nothing was written"
+        raise WriteFailed(msg) from None
     try:
         with os.fdopen(fd, "wb") as out:
             out.write(data)
@@ -58,9 +66,13 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
         os.chmod(tmp, stat.S_IMODE(mode))
         _keep_owner(real, tmp)
         os.replace(tmp, real)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.errno in _WRITE_ERRNOS:
+            why = os.strerror(exc.errno or 0)
+            msg = f"{path}: could not be written ({why}); it is unchanged"
+            raise WriteFailed(msg) from None  # name the user's file, never the temporary one
         raise
     if fsync:
         with contextlib.suppress(OSError):  # make the rename itself durable where possible
@@ -85,12 +97,22 @@ def _keep_owner(real: Path, tmp: str) -> None:
 def check_editable(path: Path) -> None:
     """Refuse to edit a file in place that an editor would not touch silently.
 
-    A file without its owner's write permission (0444: what ``chmod a-w`` means, even to
-    root) and a hard-linked file (replacing it would split the links: the other names
+    A file (or folder) without its owner's write permission (0444: what ``chmod a-w``
+    means, even to root) and a hard-linked file (replacing it would split the links: the other names
     keep the old content) are refused with a one-line reason. A symlink is fine: its
     target is edited and the link stays a link.
     """
     real = Path(os.path.realpath(path))
+    try:
+        folder = real.parent.stat()
+    except FileNotFoundError:
+        return
+    if not folder.st_mode & stat.S_IWUSR:
+        msg = (
+            f"{path}: its folder {real.parent} is read-only (mode "
+            f"{stat.S_IMODE(folder.st_mode):o}); nothing was written"
+        )
+        raise UsageError(msg)
     try:
         st = real.stat()
     except FileNotFoundError:

@@ -22,3 +22,7 @@ class InputError(SensorkitError):
 
 class EditRefused(SensorkitError):
     """An edit was refused; the user's file is left byte-identical."""
+
+
+class WriteFailed(SensorkitError):
+    """Writing an output failed (disk full, file too large, I/O error); nothing was replaced."""

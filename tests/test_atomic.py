@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from sensorkit.atomic import check_replaceable, staged_folder, write_bytes, write_text
-from sensorkit.errors import UsageError
+from sensorkit.errors import UsageError, WriteFailed
 
 
 def test_write_text_keeps_mode_and_leaves_no_temp(tmp_path: Path) -> None:
@@ -24,7 +24,7 @@ def test_write_text_keeps_mode_and_leaves_no_temp(tmp_path: Path) -> None:
 
 
 def test_write_leaves_nothing_on_failure(tmp_path: Path) -> None:
-    with pytest.raises(OSError):
+    with pytest.raises(WriteFailed, match=r"missing/x\.yaml: cannot write in its folder .*No such file"):
         write_text(tmp_path / "missing" / "x.yaml", "a: 1\n")
     target = tmp_path / "x.yaml"
     target.write_text("old\n", encoding="utf-8")
