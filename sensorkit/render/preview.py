@@ -775,6 +775,7 @@ def render_preview(
         _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
         world.add_robot(prepared.text)
         world.set_joints(positions)
+        world.refresh_bounds()
 
         run = _Run(robot, world, world_scene, poses, target, out_dir)
         plan = _plan(robot, sensors, out_dir)

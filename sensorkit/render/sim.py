@@ -381,6 +381,16 @@ class World:
             if name in index:
                 self._call("resetJointState", self.robot, index[name], value)
 
+    def refresh_bounds(self) -> None:
+        """Bring the broadphase's bounding boxes up to date once everything is placed.
+
+        pybullet 3.2.7 leaves a stale box for a link whose URDF ``<inertial>`` frame is
+        rotated: ``rayTestBatch`` then misses the link (``getCameraImage`` does not, and
+        ``getAABB`` computes afresh, so neither shows it) until the next collision pass.
+        """
+        with self.quiet:
+            self._call("performCollisionDetection")
+
     # ---- queries ---------------------------------------------------------------------
     def link_frame(self, body: int, link: int) -> Mat:
         """World pose of a link's URDF frame (not its inertial frame)."""
