@@ -28,6 +28,23 @@ TEXTURE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tga", ".bmp")
 _DROP = {"gazebo", "transmission", "ros2_control"}
 
 
+# pybullet reads a URDF in lines of at most 8191 bytes and puts a newline after each piece
+# (bulletphysics/bullet3@examples/Importers/ImportURDFDemo/BulletUrdfImporter.cpp:165-172):
+# a longer line gets a newline in the middle of a name or a number, and the file fails to
+# load or loads changed.
+_LINE_LIMIT = 8191
+
+
+def _serialise(root: etree._Element) -> bytes:
+    """``root`` as XML whose lines pybullet reads whole: re-indented when one is too long
+    (whitespace between URDF elements means nothing)."""
+    text: bytes = etree.tostring(root, xml_declaration=True, encoding="utf-8")
+    if max(len(line) for line in text.split(b"\n")) > _LINE_LIMIT:
+        etree.indent(root, space=" ")
+        text = etree.tostring(root, xml_declaration=True, encoding="utf-8")
+    return text
+
+
 @dataclass
 class PreparedUrdf:
     text: bytes
@@ -88,5 +105,5 @@ def prepare_urdf(robot: Robot, resolver: PackageResolver, *, what: str = "robot"
             continue
         tex.set("filename", str(path))
     etree.cleanup_namespaces(root)
-    out.text = etree.tostring(root, xml_declaration=True, encoding="utf-8")
+    out.text = _serialise(root)
     return out
