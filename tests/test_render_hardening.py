@@ -1,5 +1,11 @@
-"""Issue 10, "Render bounded and honest": rays that must see every link where it is, and
-a robot written on one long line.
+"""Issue 10, "Render bounded and honest": robots over pybullet's link limit, and rays that
+must see every link where it is.
+
+pybullet refuses the state of a body with 128 links or more:
+bulletphysics/bullet3@examples/SharedMemory/PhysicsServerCommandProcessor.cpp:7922
+(``if (mb->getNumLinks() >= MAX_DEGREE_OF_FREEDOM)``, MAX_DEGREE_OF_FREEDOM 128 at
+bulletphysics/bullet3@examples/SharedMemory/SharedMemoryCommands.h:33), reported as
+"getLinkState failed." (bulletphysics/bullet3@examples/pybullet/pybullet.c:5874).
 
 Expected values come from the robots' numbers with plain trigonometry, and from
 ``wall_bot.urdf``, the small robot whose base and sensors the big ones copy.
@@ -7,14 +13,20 @@ Expected values come from the robots' numbers with plain trigonometry, and from
 
 from __future__ import annotations
 
+import json
 import math
 import re
+import subprocess
+import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
+from lxml import etree
 
 from sensorkit.render import render_preview
+from sensorkit.render.urdf_out import BODY_LINKS, BODY_Q, split_urdf
 
 HERE = Path(__file__).parent / "render_robots"
 WALL_BOT = HERE / "wall_bot.urdf"
@@ -111,6 +123,16 @@ def big_robot(shape: str, links: int = 200) -> tuple[str, dict[str, float], str]
     return text, joints, plate_link
 
 
+def summary(out: Path) -> dict[str, Any]:
+    data: dict[str, Any] = json.loads((out / "summary.json").read_text())
+    return data
+
+
+def checks(data: dict[str, Any], name: str) -> dict[str, dict[str, Any]]:
+    sensor = next(s for s in data["sensors"] if s["name"] == name)
+    return {c["name"]: c for c in sensor["checks"]}
+
+
 def laser_angles() -> np.ndarray:
     return -3.14159 + np.arange(360) * (2 * 3.14159 / 359)  # wall_bot's scan
 
@@ -125,6 +147,23 @@ def plate_beams(margin: float = 0.02) -> tuple[np.ndarray, np.ndarray, np.ndarra
     on = np.isfinite(t) & (np.abs(x) <= 0.15 - margin)
     off = ~np.isfinite(t) | (np.abs(x) >= 0.15 + margin)
     return on, t, off
+
+
+@pytest.fixture(scope="module")
+def wall(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("wall") / "preview"
+    render_preview(WALL_BOT, out, scene=WALL_SCENE)
+    return out
+
+
+def run_cli(*args: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "sensorkit", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
 
 
 # ---- rays see links whose inertial frame is turned ---------------------------------------
@@ -161,3 +200,117 @@ def test_a_robot_written_on_one_line_renders(one_line: bool, tmp_path: Path) -> 
     ranges = np.load(tmp_path / "out" / "laser" / "ranges.npy")
     on, exact, _ = plate_beams()
     assert np.abs(ranges[on] - exact[on]).max() < CM
+# ---- pybullet's limit, and the split that keeps each body within it ----------------------
+def _chain(n: int, kind: str = "fixed") -> str:
+    body = "\n".join(
+        f'<link name="c{i}"/>'
+        + (_joint(f"c{i}_joint", f"c{i - 1}", f"c{i}", "0 0 0.01", kind) if i else "")
+        for i in range(n)
+    )
+    return f'<robot name="chain">\n{body}\n</robot>'
+
+
+@pytest.mark.parametrize(("links", "refused"), [(BODY_LINKS, False), (BODY_LINKS + 1, True)])
+def test_pybullet_refuses_the_state_of_a_body_past_its_limit(links: int, refused: bool) -> None:
+    # The limit split_urdf keeps to, measured: 127 links beside the base load and report
+    # their poses; 128 do not (PhysicsServerCommandProcessor.cpp:7922, see the top).
+    from sensorkit.errors import InputError
+    from sensorkit.render.sim import World
+
+    with World() as world:
+        body, names = world.load_urdf(_chain(links).encode(), "chain")
+        last = max(names)
+        assert last == links - 2
+        if refused:
+            with pytest.raises(InputError, match="getLinkState failed"):
+                world.link_frame(body, last)
+        else:
+            assert world.link_frame(body, last)[2, 3] == pytest.approx(0.01 * (links - 1))
+
+
+def _parts(text: str) -> list[Any]:
+    root = etree.fromstring(text.encode())
+    return split_urdf(root, etree.tostring(root, xml_declaration=True, encoding="utf-8"))
+
+
+def _assert_within_limits(text: str, parts: list[Any]) -> None:
+    everything = re.findall(r'<link name="([^"]+)"', text)
+    seen = [name for part in parts for name in part.links]
+    assert sorted(seen) == sorted(everything)  # every link in exactly one body
+    for part in parts:
+        root = etree.fromstring(part.text)
+        links = [el.get("name") for el in root.iter("link")]
+        joints = list(root.iter("joint"))
+        q = sum(1 for j in joints if j.get("type") in ("revolute", "continuous", "prismatic"))
+        assert len(links) <= BODY_LINKS and q <= BODY_Q
+        assert len(joints) == len(links) - 1  # a tree: every link but the base has its joint
+        assert links[0] == part.base and part.links == links[int(part.stand_in) :]
+
+
+@pytest.mark.parametrize(
+    ("text", "bodies"),
+    [
+        (_chain(BODY_LINKS), 1),  # at the limit: one body, the text as it was
+        (_chain(BODY_LINKS + 1), 2),
+        (_chain(BODY_Q + 1, "revolute"), 1),  # 121 joint variables fit
+        (_chain(BODY_Q + 2, "revolute"), 2),  # 122 do not, with fewer than 128 links
+        (_chain(1000), 8),
+        ('<robot name="fan"><link name="hub"/>'
+         + "".join(f'<link name="s{i}"/>' + _joint(f"s{i}_j", "hub", f"s{i}", "0 0 0", "revolute") for i in range(300))
+         + "</robot>", 3),
+    ],
+    ids=["chain-128", "chain-129", "q-121", "q-122", "chain-1000", "fan-300"],
+)
+def test_split_keeps_every_body_within_pybullets_limits(text: str, bodies: int) -> None:
+    parts = _parts(text)
+    assert len(parts) == bodies
+    _assert_within_limits(text, parts)
+    if bodies == 1:
+        assert not parts[0].stand_in and etree.fromstring(parts[0].text) is not None
+        assert parts[0].text == etree.tostring(
+            etree.fromstring(text.encode()), xml_declaration=True, encoding="utf-8"
+        )
+
+
+@pytest.mark.parametrize("shape", ["chain", "fan"])
+def test_a_200_link_robot_renders_like_its_small_twin(shape: str, wall: Path, tmp_path: Path) -> None:
+    # Issue 10: 130 links or more ended in "getLinkState failed". The big robots carry
+    # wall_bot's sensors at wall_bot's poses, so everything but the plate on their deep
+    # link must come out as wall_bot's does, and the plate where trigonometry puts it.
+    text, joints, plate_link = big_robot(shape)
+    assert len(_parts(text)) > 1
+    robot = tmp_path / "big.urdf"
+    robot.write_text(text)
+    out = tmp_path / "preview"
+    given = [arg for name, value in joints.items() for arg in ("--joint", f"{name}={value}")]
+    proc = run_cli("render", "preview", str(robot), "--out", str(out), "--scene", str(WALL_SCENE), *given)
+    assert proc.returncode == 0, proc.stderr
+    assert "Traceback" not in proc.stderr and "loaded as 2 bodies" in proc.stderr
+
+    big, small = summary(out), summary(wall)
+    for name in ("depth_cam", "laser"):
+        mine, theirs = checks(big, name), checks(small, name)
+        assert mine["render_pose"]["status"] == "ok"  # pybullet's FK agrees, in every body
+        for check_name, check in theirs.items():
+            if (name, check_name) != ("laser", "self_occlusion"):
+                assert mine[check_name]["status"] == check["status"], (name, check_name)
+    assert checks(big, "depth_cam")["reprojection"]["status"] == "ok"
+    assert checks(big, "depth_cam")["depth"]["status"] == "ok"
+    assert checks(big, "laser")["ranges"]["status"] == "ok"
+
+    depth = np.load(out / "depth_cam" / "depth.npy")
+    assert np.abs(depth[59:61, 79:81] - 2.75).max() < CM  # the wall 2.75 m ahead
+    np.testing.assert_allclose(depth, np.load(wall / "depth_cam" / "depth.npy"), atol=MM)
+
+    ranges = np.load(out / "laser" / "ranges.npy")
+    on, exact, off = plate_beams()
+    assert on.sum() >= 10
+    assert np.abs(ranges[on] - exact[on]).max() < CM  # the deep link's plate
+    np.testing.assert_allclose(ranges[off], np.load(wall / "laser" / "ranges.npy")[off], atol=MM)
+    occlusion = checks(big, "laser")["self_occlusion"]
+    assert occlusion["status"] == "warn" and list(occlusion["details"]["links"]) == [plate_link]
+
+
+def test_a_robot_within_the_limit_stays_one_body(wall: Path) -> None:
+    assert not any("pybullet body" in note for note in summary(wall)["notes"])
+    assert len(_parts(WALL_BOT.read_text())) == 1

@@ -166,7 +166,6 @@ class _Run:
         self.target = target
         self.out_dir = out_dir
         self.conv = convert(robot)
-        self.link_index = {name: idx for idx, name in world.robot_links.items()}
         self.markers: list[tuple[Shape, int, int]] = []
         for (body, link), shapes in world.shape_of.items():
             visual = [s for s in shapes if s.visual]
@@ -185,10 +184,10 @@ class _Run:
         return out
 
     def pose_check(self, link: str) -> Check:
-        idx = self.link_index.get(link)
-        if idx is None or self.world.robot is None:
+        at = self.world.robot_link_at.get(link)
+        if at is None:
             return Check("render_pose", "skipped", f"link {link!r} is not in pybullet's model")
-        return pose_check(self.poses[link], self.world.link_frame(self.world.robot, idx), link)
+        return pose_check(self.poses[link], self.world.link_frame(*at), link)
 
     def frame_info(self, frames: SensorFrames, T_render: Mat) -> dict[str, Any]:
         return {
@@ -291,11 +290,10 @@ def _camera(
         topics = {k[len(prefix) :]: v for k, v in topics.items() if k.startswith(prefix)} or None
     out.info["topics"] = topics
 
-    robot_id = run.world.robot
     out.checks.append(reprojection_check(rc, image, published, run.markers))
     out.checks.append(depth_check(rc, image, depth, run.world.shape_of))
     out.checks.append(
-        self_occlusion_check(image.body, image.link, robot_id, run.world.robot_links, "pixels")
+        self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels")
     )
     out.checks.append(orb_check(image.rgb, sensor.kind))
     if sensor.reference is not None:
@@ -376,7 +374,7 @@ def _lidar(
         out.files["points"] = folder / "points.npy"
         save_npy(out.files["points"], scan.points)
     rows = np.repeat(np.arange(V), H)
-    self_hit = scan.hits.body == (run.world.robot if run.world.robot is not None else -2)
+    self_hit = np.isin(scan.hits.body, run.world.robot_bodies)
     out.files["scan_png"] = folder / "scan.png"
     write_png(
         out.files["scan_png"],
@@ -392,9 +390,7 @@ def _lidar(
     out.info["topics"] = _topics(sensor, run.target)
     out.checks.append(range_check(scan, run.world.shape_of))
     out.checks.append(
-        self_occlusion_check(
-            scan.hits.body, scan.hits.link, run.world.robot, run.world.robot_links, "beams"
-        )
+        self_occlusion_check(scan.hits.body, scan.hits.link, run.world.robot_links, "beams")
     )
     if sensor.reference is not None:
         out.checks.append(run.pose_check(sensor.reference))
@@ -722,6 +718,15 @@ def render_preview(
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     prepared = prepare_urdf(robot, resolver)
     notes = list(prepared.notes)
+    if len(prepared.parts) > 1:
+        from sensorkit.render.urdf_out import BODY_LINKS, BODY_Q
+
+        notes.append(
+            f"robot: its {len(robot.links)} links do not fit one pybullet body (at most "
+            f"{BODY_LINKS - 1} links beside the base and {BODY_Q} joint position variables), "
+            f"so it is loaded as {len(prepared.parts)} bodies, each placed where sensorkit's "
+            "kinematics puts its base link"
+        )
     roots = robot.roots()
     if len(roots) != 1:
         where = robot.document.display
@@ -773,7 +778,7 @@ def render_preview(
         else:
             world.add_default_shapes(world_scene, world_scene.half_extent)
         _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
-        world.add_robot(prepared.text)
+        world.add_robot_parts(prepared.parts, poses)
         world.set_joints(positions)
         world.refresh_bounds()
 
@@ -783,8 +788,8 @@ def render_preview(
         previews = [p for p, _ in results]
         drawings = [d for _, d in results if d is not None]
         robot_boxes = []
-        if world.robot is not None:
-            for _, lo, hi in world.aabbs(world.robot):
+        for body in world.robot_bodies:
+            for _, lo, hi in world.aabbs(body):
                 if float(np.max(hi - lo)) > 0.005:
                     robot_boxes.append((lo, hi))
 
