@@ -314,3 +314,198 @@ def test_a_200_link_robot_renders_like_its_small_twin(shape: str, wall: Path, tm
 def test_a_robot_within_the_limit_stays_one_body(wall: Path) -> None:
     assert not any("pybullet body" in note for note in summary(wall)["notes"])
     assert len(_parts(WALL_BOT.read_text())) == 1
+
+
+# ---- staged output: --out is replaced whole, or not at all --------------------------------
+STEREO_BOT = HERE / "stereo_bot.urdf"
+
+
+def snapshot(folder: Path) -> dict[str, bytes]:
+    return {
+        p.relative_to(folder).as_posix(): p.read_bytes()
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
+
+
+def beside(out: Path) -> list[str]:
+    """What a staged write leaves next to ``out`` (hidden ``.NAME.new-*`` / ``.old-*``)."""
+    return sorted(p.name for p in out.parent.iterdir() if p.name.startswith(f".{out.name}."))
+
+
+def cli(*args: str) -> tuple[int, list[str], str]:
+    from typer.testing import CliRunner
+
+    from sensorkit.cli import app
+
+    result = CliRunner().invoke(app, ["render", "preview", *args])
+    lines = [ln for ln in result.output.splitlines() if ln.startswith("sensorkit:")]
+    return result.exit_code, lines, result.output
+
+
+@pytest.fixture
+def old_preview(tmp_path: Path) -> Path:
+    out = tmp_path / "preview"
+    render_preview(WALL_BOT, out, sensors=("laser",))
+    return out
+
+
+def test_an_earlier_preview_is_replaced_whole(old_preview: Path) -> None:
+    # Issue 10: rendering into an existing --out mixed the previous robot's files in.
+    assert summary(old_preview)["generator"] == "sensorkit render preview"
+    code, lines, output = cli(str(STEREO_BOT), "--out", str(old_preview))
+    assert code == 0 and not lines, output
+    assert sorted(p.name for p in old_preview.iterdir()) == [
+        "index.html", "overview.png", "stereo", "summary.json"
+    ]
+    assert summary(old_preview)["robot"] == "stereo_bot" and beside(old_preview) == []
+    assert f"wrote {old_preview / 'index.html'}" in output  # the path it now has
+
+
+@pytest.mark.parametrize("folder", ["added-by-hand", "no-marker", "other-files"])
+def test_a_folder_that_is_not_an_earlier_preview_needs_force(
+    folder: str, old_preview: Path, tmp_path: Path
+) -> None:
+    out = old_preview
+    if folder == "added-by-hand":
+        (out / "notes.txt").write_text("mine")
+    elif folder == "no-marker":
+        data = summary(out)
+        del data["generator"]
+        (out / "summary.json").write_text(json.dumps(data))
+    else:
+        out = tmp_path / "other"
+        out.mkdir()
+        (out / "notes.txt").write_text("mine")
+    before = snapshot(out)
+    code, lines, output = cli(str(STEREO_BOT), "--out", str(out))
+    assert code == 2 and len(lines) == 1 and "Traceback" not in output, output
+    assert str(out) in lines[0] and "--force" in lines[0]
+    assert snapshot(out) == before and beside(out) == []  # nothing touched
+    code, lines, output = cli(str(STEREO_BOT), "--out", str(out), "--force")
+    assert code == 0 and not lines, output
+    assert not (out / "notes.txt").exists() and summary(out)["robot"] == "stereo_bot"
+
+
+def test_force_never_replaces_a_folder_holding_the_robot(tmp_path: Path) -> None:
+    out = tmp_path / "here"
+    out.mkdir()
+    robot = out / "robot.urdf"
+    robot.write_text(WALL_BOT.read_text())
+    code, lines, output = cli(str(robot), "--out", str(out), "--force")
+    assert code == 2 and len(lines) == 1 and "holds robot.urdf" in lines[0], output
+    assert robot.read_text() == WALL_BOT.read_text()
+
+
+@pytest.mark.parametrize("fails", [True, False])
+def test_an_exception_mid_render_leaves_the_old_preview(
+    fails: bool, old_preview: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    before = snapshot(old_preview)
+    if fails:
+        from sensorkit.render import report
+
+        def broken(result: object) -> None:
+            raise RuntimeError("disk on fire")
+
+        monkeypatch.setattr(report, "write_index", broken)
+        with pytest.raises(RuntimeError, match="disk on fire"):
+            render_preview(WALL_BOT, old_preview, sensors=("depth_cam",))
+        assert snapshot(old_preview) == before
+    else:
+        result = render_preview(WALL_BOT, old_preview, sensors=("depth_cam",))
+        assert sorted(p.name for p in old_preview.iterdir()) == [
+            "depth_cam", "index.html", "overview.png", "summary.json"
+        ]
+        assert result.files["index"] == old_preview / "index.html"
+        assert result.sensors[0].files["rgb"] == old_preview / "depth_cam" / "rgb.png"
+    assert beside(old_preview) == []
+
+
+def test_kill_9_mid_render_leaves_the_old_preview(old_preview: Path) -> None:
+    import os
+    import signal
+    import time
+
+    before = snapshot(old_preview)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sensorkit", "render", "preview", str(STEREO_BOT), "--out", str(old_preview)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    try:
+        while not beside(old_preview) and proc.poll() is None:
+            time.sleep(0.002)
+        staged = beside(old_preview)
+        os.kill(proc.pid, signal.SIGKILL)
+    finally:
+        proc.wait(30)
+    assert staged, "the render ended before its staging folder was seen"
+    assert proc.returncode == -signal.SIGKILL
+    assert snapshot(old_preview) == before  # byte-identical
+    assert sorted(p.name for p in old_preview.parent.iterdir() if not p.name.startswith(".")) == [
+        "preview"
+    ]  # and no half folder under a visible name
+    # the next render into that folder tidies what the killed one left
+    code, lines, output = cli(str(STEREO_BOT), "--out", str(old_preview))
+    assert code == 0 and not lines, output
+    assert beside(old_preview) == [] and summary(old_preview)["robot"] == "stereo_bot"
+
+
+@pytest.mark.parametrize("out_exists", [False, True])
+def test_a_folder_moved_aside_by_a_killed_writer_is_put_back(out_exists: bool, tmp_path: Path) -> None:
+    # Killed between _replace_folder's two renames, a writer leaves no folder under the
+    # name and the old one as .NAME.old-*: the next writer puts it back first.
+    from sensorkit.atomic import staged_folder
+
+    out = tmp_path / "preview"
+    aside = tmp_path / ".preview.old-abcd1234"
+    aside.mkdir()
+    (aside / "summary.json").write_text("old")
+    (tmp_path / ".preview.new-efgh5678").mkdir()
+    if out_exists:
+        out.mkdir()
+        (out / "summary.json").write_text("current")
+    with staged_folder(out, publish=False):
+        pass
+    assert (out / "summary.json").read_text() == ("current" if out_exists else "old")
+    assert beside(out) == []
+
+
+def _hold_lock(folder: str, held: Any, release: Any) -> None:
+    from sensorkit.atomic import editing
+
+    with editing(Path(folder) / "preview"):
+        held.set()
+        release.wait(60)
+
+
+def test_two_renders_into_one_folder_take_turns(old_preview: Path) -> None:
+    # Another sensorkit writing beside --out holds the folder lock: the render waits for
+    # it before it stages anything, then replaces the folder whole.
+    import multiprocessing
+    import time
+
+    before = snapshot(old_preview)
+    ctx = multiprocessing.get_context("fork")
+    held, release = ctx.Event(), ctx.Event()
+    holder = ctx.Process(target=_hold_lock, args=(str(old_preview.parent), held, release))
+    holder.start()
+    try:
+        assert held.wait(30)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "sensorkit", "render", "preview", str(STEREO_BOT), "--out", str(old_preview)],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        time.sleep(1.5)  # time to reach the lock (more than a whole render takes here)
+        waiting = proc.poll() is None
+        staged, untouched = beside(old_preview), snapshot(old_preview) == before
+    finally:
+        release.set()
+        holder.join(30)
+    _, err = proc.communicate(timeout=120)
+    assert waiting and staged == [] and untouched
+    assert proc.returncode == 0, err
+    assert summary(old_preview)["robot"] == "stereo_bot" and beside(old_preview) == []

@@ -646,6 +646,35 @@ def check_structure(robot: Robot, target: str) -> None:
         raise InputError(msg)
 
 
+def _out_checker(out_dir: Path, force: bool, inputs: list[Path]) -> Callable[[], None]:
+    """A check that ``out_dir`` may be replaced whole: missing, empty, an earlier preview
+    and nothing else, or anything (not precious, not holding an input) with ``force``."""
+    from sensorkit.atomic import check_replaceable
+    from sensorkit.render.report import is_preview
+
+    def check() -> None:
+        check_replaceable(out_dir, force=force or is_preview(out_dir), inputs=inputs)
+
+    return check
+
+
+def _rebase(result: PreviewResult, stage: Path, out_dir: Path) -> None:
+    """Point the result's paths from the staging folder at the published one."""
+
+    def moved(path: Path) -> Path:
+        try:
+            return out_dir / path.relative_to(stage)
+        except ValueError:
+            return path
+
+    result.out_dir = out_dir
+    result.files = {k: moved(v) for k, v in result.files.items()}
+    for s in result.sensors:
+        s.files = {k: moved(v) for k, v in s.files.items()}
+        if s.directory is not None:
+            s.directory = moved(s.directory)
+
+
 def render_preview(
     path: Path,
     out_dir: Path,
@@ -660,12 +689,16 @@ def render_preview(
     workers: int = 1,
     max_pixels: int = MAX_CAMERA_PIXELS,
     max_rays: int = MAX_LIDAR_RAYS,
+    force: bool = False,
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
     Args:
         path: the URDF or xacro file.
-        out_dir: where the files go (created if needed; files in it are replaced).
+        out_dir: the folder to write. It is filled beside itself and replaced whole at
+            the end, so an interrupted render leaves the old one as it was; it must be
+            missing, empty or an earlier preview (recognised by its summary.json, with
+            nothing added by hand), unless ``force``.
         scene: a URDF of static objects to use instead of the default room (the ground
             plane stays).
         sensors: only these sensors (by ``<sensor name>``); all when empty.
@@ -681,10 +714,13 @@ def render_preview(
         max_pixels: the most pixels one camera may have (checked before anything is
             allocated: a 100000 x 100000 camera would need hundreds of GB).
         max_rays: the most rays one lidar may cast per scan.
+        force: replace a non-empty ``out_dir`` that is not an earlier preview (never the
+            working folder, home, a root, nor one holding the robot or the scene).
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
-        UsageError: an unknown sensor or joint, a bad joint value or target.
+        UsageError: an unknown sensor or joint, a bad joint value or target; an
+            ``out_dir`` that may not be replaced.
     """
     from sensorkit.loading import PackageResolver
     from sensorkit.model.targets import TARGETS, detect_target
@@ -752,75 +788,81 @@ def render_preview(
     else:
         world_scene = default_scene(_reach(robot_shapes, poses))
 
-    if out_dir.exists() and not out_dir.is_dir():
-        msg = f"{out_dir}: exists and is not a folder"
-        raise InputError(msg)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    from sensorkit.atomic import staged_folder
 
-    from sensorkit.render.sim import World
+    check_out = _out_checker(out_dir, force, [path] if scene is None else [path, scene])
+    check_out()  # before pybullet starts; again under the folder lock
 
-    _say(progress, "starting pybullet (DIRECT, TinyRenderer)")
-    with World() as world:
-        ground_half = max(world_scene.half_extent + 1.0, 10.0 if scene is not None else 0.0)
-        if scene is not None and scene_robot is not None:
-            from sensorkit.render.scene import GROUND, Shape
+    # Everything is written into a staging folder beside out_dir that replaces it whole at
+    # the end: an interrupted render (an exception, or the process killed) leaves the old
+    # folder as it was, and two renders into one folder take turns on the folder lock.
+    with staged_folder(out_dir) as stage:
+        check_out()
+        from sensorkit.render.sim import World
 
-            ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
-            world.add_ground(ground_half, world_scene, ground)
-            scene_urdf = prepare_urdf(
-                scene_robot,
-                PackageResolver.from_options(list(package_paths), near=scene),
-                what="scene",
-            )
-            notes += scene_urdf.notes
-            world.add_scene_urdf(scene_urdf.text, world_scene.shapes)
-            world_scene.shapes.insert(0, ground)
-        else:
-            world.add_default_shapes(world_scene, world_scene.half_extent)
-        _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
-        world.add_robot_parts(prepared.parts, poses)
-        world.set_joints(positions)
-        world.refresh_bounds()
+        _say(progress, "starting pybullet (DIRECT, TinyRenderer)")
+        with World() as world:
+            ground_half = max(world_scene.half_extent + 1.0, 10.0 if scene is not None else 0.0)
+            if scene is not None and scene_robot is not None:
+                from sensorkit.render.scene import GROUND, Shape
 
-        run = _Run(robot, world, world_scene, poses, target, out_dir)
-        plan = _plan(robot, sensors, out_dir)
-        results = _render_all(run, plan, progress, workers)
-        previews = [p for p, _ in results]
-        drawings = [d for _, d in results if d is not None]
-        robot_boxes = []
-        for body in world.robot_bodies:
-            for _, lo, hi in world.aabbs(body):
-                if float(np.max(hi - lo)) > 0.005:
-                    robot_boxes.append((lo, hi))
+                ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
+                world.add_ground(ground_half, world_scene, ground)
+                scene_urdf = prepare_urdf(
+                    scene_robot,
+                    PackageResolver.from_options(list(package_paths), near=scene),
+                    what="scene",
+                )
+                notes += scene_urdf.notes
+                world.add_scene_urdf(scene_urdf.text, world_scene.shapes)
+                world_scene.shapes.insert(0, ground)
+            else:
+                world.add_default_shapes(world_scene, world_scene.half_extent)
+            _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
+            world.add_robot_parts(prepared.parts, poses)
+            world.set_joints(positions)
+            world.refresh_bounds()
 
-    _say(progress, "running validate")
-    findings, findings_error = _validate(path, target, args, package_paths)
+            run = _Run(robot, world, world_scene, poses, target, stage)
+            plan = _plan(robot, sensors, stage)
+            results = _render_all(run, plan, progress, workers)
+            previews = [p for p, _ in results]
+            drawings = [d for _, d in results if d is not None]
+            robot_boxes = []
+            for body in world.robot_bodies:
+                for _, lo, hi in world.aabbs(body):
+                    if float(np.max(hi - lo)) > 0.005:
+                        robot_boxes.append((lo, hi))
 
-    result = PreviewResult(
-        out_dir=out_dir,
-        robot=robot.name,
-        source=path,
-        target=target,
-        target_reason=target_reason,
-        scene=world_scene.source,
-        joints=positions,
-        sensors=previews,
-        findings=findings,
-        findings_error=findings_error,
-        notes=notes,
-    )
-    from sensorkit.render.overview import draw_overview
-    from sensorkit.render.png import write_png
-    from sensorkit.render.report import write_index, write_summary
+        _say(progress, "running validate")
+        findings, findings_error = _validate(path, target, args, package_paths)
 
-    _say(progress, "writing overview, summary and index")
-    half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
-    overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
-    result.files["overview"] = out_dir / "overview.png"
-    write_png(result.files["overview"], overview)
-    result.seconds = time.perf_counter() - started
-    result.files["summary"] = out_dir / "summary.json"
-    result.files["index"] = out_dir / "index.html"
-    write_summary(result)
-    write_index(result)
+        result = PreviewResult(
+            out_dir=stage,
+            robot=robot.name,
+            source=path,
+            target=target,
+            target_reason=target_reason,
+            scene=world_scene.source,
+            joints=positions,
+            sensors=previews,
+            findings=findings,
+            findings_error=findings_error,
+            notes=notes,
+        )
+        from sensorkit.render.overview import draw_overview
+        from sensorkit.render.png import write_png
+        from sensorkit.render.report import write_index, write_summary
+
+        _say(progress, "writing overview, summary and index")
+        half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
+        overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
+        result.files["overview"] = stage / "overview.png"
+        write_png(result.files["overview"], overview)
+        result.seconds = time.perf_counter() - started
+        result.files["summary"] = stage / "summary.json"
+        result.files["index"] = stage / "index.html"
+        write_summary(result)
+        write_index(result)
+    _rebase(result, stage, out_dir)
     return result
