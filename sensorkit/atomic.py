@@ -206,7 +206,8 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
 
     On an exception (or with ``publish=False``) the staging folder is deleted and ``out``
     is untouched. Folders get the usual 0o777 less the umask. The folder lock of
-    :func:`editing` is held on ``out``'s parent throughout.
+    :func:`editing` is held on ``out``'s parent throughout; once it is held, what a killed
+    writer of ``out`` left beside it is tidied (see :func:`_tidy`).
 
     A symlink ``out`` stays a symlink: its target folder is the one replaced (renaming
     the link itself would swap the link for a folder and leave the target stale).
@@ -214,8 +215,29 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
     if out.is_symlink():
         out = Path(os.path.realpath(out))
     out.parent.mkdir(parents=True, exist_ok=True)
-    with editing(out):  # two writers of one folder take turns (new, export)
+    with editing(out):  # two writers of one folder take turns (new, export, render preview)
+        _tidy(out)
         yield from _staged(out, publish)
+
+
+def _tidy(out: Path) -> None:
+    """Under the lock, every ``.NAME.new-*`` / ``.NAME.old-*`` beside ``out`` belongs to a
+    writer that was killed (a live one would hold the lock). A staging folder is deleted;
+    a previous ``out`` moved aside but not yet replaced (killed between the two renames of
+    :func:`_replace_folder`) is put back, else deleted."""
+    import glob
+
+    prefix = f".{glob.escape(out.name)}"
+    for old in sorted(out.parent.glob(f"{prefix}.old-*")):
+        if not old.is_dir() or old.is_symlink():
+            continue
+        if not out.exists() and not out.is_symlink():
+            os.replace(old, out)
+        else:
+            shutil.rmtree(old, ignore_errors=True)
+    for new in out.parent.glob(f"{prefix}.new-*"):
+        if new.is_dir() and not new.is_symlink():
+            shutil.rmtree(new, ignore_errors=True)
 
 
 def _staged(out: Path, publish: bool) -> Iterator[Path]:

@@ -250,7 +250,7 @@ def test_prepared_urdf_drops_what_pybullet_cannot_load(tmp_path: Path) -> None:
 
     with World() as world:
         body = world.add_robot(prepared.text)
-        assert world.robot_links == {-1: "base"} and body >= 0
+        assert world.robot_links == {(body, -1): "base"} and body >= 0
 
 
 def test_pybullet_failure_is_an_input_error() -> None:

@@ -245,3 +245,28 @@ def test_the_child_keeps_only_allowed_environment_names() -> None:
     )  # fmt: skip
     assert res.stdout.strip() == "['KEEP'] ['KEEP'] None"
     assert keep_only_environment  # imported for the child above
+
+
+def test_render_and_export_take_untrusted_too(tmp_path: Path) -> None:
+    from builders import robot
+
+    secret = "sk-" + secrets.token_hex(8)
+    text = robot().replace('<sensor name="front_camera"', '<sensor name="front_$(optenv SECRET camera)"')
+    assert "optenv" in text
+    text = text.replace("<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1)
+    path = tmp_path / "ws" / "r.urdf.xacro"
+    path.parent.mkdir(parents=True)
+    path.write_text(text)
+    for cmd in (
+        ["render", "preview", str(path), "--out", str(tmp_path / "prev")],
+        ["export", str(path), "--out", str(tmp_path / "exp")],
+        ["intrinsics", str(path)],
+    ):
+        res = _cli(*cmd, "--untrusted", env={"SECRET": secret})
+        assert res.returncode in (0, 1), (cmd, res.stderr)
+        assert secret not in res.stdout + res.stderr, cmd
+        outs = [p for p in tmp_path.rglob("*") if p.is_file() and p.suffix in (".json", ".yaml", ".html")]
+        assert not any(secret in p.read_text(errors="replace") for p in outs), cmd
+    # Near miss: trusted, the value reaches the export.
+    res = _cli("intrinsics", str(path), env={"SECRET": secret})
+    assert secret in res.stdout

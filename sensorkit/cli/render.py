@@ -18,10 +18,13 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    EnvOpt,
     FileArg,
     PackagePathOpt,
+    UntrustedOpt,
     die,
     handle_errors,
+    make_untrusted,
     parse_xacro_args,
 )
 
@@ -57,7 +60,12 @@ def parse_joints(items: list[str] | None) -> dict[str, float]:
 def preview(
     file: FileArg,
     out: Annotated[
-        Path, typer.Option("--out", "-o", help="folder to write into (created if needed)")
+        Path,
+        typer.Option(
+            "--out",
+            "-o",
+            help="folder to write; replaced whole at the end (an earlier preview is replaced)",
+        ),
     ] = Path("sensorkit-preview"),
     scene: Annotated[
         Path | None,
@@ -96,14 +104,24 @@ def preview(
     max_rays: Annotated[
         int, typer.Option("--max-rays", help="most rays one lidar may cast per scan")
     ] = 1_000_000,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force", help="replace a non-empty --out that is not an earlier sensorkit preview"
+        ),
+    ] = False,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
 ) -> None:
     """Render every camera and cast every lidar of FILE into --out, with checks.
 
     Writes images, depth, ranges and camera_info per sensor, plus summary.json,
-    overview.png and a self-contained index.html. Exit status 0; 1 when a check
-    fails; 2 when the preview cannot run.
+    overview.png and a self-contained index.html. The folder is filled beside --out
+    and swapped in at the end: an interrupted render leaves the old one as it was.
+    Exit status 0; 1 when a check fails; 2 when the preview cannot run.
     """
     xacro_args = parse_xacro_args(arg)
+    trust = make_untrusted(untrusted, env)
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
         die(
@@ -140,6 +158,8 @@ def preview(
         workers=min(4, os.cpu_count() or 1),
         max_pixels=max_pixels,
         max_rays=max_rays,
+        force=force,
+        untrusted=trust,
     )
     for s in result.sensors:
         typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))

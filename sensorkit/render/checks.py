@@ -7,6 +7,7 @@ disagrees with what sensorkit predicts); ``skipped`` (nothing to measure, with w
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -64,24 +65,30 @@ def worst(checks: list[Check]) -> str:
 def self_occlusion_check(
     hit_body: npt.NDArray[np.int32],
     hit_link: npt.NDArray[np.int32],
-    robot: int | None,
-    link_names: dict[int, str],
+    robot_links: Mapping[tuple[int, int], str],
     what: str,
 ) -> Check:
-    """Share of pixels or beams that land on the robot itself (warned above 1 %)."""
+    """Share of pixels or beams that land on the robot itself (warned above 1 %).
+
+    ``robot_links`` names the robot's (body, link index) pairs: a robot over pybullet's
+    link limit is loaded as several bodies.
+    """
     total = int(hit_body.size)
-    if robot is None or total == 0:
+    bodies = sorted({body for body, _ in robot_links})
+    if not bodies or total == 0:
         return Check("self_occlusion", "skipped", "no robot body to hit")
-    mine = hit_body == robot
+    mine = np.isin(hit_body, bodies)
     share = float(mine.sum()) / total
     links: dict[str, float] = {}
     if mine.any():
-        ids, counts = np.unique(hit_link[mine], return_counts=True)
-        order = np.argsort(-counts)
+        pairs, counts = np.unique(
+            np.stack([hit_body[mine], hit_link[mine]], axis=1), axis=0, return_counts=True
+        )
+        order = np.argsort(-counts, kind="stable")
         for i in order[:5]:
-            links[link_names.get(int(ids[i]), str(int(ids[i])))] = round(
-                float(counts[i]) / total, 6
-            )
+            key = (int(pairs[i][0]), int(pairs[i][1]))
+            name = robot_links.get(key, f"{key[0]}:{key[1]}")
+            links[name] = round(links.get(name, 0.0) + float(counts[i]) / total, 6)
     status = "warn" if share > SELF_OCCLUSION_LIMIT else "ok"
     if mine.any():
         named = ", ".join(f"{k} {v:.1%}" for k, v in links.items())

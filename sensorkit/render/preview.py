@@ -27,11 +27,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sensorkit.errors import InputError, UsageError
+from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
 from sensorkit.model.transforms import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
 
 if TYPE_CHECKING:
     from sensorkit.findings import Finding
+    from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
@@ -113,11 +115,17 @@ def _pose_dict(T: Mat) -> dict[str, Any]:
 
 
 def _load_robot(
-    path: Path, args: Mapping[str, str], package_paths: Sequence[str], what: str
+    path: Path,
+    args: Mapping[str, str],
+    package_paths: Sequence[str],
+    what: str,
+    untrusted: Untrusted | None = None,
 ) -> Robot:
     from sensorkit.model import load_robot
 
-    loaded = load_robot(path, args=dict(args), package_paths=tuple(package_paths))
+    loaded = load_robot(
+        path, args=dict(args), package_paths=tuple(package_paths), untrusted=untrusted
+    )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None
         detail = f"{first.source}: {first.message}" if first is not None else "cannot be read"
@@ -166,7 +174,6 @@ class _Run:
         self.target = target
         self.out_dir = out_dir
         self.conv = convert(robot)
-        self.link_index = {name: idx for idx, name in world.robot_links.items()}
         self.markers: list[tuple[Shape, int, int]] = []
         for (body, link), shapes in world.shape_of.items():
             visual = [s for s in shapes if s.visual]
@@ -185,10 +192,10 @@ class _Run:
         return out
 
     def pose_check(self, link: str) -> Check:
-        idx = self.link_index.get(link)
-        if idx is None or self.world.robot is None:
+        at = self.world.robot_link_at.get(link)
+        if at is None:
             return Check("render_pose", "skipped", f"link {link!r} is not in pybullet's model")
-        return pose_check(self.poses[link], self.world.link_frame(self.world.robot, idx), link)
+        return pose_check(self.poses[link], self.world.link_frame(*at), link)
 
     def frame_info(self, frames: SensorFrames, T_render: Mat) -> dict[str, Any]:
         return {
@@ -291,11 +298,10 @@ def _camera(
         topics = {k[len(prefix) :]: v for k, v in topics.items() if k.startswith(prefix)} or None
     out.info["topics"] = topics
 
-    robot_id = run.world.robot
     out.checks.append(reprojection_check(rc, image, published, run.markers))
     out.checks.append(depth_check(rc, image, depth, run.world.shape_of))
     out.checks.append(
-        self_occlusion_check(image.body, image.link, robot_id, run.world.robot_links, "pixels")
+        self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels")
     )
     out.checks.append(orb_check(image.rgb, sensor.kind))
     if sensor.reference is not None:
@@ -376,7 +382,7 @@ def _lidar(
         out.files["points"] = folder / "points.npy"
         save_npy(out.files["points"], scan.points)
     rows = np.repeat(np.arange(V), H)
-    self_hit = scan.hits.body == (run.world.robot if run.world.robot is not None else -2)
+    self_hit = np.isin(scan.hits.body, run.world.robot_bodies)
     out.files["scan_png"] = folder / "scan.png"
     write_png(
         out.files["scan_png"],
@@ -392,9 +398,7 @@ def _lidar(
     out.info["topics"] = _topics(sensor, run.target)
     out.checks.append(range_check(scan, run.world.shape_of))
     out.checks.append(
-        self_occlusion_check(
-            scan.hits.body, scan.hits.link, run.world.robot, run.world.robot_links, "beams"
-        )
+        self_occlusion_check(scan.hits.body, scan.hits.link, run.world.robot_links, "beams")
     )
     if sensor.reference is not None:
         out.checks.append(run.pose_check(sensor.reference))
@@ -586,10 +590,10 @@ def _validate(
     return list(report.findings), None
 
 
-# Budgets checked before anything is allocated. Real sensors sit far below: a 4K camera has
-# 8.3 MP, an Ouster OS2-128 casts 128 x 2048 = 262,144 rays.
-MAX_CAMERA_PIXELS = 4096 * 4096
-MAX_LIDAR_RAYS = 1_000_000
+# Budgets checked before anything is allocated: the plausibility limits validate warns of
+# (SK403/SK406), with their reasons, in sensorkit/knowledge/limits.py.
+MAX_CAMERA_PIXELS = PLAUSIBLE_CAMERA_PIXELS
+MAX_LIDAR_RAYS = PLAUSIBLE_LIDAR_RAYS
 # Sensors further than this from the robot's root are not on a robot (1e308 m overflows).
 MAX_POSE_M = 1e4
 
@@ -650,6 +654,35 @@ def check_structure(robot: Robot, target: str) -> None:
         raise InputError(msg)
 
 
+def _out_checker(out_dir: Path, force: bool, inputs: list[Path]) -> Callable[[], None]:
+    """A check that ``out_dir`` may be replaced whole: missing, empty, an earlier preview
+    and nothing else, or anything (not precious, not holding an input) with ``force``."""
+    from sensorkit.atomic import check_replaceable
+    from sensorkit.render.report import is_preview
+
+    def check() -> None:
+        check_replaceable(out_dir, force=force or is_preview(out_dir), inputs=inputs)
+
+    return check
+
+
+def _rebase(result: PreviewResult, stage: Path, out_dir: Path) -> None:
+    """Point the result's paths from the staging folder at the published one."""
+
+    def moved(path: Path) -> Path:
+        try:
+            return out_dir / path.relative_to(stage)
+        except ValueError:
+            return path
+
+    result.out_dir = out_dir
+    result.files = {k: moved(v) for k, v in result.files.items()}
+    for s in result.sensors:
+        s.files = {k: moved(v) for k, v in s.files.items()}
+        if s.directory is not None:
+            s.directory = moved(s.directory)
+
+
 def render_preview(
     path: Path,
     out_dir: Path,
@@ -664,12 +697,17 @@ def render_preview(
     workers: int = 1,
     max_pixels: int = MAX_CAMERA_PIXELS,
     max_rays: int = MAX_LIDAR_RAYS,
+    force: bool = False,
+    untrusted: Untrusted | None = None,
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
     Args:
         path: the URDF or xacro file.
-        out_dir: where the files go (created if needed; files in it are replaced).
+        out_dir: the folder to write. It is filled beside itself and replaced whole at
+            the end, so an interrupted render leaves the old one as it was; it must be
+            missing, empty or an earlier preview (recognised by its summary.json, with
+            nothing added by hand), unless ``force``.
         scene: a URDF of static objects to use instead of the default room (the ground
             plane stays).
         sensors: only these sensors (by ``<sensor name>``); all when empty.
@@ -685,10 +723,13 @@ def render_preview(
         max_pixels: the most pixels one camera may have (checked before anything is
             allocated: a 100000 x 100000 camera would need hundreds of GB).
         max_rays: the most rays one lidar may cast per scan.
+        force: replace a non-empty ``out_dir`` that is not an earlier preview (never the
+            working folder, home, a root, nor one holding the robot or the scene).
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
-        UsageError: an unknown sensor or joint, a bad joint value or target.
+        UsageError: an unknown sensor or joint, a bad joint value or target; an
+            ``out_dir`` that may not be replaced.
     """
     from sensorkit.loading import PackageResolver
     from sensorkit.model.targets import TARGETS, detect_target
@@ -699,7 +740,7 @@ def render_preview(
     started = time.perf_counter()
     args = dict(args or {})
     _say(progress, f"loading {path}")
-    robot = _load_robot(path, args, package_paths, "")
+    robot = _load_robot(path, args, package_paths, "", untrusted)
     known = [s.name for s in robot.sensors]
     for name in sensors:
         if name not in known:
@@ -722,6 +763,15 @@ def render_preview(
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     prepared = prepare_urdf(robot, resolver)
     notes = list(prepared.notes)
+    if len(prepared.parts) > 1:
+        from sensorkit.render.urdf_out import BODY_LINKS, BODY_Q
+
+        notes.append(
+            f"robot: its {len(robot.links)} links do not fit one pybullet body (at most "
+            f"{BODY_LINKS - 1} links beside the base and {BODY_Q} joint position variables), "
+            f"so it is loaded as {len(prepared.parts)} bodies, each placed where sensorkit's "
+            "kinematics puts its base link"
+        )
     roots = robot.roots()
     if len(roots) != 1:
         where = robot.document.display
@@ -736,7 +786,7 @@ def render_preview(
     scene_robot: Robot | None = None
     if scene is not None:
         _say(progress, f"loading scene {scene}")
-        scene_robot = _load_robot(scene, {}, package_paths, "scene:")
+        scene_robot = _load_robot(scene, {}, package_paths, "scene:", untrusted)
         shapes = scene_shapes_from_robot(scene_robot)
         extent = max(
             (float(np.abs(s.footprint()).max()) for s in shapes if len(s.footprint())), default=3.0
@@ -747,74 +797,81 @@ def render_preview(
     else:
         world_scene = default_scene(_reach(robot_shapes, poses))
 
-    if out_dir.exists() and not out_dir.is_dir():
-        msg = f"{out_dir}: exists and is not a folder"
-        raise InputError(msg)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    from sensorkit.atomic import staged_folder
 
-    from sensorkit.render.sim import World
+    check_out = _out_checker(out_dir, force, [path] if scene is None else [path, scene])
+    check_out()  # before pybullet starts; again under the folder lock
 
-    _say(progress, "starting pybullet (DIRECT, TinyRenderer)")
-    with World() as world:
-        ground_half = max(world_scene.half_extent + 1.0, 10.0 if scene is not None else 0.0)
-        if scene is not None and scene_robot is not None:
-            from sensorkit.render.scene import GROUND, Shape
+    # Everything is written into a staging folder beside out_dir that replaces it whole at
+    # the end: an interrupted render (an exception, or the process killed) leaves the old
+    # folder as it was, and two renders into one folder take turns on the folder lock.
+    with staged_folder(out_dir) as stage:
+        check_out()
+        from sensorkit.render.sim import World
 
-            ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
-            world.add_ground(ground_half, world_scene, ground)
-            scene_urdf = prepare_urdf(
-                scene_robot,
-                PackageResolver.from_options(list(package_paths), near=scene),
-                what="scene",
-            )
-            notes += scene_urdf.notes
-            world.add_scene_urdf(scene_urdf.text, world_scene.shapes)
-            world_scene.shapes.insert(0, ground)
-        else:
-            world.add_default_shapes(world_scene, world_scene.half_extent)
-        _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
-        world.add_robot(prepared.text)
-        world.set_joints(positions)
+        _say(progress, "starting pybullet (DIRECT, TinyRenderer)")
+        with World() as world:
+            ground_half = max(world_scene.half_extent + 1.0, 10.0 if scene is not None else 0.0)
+            if scene is not None and scene_robot is not None:
+                from sensorkit.render.scene import GROUND, Shape
 
-        run = _Run(robot, world, world_scene, poses, target, out_dir)
-        plan = _plan(robot, sensors, out_dir)
-        results = _render_all(run, plan, progress, workers)
-        previews = [p for p, _ in results]
-        drawings = [d for _, d in results if d is not None]
-        robot_boxes = []
-        if world.robot is not None:
-            for _, lo, hi in world.aabbs(world.robot):
-                if float(np.max(hi - lo)) > 0.005:
-                    robot_boxes.append((lo, hi))
+                ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
+                world.add_ground(ground_half, world_scene, ground)
+                scene_urdf = prepare_urdf(
+                    scene_robot,
+                    PackageResolver.from_options(list(package_paths), near=scene),
+                    what="scene",
+                )
+                notes += scene_urdf.notes
+                world.add_scene_urdf(scene_urdf.text, world_scene.shapes)
+                world_scene.shapes.insert(0, ground)
+            else:
+                world.add_default_shapes(world_scene, world_scene.half_extent)
+            _say(progress, f"loading {robot.name or 'the robot'} into pybullet")
+            world.add_robot_parts(prepared.parts, poses)
+            world.set_joints(positions)
+            world.refresh_bounds()
 
-    _say(progress, "running validate")
-    findings, findings_error = _validate(path, target, args, package_paths)
+            run = _Run(robot, world, world_scene, poses, target, stage)
+            plan = _plan(robot, sensors, stage)
+            results = _render_all(run, plan, progress, workers)
+            previews = [p for p, _ in results]
+            drawings = [d for _, d in results if d is not None]
+            robot_boxes = []
+            for body in world.robot_bodies:
+                for _, lo, hi in world.aabbs(body):
+                    if float(np.max(hi - lo)) > 0.005:
+                        robot_boxes.append((lo, hi))
 
-    result = PreviewResult(
-        out_dir=out_dir,
-        robot=robot.name,
-        source=path,
-        target=target,
-        target_reason=target_reason,
-        scene=world_scene.source,
-        joints=positions,
-        sensors=previews,
-        findings=findings,
-        findings_error=findings_error,
-        notes=notes,
-    )
-    from sensorkit.render.overview import draw_overview
-    from sensorkit.render.png import write_png
-    from sensorkit.render.report import write_index, write_summary
+        _say(progress, "running validate")
+        findings, findings_error = _validate(path, target, args, package_paths)
 
-    _say(progress, "writing overview, summary and index")
-    half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
-    overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
-    result.files["overview"] = out_dir / "overview.png"
-    write_png(result.files["overview"], overview)
-    result.seconds = time.perf_counter() - started
-    result.files["summary"] = out_dir / "summary.json"
-    result.files["index"] = out_dir / "index.html"
-    write_summary(result)
-    write_index(result)
+        result = PreviewResult(
+            out_dir=stage,
+            robot=robot.name,
+            source=path,
+            target=target,
+            target_reason=target_reason,
+            scene=world_scene.source,
+            joints=positions,
+            sensors=previews,
+            findings=findings,
+            findings_error=findings_error,
+            notes=notes,
+        )
+        from sensorkit.render.overview import draw_overview
+        from sensorkit.render.png import write_png
+        from sensorkit.render.report import write_index, write_summary
+
+        _say(progress, "writing overview, summary and index")
+        half = max(world_scene.half_extent, _reach(robot_shapes, poses) + 0.5) + 0.3
+        overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
+        result.files["overview"] = stage / "overview.png"
+        write_png(result.files["overview"], overview)
+        result.seconds = time.perf_counter() - started
+        result.files["summary"] = stage / "summary.json"
+        result.files["index"] = stage / "index.html"
+        write_summary(result)
+        write_index(result)
+    _rebase(result, stage, out_dir)
     return result

@@ -21,7 +21,9 @@ if TYPE_CHECKING:
 
     from sensorkit.render.preview import PreviewResult, SensorPreview
 
-__all__ = ["summary_dict", "write_index", "write_summary"]
+__all__ = ["GENERATOR", "is_preview", "summary_dict", "write_index", "write_summary"]
+
+GENERATOR = "sensorkit render preview"  # summary.json's "generator": what made this folder
 
 CONVENTIONS = {
     "pixels": "0-based pixel centres: pixel (i, r) covers [i-0.5, i+0.5] x [r-0.5, r+0.5] (OpenCV, image_geometry)",
@@ -79,6 +81,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
     findings = None if result.findings is None else [f.to_dict() for f in result.findings]
     out: dict[str, Any] = _clean(
         {
+            "generator": GENERATOR,
             "sensorkit": __version__,
             "robot": result.robot,
             "file": str(result.source),
@@ -96,6 +99,25 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
         }
     )
     return out
+
+
+def is_preview(folder: Path) -> bool:
+    """Is ``folder`` an earlier preview, and nothing else? Its summary.json says sensorkit
+    wrote it, and every entry in it is one that summary names (summary, overview, index,
+    the sensors' folders): a file put there by hand makes it a folder to keep."""
+    try:
+        data = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    if not isinstance(data, dict) or data.get("generator") != GENERATOR:
+        return False
+    named: set[str] = set()
+    try:
+        named.update(str(v).split("/")[0] for v in data["files"].values())
+        named.update(str(s["folder"]).split("/")[0] for s in data["sensors"] if s.get("folder"))
+        return all(entry.name in named for entry in folder.iterdir())
+    except (OSError, KeyError, TypeError, AttributeError):
+        return False
 
 
 def write_summary(result: PreviewResult) -> None:

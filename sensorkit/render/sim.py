@@ -18,7 +18,7 @@ import ctypes
 import os
 import sys
 import tempfile
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -30,6 +30,7 @@ import numpy.typing as npt
 from sensorkit.errors import InputError
 from sensorkit.model.transforms import Mat
 from sensorkit.render.scene import GROUND, Scene, Shape, box_mesh
+from sensorkit.render.urdf_out import UrdfPart
 
 __all__ = ["MAX_RAYS", "CameraImage", "RayHits", "World", "captured_output"]
 
@@ -200,8 +201,9 @@ class World:
         if self.client < 0:
             msg = "pybullet could not start a DIRECT client"
             raise InputError(msg)
-        self.robot: int | None = None
-        self.robot_links: dict[int, str] = {}  # pybullet link index -> URDF link name
+        self.robot_bodies: list[int] = []  # a robot over pybullet's link limit has several
+        self.robot_links: dict[tuple[int, int], str] = {}  # (body, link index) -> URDF link
+        self.robot_link_at: dict[str, tuple[int, int]] = {}  # URDF link -> (body, link index)
         self.shape_of: dict[tuple[int, int], list[Shape]] = {}  # (body, link) -> shapes
         self._tmp = tempfile.TemporaryDirectory(prefix="sensorkit-render-")
 
@@ -335,19 +337,25 @@ class World:
             )
         )
 
-    def load_urdf(self, text: bytes, what: str) -> tuple[int, dict[int, str]]:
-        """Load URDF text as a fixed-base body at the origin; (body, link index -> name)."""
+    def load_urdf(
+        self, text: bytes, what: str, T_world_base: Mat | None = None
+    ) -> tuple[int, dict[int, str]]:
+        """Load URDF text as a fixed-base body whose root link frame is at
+        ``T_world_base`` (default: the origin); (body, link index -> name)."""
         path = Path(self._tmp.name) / f"{what}.urdf"
         path.write_bytes(text)
+        T = np.eye(4) if T_world_base is None else T_world_base
         with self.quiet:
-            return self._load_urdf(path, what)
+            return self._load_urdf(path, what, T)
 
-    def _load_urdf(self, path: Path, what: str) -> tuple[int, dict[int, str]]:
+    def _load_urdf(self, path: Path, what: str, T: Mat) -> tuple[int, dict[int, str]]:
         flags = self.p.URDF_USE_MATERIAL_COLORS_FROM_MTL
+        position = [float(v) for v in T[:3, 3]]
+        orientation = _matrix_to_quat(T[:3, :3])
         try:
             body = int(
                 self._call(
-                    "loadURDF", str(path), [0, 0, 0], [0, 0, 0, 1], useFixedBase=True, flags=flags
+                    "loadURDF", str(path), position, orientation, useFixedBase=True, flags=flags
                 )
             )
         except self.p.error as exc:
@@ -367,19 +375,45 @@ class World:
         return body
 
     def add_robot(self, text: bytes) -> int:
-        self.robot, self.robot_links = self.load_urdf(text, "robot")
-        return self.robot
+        """Load a robot that fits in one pybullet body, its root at the origin."""
+        return self.add_robot_parts([UrdfPart("", [], text)], {})[0]
 
-    def set_joints(self, positions: dict[str, float]) -> None:
-        if self.robot is None:
-            return
-        index = {
-            self._call("getJointInfo", self.robot, j)[1].decode("utf-8"): j
-            for j in range(self._call("getNumJoints", self.robot))
-        }
-        for name, value in positions.items():
-            if name in index:
-                self._call("resetJointState", self.robot, index[name], value)
+    def add_robot_parts(self, parts: Sequence[UrdfPart], poses: Mapping[str, Mat]) -> list[int]:
+        """Load a robot as one body per part, each base where ``poses`` puts that link
+        (the first part's base is the root, at the origin). Returns the bodies."""
+        for k, part in enumerate(parts):
+            T = poses.get(part.base) if k else np.eye(4)
+            if T is None:
+                msg = f"the robot's link {part.base!r} has no pose, so it cannot be placed"
+                raise InputError(msg)
+            body, names = self.load_urdf(part.text, f"robot{k}" if k else "robot", T)
+            self.robot_bodies.append(body)
+            for index, name in names.items():
+                if index == -1 and part.stand_in:
+                    continue  # an empty stand-in: the link itself lives in another body
+                self.robot_links[(body, index)] = name
+                self.robot_link_at.setdefault(name, (body, index))
+        return list(self.robot_bodies)
+
+    def set_joints(self, positions: Mapping[str, float]) -> None:
+        for body in self.robot_bodies:
+            index = {
+                self._call("getJointInfo", body, j)[1].decode("utf-8"): j
+                for j in range(self._call("getNumJoints", body))
+            }
+            for name, value in positions.items():
+                if name in index:
+                    self._call("resetJointState", body, index[name], value)
+
+    def refresh_bounds(self) -> None:
+        """Bring the broadphase's bounding boxes up to date once everything is placed.
+
+        pybullet 3.2.7 leaves a stale box for a link whose URDF ``<inertial>`` frame is
+        rotated: ``rayTestBatch`` then misses the link (``getCameraImage`` does not, and
+        ``getAABB`` computes afresh, so neither shows it) until the next collision pass.
+        """
+        with self.quiet:
+            self._call("performCollisionDetection")
 
     # ---- queries ---------------------------------------------------------------------
     def link_frame(self, body: int, link: int) -> Mat:
@@ -397,7 +431,11 @@ class World:
             from sensorkit.model.transforms import invert
 
             return T_world_inertial @ invert(T_link_inertial)
-        state = self._call("getLinkState", body, link, computeForwardKinematics=True)
+        try:
+            state = self._call("getLinkState", body, link, computeForwardKinematics=True)
+        except self.p.error as exc:
+            msg = f"pybullet cannot report where link {link} of body {body} is ({exc})"
+            raise InputError(msg) from None
         T[:3, :3] = _quat_to_matrix(state[5])
         T[:3, 3] = state[4]
         return T
