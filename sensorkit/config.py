@@ -1,18 +1,23 @@
-"""``[tool.sensorkit]`` in pyproject.toml: defaults for validate, overridden by flags.
+"""Project settings for every command, overridden by flags.
+
+Found upward from the robot file (else the working folder), nearest first: a
+``sensorkit.toml`` (keys at top level) or a ``pyproject.toml`` with a
+``[tool.sensorkit]`` table (a pyproject without one is passed over); or given with
+``--config FILE``. It applies to validate, add-*, render, intrinsics, export and new.
 
 ```toml
-[tool.sensorkit]
-target = "harmonic"
-select = ["SK5", "SK6"]
+target = "harmonic"             # validate, add-* (gz blocks), render, intrinsics, export, new
+select = ["SK5", "SK6"]         # validate
 ignore = ["SK104"]
 fail-on = "warning"
-package-path = ["src"]        # relative to the pyproject.toml
-args = { namespace = "robot1" }
+package-path = ["src"]          # relative to the file
+args = { namespace = "robot1" } # xacro arguments
 ```
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,6 +37,26 @@ class Config:
     package_paths: list[str] = field(default_factory=list)
     args: dict[str, str] = field(default_factory=dict)
 
+
+    def describe(self, used: Iterable[str]) -> str | None:
+        """``"target harmonic, fail-on warning from ./sensorkit.toml"`` for the settings
+        a command took from this file, or None when it took none."""
+        from sensorkit.loading.document import display_path
+
+        if self.path is None:
+            return None
+        values = {
+            "target": self.target,
+            "select": ",".join(self.select),
+            "ignore": ",".join(self.ignore),
+            "fail-on": self.fail_on,
+            "package-path": " ".join(self.package_paths),
+            "args": " ".join(f"{k}:={v}" for k, v in self.args.items()),
+        }
+        parts = [f"{key} {values[key]}" for key in used if values.get(key)]
+        if not parts:
+            return None
+        return ", ".join(parts) + f" from {display_path(self.path)}"
 
     def confined_package_paths(self) -> tuple[str, ...]:
         """``package-path`` for ``--untrusted``: only folders inside the pyproject's folder.
@@ -54,12 +79,32 @@ class Config:
         return tuple(self.package_paths)
 
 
-def find_pyproject(start: Path) -> Path | None:
+def find_config(start: Path) -> tuple[Path, dict[str, Any]] | None:
+    """The nearest settings file at or above ``start`` and its sensorkit table."""
     for folder in [start, *start.parents]:
-        candidate = folder / "pyproject.toml"
-        if candidate.is_file():
-            return candidate
+        own = folder / "sensorkit.toml"
+        if own.is_file():
+            return own, _read(own)
+        pyproject = folder / "pyproject.toml"
+        if pyproject.is_file():
+            table = _read(pyproject).get("tool", {}).get("sensorkit")
+            if table is not None:
+                return pyproject, table
     return None
+
+
+def _read(path: Path) -> dict[str, Any]:
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10: tomllib is 3.11+
+        msg = f"{path}: reading settings needs Python 3.11 or newer (tomllib)"
+        raise UsageError(msg) from None
+    try:
+        data: dict[str, Any] = tomllib.loads(path.read_text("utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        msg = f"{path}: cannot read: {exc}"
+        raise UsageError(msg) from None
+    return data
 
 
 def _strings(value: Any, key: str, where: Path) -> list[str]:
@@ -67,33 +112,40 @@ def _strings(value: Any, key: str, where: Path) -> list[str]:
         return [value]
     if isinstance(value, list) and all(isinstance(v, str) for v in value):
         return list(value)
-    msg = f"{where}: [tool.sensorkit] {key} must be a string or a list of strings"
+    msg = f"{where}: {_table(where)}{key} must be a string or a list of strings"
     raise UsageError(msg)
 
 
-def load_config(start: Path | None = None) -> Config:
-    """Read the nearest pyproject.toml's ``[tool.sensorkit]`` (empty Config if none)."""
-    try:
-        import tomllib
-    except ModuleNotFoundError:  # Python 3.10
+def _table(path: Path) -> str:
+    return "[tool.sensorkit] " if path.name == "pyproject.toml" else ""
+
+
+def load_config(start: Path | None = None, *, explicit: Path | None = None) -> Config:
+    """The settings for a command on a file in ``start`` (or ``explicit``: ``--config``)."""
+    if explicit is not None:
+        if not explicit.is_file():
+            msg = f"--config {explicit}: no such file"
+            raise UsageError(msg)
+        data = _read(explicit)
+        found: tuple[Path, dict[str, Any]] | None = (
+            (explicit, data.get("tool", {}).get("sensorkit", {}))
+            if explicit.name == "pyproject.toml"
+            else (explicit, data)
+        )
+    else:
+        folder = (start or Path.cwd()).resolve()
+        if folder.is_file() or not folder.exists():
+            folder = folder.parent
+        found = find_config(folder)
+    if found is None:
         return Config()
-    path = find_pyproject((start or Path.cwd()).resolve())
-    if path is None:
-        return Config()
-    try:
-        data = tomllib.loads(path.read_text("utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        msg = f"{path}: cannot read: {exc}"
-        raise UsageError(msg) from None
-    table = data.get("tool", {}).get("sensorkit")
-    if table is None:
-        return Config(path=path)
+    path, table = found
     if not isinstance(table, dict):
-        msg = f"{path}: [tool.sensorkit] must be a table"
+        msg = f"{path}: {_table(path)}must be a table"
         raise UsageError(msg)
     unknown = set(table) - KEYS
     if unknown:
-        msg = f"{path}: [tool.sensorkit] has unknown keys {sorted(unknown)}; known: {sorted(KEYS)}"
+        msg = f"{path}: {_table(path)}has unknown keys {sorted(unknown)}; known: {sorted(KEYS)}"
         raise UsageError(msg)
     cfg = Config(path=path)
     if "target" in table:
@@ -108,7 +160,7 @@ def load_config(start: Path | None = None) -> Config:
     ]
     args = table.get("args", {})
     if not isinstance(args, dict):
-        msg = f"{path}: [tool.sensorkit] args must be a table"
+        msg = f"{path}: {_table(path)}args must be a table"
         raise UsageError(msg)
     cfg.args = {str(k): str(v) for k, v in args.items()}
     return cfg

@@ -41,6 +41,7 @@ class Options:
     timeout: float = 60.0
     bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
     untrusted: Untrusted | None = None  # --untrusted: see sensorkit.loading.untrusted
+    target_origin: str = "--target"  # where a target other than auto came from
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -162,7 +163,7 @@ def check_robot(
     if options.target == "auto":
         report.target, report.target_reason = detect_target(robot)
     else:
-        report.target, report.target_reason = options.target, "chosen with --target"
+        report.target, report.target_reason = options.target, f"chosen with {options.target_origin}"
     conv = convert(robot)
     bridge = load_bridges(robot, options) if is_gz(report.target) else None
     ctx = Context(

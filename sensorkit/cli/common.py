@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from functools import wraps
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
@@ -42,6 +43,15 @@ EnvOpt = Annotated[
         metavar="NAME",
     ),
 ]
+ConfigOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--config",
+        help="settings file (sensorkit.toml, or pyproject.toml with [tool.sensorkit]); "
+        "default: the nearest one above the robot file",
+        metavar="FILE",
+    ),
+]
 FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
 FileArg = Annotated[Path, typer.Argument(help="a URDF or xacro file", show_default=False)]
 
@@ -66,6 +76,64 @@ def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     from sensorkit.loading.untrusted import Untrusted
 
     return Untrusted(env=frozenset(env or ()))
+
+
+@dataclass
+class Settings:
+    """What a command runs with: its flags, else the settings file, else the defaults."""
+
+    target: str
+    package_paths: tuple[str, ...]
+    args: dict[str, str]
+    untrusted: Any  # sensorkit.loading.untrusted.Untrusted | None
+    config: Any  # sensorkit.config.Config
+    used: list[str] = field(default_factory=list)
+
+    def origin(self, key: str) -> str:
+        """``--target`` or ``sensorkit.toml``: where the value of ``key`` came from."""
+        if key in self.used and self.config.path is not None:
+            from sensorkit.loading.document import display_path
+
+            return display_path(self.config.path)
+        return f"--{key}"
+
+    def say_where(self, extra: tuple[str, ...] = ()) -> None:
+        """One stderr line naming the settings taken from the file, if any."""
+        note = self.config.describe([*self.used, *extra])
+        if note:
+            typer.echo(f"sensorkit: {note}", err=True)
+
+
+def settings(
+    near: Path | None,
+    *,
+    config: Path | None,
+    target: str | None,
+    package_path: list[str] | None,
+    arg: list[str] | None,
+    untrusted: bool = False,
+    env: list[str] | None = None,
+    default_target: str = "auto",
+) -> Settings:
+    """Merge flags over the settings file found from ``near`` (``--config`` wins)."""
+    from sensorkit.config import load_config
+
+    cfg = load_config(near, explicit=config)
+    trust = make_untrusted(untrusted, env)
+    used: list[str] = []
+    if target is None:
+        target = cfg.target or default_target
+        if cfg.target:
+            used.append("target")
+    paths = tuple(package_path or ())
+    if not paths and cfg.package_paths:
+        paths = cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
+        used.append("package-path")
+    args = dict(cfg.args)
+    if cfg.args:
+        used.append("args")
+    args.update(parse_xacro_args(arg))
+    return Settings(target, paths, args, trust, cfg, used)
 
 
 def die(message: str, code: int = 2) -> None:

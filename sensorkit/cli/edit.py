@@ -15,14 +15,14 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
     UntrustedOpt,
     die,
     handle_errors,
-    make_untrusted,
-    parse_xacro_args,
+    settings,
 )
 
 
@@ -327,8 +327,8 @@ def _run(
     package_path: list[str] | None,
     untrusted: bool = False,
     env: list[str] | None = None,
+    config: Path | None = None,
 ) -> None:
-    from sensorkit.config import load_config
     from sensorkit.edit import AddRequest, add_sensor
     from sensorkit.engine import Options
     from sensorkit.loading.document import display_path
@@ -341,18 +341,29 @@ def _run(
         if key in params:
             die(f"--param {key}: already set by its own option")
         params[key] = value
-    # Validate the way `sensorkit validate` would here: [tool.sensorkit] applies.
-    cfg = load_config()
-    args = dict(cfg.args)
-    args.update(parse_xacro_args(arg))
-    trust = make_untrusted(untrusted, env)
-    package_paths = tuple(package_path or ())
-    if not package_paths:
-        package_paths = (
-            cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
-        )
+    # Validate the way `sensorkit validate` would here: the settings file applies.
+    st = settings(
+        file,
+        config=config,
+        target=None,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
+    )
+    cfg = st.config
+    if "sim" not in params and cfg.target:  # the project's simulator, unless --sim says
+        from sensorkit.model.targets import is_gz
+
+        params["sim"] = "gz" if is_gz(cfg.target) else "classic"
+        if is_gz(cfg.target) and "gz_version" not in params:
+            params["gz_version"] = cfg.target
+    st.say_where()
+    args = st.args
+    package_paths = st.package_paths
+    trust = st.untrusted
     validation = Options(
-        target=cfg.target or "auto",
+        target=st.target,
         select=tuple(cfg.select),
         ignore=tuple(cfg.ignore),
         args=args,
@@ -427,6 +438,7 @@ def add_camera(
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Add a pinhole RGB camera (sensorkit_camera macro) to FILE."""
     options = {
@@ -449,6 +461,7 @@ def add_camera(
         package_path=package_path,
         untrusted=untrusted,
         env=env,
+        config=config,
     )
 
 
@@ -481,6 +494,7 @@ def add_depth_camera(
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Add an RGB-D camera (sensorkit_depth_camera macro) to FILE."""
     options = {
@@ -504,6 +518,7 @@ def add_depth_camera(
         package_path=package_path,
         untrusted=untrusted,
         env=env,
+        config=config,
     )
 
 
@@ -539,6 +554,7 @@ def add_lidar(
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Add a 2D lidar (sensorkit_lidar_2d macro), or with --3d a 3D one (sensorkit_lidar_3d)."""
     vertical = {
@@ -575,6 +591,7 @@ def add_lidar(
         package_path=package_path,
         untrusted=untrusted,
         env=env,
+        config=config,
     )
 
 
@@ -606,6 +623,7 @@ def add_stereo(
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Add a stereo camera pair (sensorkit_stereo_camera macro) to FILE."""
     options = {
@@ -629,6 +647,7 @@ def add_stereo(
         package_path=package_path,
         untrusted=untrusted,
         env=env,
+        config=config,
     )
 
 
@@ -654,6 +673,7 @@ def add_imu(
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Add an IMU (sensorkit_imu macro) to FILE."""
     options = {
@@ -677,6 +697,7 @@ def add_imu(
         package_path=package_path,
         untrusted=untrusted,
         env=env,
+        config=config,
     )
 
 

@@ -15,20 +15,22 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
     UntrustedOpt,
     handle_errors,
-    make_untrusted,
-    parse_xacro_args,
+    settings,
 )
 
 TargetOpt = Annotated[
-    str,
+    str | None,
     typer.Option(
         "--target",
-        help="auto, classic, ros1, fortress, harmonic or jetty (auto: detected as validate does)",
+        help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings file's, "
+        "else auto: detected as validate does)",
+        show_default=False,
     ),
 ]
 
@@ -60,11 +62,12 @@ def intrinsics(
             "kalibr or opencv (one camera each)",
         ),
     ] = "json",
-    target: TargetOpt = "auto",
+    target: TargetOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Print the camera_info each camera of FILE publishes, for a tool to read.
 
@@ -74,18 +77,24 @@ def intrinsics(
     from sensorkit.exporters.robot import FORMATS, intrinsics_document, select_cameras
     from sensorkit.sensorinfo import describe, load
 
-    xacro_args = parse_xacro_args(arg)
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
-    robot = load(
+    st = settings(
         file,
-        args=xacro_args,
-        package_paths=tuple(package_path or ()),
-        untrusted=make_untrusted(untrusted, env),
+        config=config,
+        target=target,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
     )
-    info = describe(robot, target, convention=convention)  # type: ignore[arg-type]
+    st.say_where()
+    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    info = describe(robot, st.target, convention=convention)  # type: ignore[arg-type]
+    if st.target != "auto":
+        info.target_reason = f"chosen with {st.origin('target')}"
     cameras = select_cameras(info, sensor, fmt)
     text, notes = intrinsics_document(info, cameras, fmt)
     sys.stdout.write(text)
@@ -102,11 +111,12 @@ def export(
     force: Annotated[
         bool, typer.Option("--force", help="replace --out if it is not empty")
     ] = False,
-    target: TargetOpt = "auto",
+    target: TargetOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Write each sensor's config files into one folder per sensor.
 
@@ -121,14 +131,20 @@ def export(
     from sensorkit.exporters.robot import export_files, publish_export
     from sensorkit.sensorinfo import describe, load
 
-    xacro_args = parse_xacro_args(arg)
-    robot = load(
+    st = settings(
         file,
-        args=xacro_args,
-        package_paths=tuple(package_path or ()),
-        untrusted=make_untrusted(untrusted, env),
+        config=config,
+        target=target,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
     )
-    info = describe(robot, target)
+    st.say_where()
+    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    info = describe(robot, st.target)
+    if st.target != "auto":
+        info.target_reason = f"chosen with {st.origin('target')}"
     plan = export_files(info)
     inputs = [file, *(Path(f) for f in robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)

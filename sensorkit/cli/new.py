@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import handle_errors
+from sensorkit.cli.common import ConfigOpt, handle_errors, settings
 
 
 @handle_errors
@@ -30,13 +30,23 @@ def new(
     dry_run: Annotated[
         bool, typer.Option("--dry-run", help="check and list the files, write nothing")
     ] = False,
+    config: ConfigOpt = None,
 ) -> None:
     """Generate a colcon-ready ament package: package.xml, CMakeLists.txt, the robot
     xacro with the base and sensor macros, launch files and, for Gazebo Sim, the
     ros_gz_bridge config and a world."""
     from sensorkit.generate import new_package
+    from sensorkit.model.targets import is_gz
 
-    result = new_package(spec, output, force=force, dry_run=dry_run)
+    st = settings(spec, config=config, target=None, package_path=None, arg=None)
+    defaults: dict[str, str] = {}
+    if st.config.target:  # the simulator a robot.yaml without `sim:` is generated for
+        defaults["sim"] = "gz" if is_gz(st.config.target) else "classic"
+        if is_gz(st.config.target):
+            defaults["gz_version"] = st.config.target
+        note = st.config.describe(["target"])
+        typer.echo(f"sensorkit: {note} (for a robot.yaml that names no sim)", err=True)
+    result = new_package(spec, output, force=force, dry_run=dry_run, defaults=defaults)
     for rel in result.files:
         typer.echo((output / rel).as_posix())
     verb = "would write" if dry_run else "wrote"

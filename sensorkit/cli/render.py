@@ -18,14 +18,14 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
     UntrustedOpt,
     die,
     handle_errors,
-    make_untrusted,
-    parse_xacro_args,
+    settings,
 )
 
 render_app = typer.Typer(
@@ -91,12 +91,14 @@ def preview(
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
     target: Annotated[
-        str,
+        str | None,
         typer.Option(
             "--target",
-            help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, frames)",
+            help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, "
+            "frames; default: the settings file's, else auto)",
+            show_default=False,
         ),
-    ] = "auto",
+    ] = None,
     max_pixels: Annotated[
         int,
         typer.Option("--max-pixels", help="most pixels one camera may have (default 4096x4096)"),
@@ -112,6 +114,7 @@ def preview(
     ] = False,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Render every camera and cast every lidar of FILE into --out, with checks.
 
@@ -120,8 +123,16 @@ def preview(
     and swapped in at the end: an interrupted render leaves the old one as it was.
     Exit status 0; 1 when a check fails; 2 when the preview cannot run.
     """
-    xacro_args = parse_xacro_args(arg)
-    trust = make_untrusted(untrusted, env)
+    st = settings(
+        file,
+        config=config,
+        target=target,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
+    )
+    st.say_where()
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
         die(
@@ -151,15 +162,16 @@ def preview(
         scene=scene,
         sensors=tuple(sensor or ()),
         joints=joints,
-        args=xacro_args,
-        package_paths=tuple(package_path or ()),
-        target=target,
+        args=st.args,
+        package_paths=st.package_paths,
+        target=st.target,
         progress=log,
         workers=min(4, os.cpu_count() or 1),
         max_pixels=max_pixels,
         max_rays=max_rays,
         force=force,
-        untrusted=trust,
+        untrusted=st.untrusted,
+        target_origin=st.origin("target"),
     )
     for s in result.sensors:
         typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))

@@ -10,13 +10,13 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ConfigOpt,
     EnvOpt,
     FilesArg,
     PackagePathOpt,
     UntrustedOpt,
     handle_errors,
-    make_untrusted,
-    parse_xacro_args,
+    settings,
 )
 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
@@ -62,6 +62,7 @@ def validate(
     ] = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
+    config: ConfigOpt = None,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 
@@ -69,7 +70,6 @@ def validate(
     """
     import gc
 
-    from sensorkit.config import load_config
     from sensorkit.engine import Options, validate_paths
 
     gc.disable()  # a short-lived process building many small acyclic objects
@@ -79,29 +79,36 @@ def validate(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    cfg = load_config()
+    st = settings(
+        files[0] if files else None,
+        config=config,
+        target=target,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
+    )
+    cfg = st.config
     sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
     ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
     try:
         threshold = Severity.parse(fail_on or cfg.fail_on or "error")
     except ValueError as exc:
         raise UsageError(f"--fail-on: {exc}") from None
-    args = dict(cfg.args)
-    args.update(parse_xacro_args(arg))
-    trust = make_untrusted(untrusted, env)
-    paths = tuple(package_path or ())
-    if not paths and cfg.package_paths:
-        paths = cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
+    st.say_where(
+        tuple(k for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on)) if not flag)
+    )
     options = Options(
-        target=target or cfg.target or "auto",
+        target=st.target,
         select=tuple(sep),
         ignore=tuple(ign),
         fail_on=threshold,
-        args=args,
-        package_paths=paths,
+        args=st.args,
+        package_paths=st.package_paths,
         timeout=timeout,
         bridges=tuple(str(b) for b in bridge or ()),
-        untrusted=trust,
+        untrusted=st.untrusted,
+        target_origin=st.origin("target"),
     )
     report = validate_paths(files, options)
     from sensorkit.cli import leave_quickly

@@ -9,6 +9,7 @@ one out in a single rename.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -118,7 +119,12 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
 
 
 def new_package(
-    spec_path: Path, out: Path, *, force: bool = False, dry_run: bool = False
+    spec_path: Path,
+    out: Path,
+    *,
+    force: bool = False,
+    dry_run: bool = False,
+    defaults: Mapping[str, str] | None = None,
 ) -> GeneratedPackage:
     """Generate the ament package described by the robot YAML at ``spec_path`` into ``out``.
 
@@ -132,7 +138,7 @@ def new_package(
         UsageError: ``out`` is not empty and ``force`` is not given, or is not a folder.
         OSError: the file system refused.
     """
-    spec = load_spec(spec_path)
+    spec = load_spec(spec_path, defaults)
     check_replaceable(out, force=force, inputs=[spec_path], flag="-o")
     with staged_folder(out, publish=not dry_run) as temp:
         entries = build_package(spec, temp, yaml_name=spec_path.name)

@@ -31,7 +31,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NoReturn
@@ -348,7 +348,13 @@ def _compose(path: Path, text: str, file: str) -> yaml.Node | None:
         loader.dispose()
 
 
-def parse_spec(text: str, path: Path, *, display: str | None = None) -> RobotSpec:
+def parse_spec(
+    text: str,
+    path: Path,
+    *,
+    display: str | None = None,
+    defaults: Mapping[str, str] | None = None,
+) -> RobotSpec:
     """Check robot YAML ``text`` (read from ``path``) and return the robot it describes.
 
     Raises:
@@ -428,10 +434,11 @@ def parse_spec(text: str, path: Path, *, display: str | None = None) -> RobotSpe
         r, get("base_params"), "base_params", bases[base], what="base parameter", marks=marks
     )
 
+    defaults = defaults or {}  # from the settings file's target, when the YAML says nothing
     node = get("sim")
-    sim = r.string(node, "sim", choices=SIMS) if node is not None else "gz"
+    sim = r.string(node, "sim", choices=SIMS) if node is not None else defaults.get("sim", "gz")
     node = get("gz_version")
-    gz_version = "harmonic"
+    gz_version = defaults.get("gz_version", "harmonic")
     if node is not None:
         gz_version = r.string(node, "gz_version", choices=GZ_VERSIONS)
     node = get("namespace")
@@ -573,7 +580,7 @@ def _sensors(
     return out
 
 
-def load_spec(path: Path) -> RobotSpec:
+def load_spec(path: Path, defaults: Mapping[str, str] | None = None) -> RobotSpec:
     """Read and check the robot YAML at ``path``.
 
     Raises:
@@ -593,4 +600,4 @@ def load_spec(path: Path) -> RobotSpec:
     except OSError as exc:
         msg = f"{path}: cannot read ({exc.strerror})"
         raise InputError(msg) from None
-    return parse_spec(text, path)
+    return parse_spec(text, path, defaults=defaults)

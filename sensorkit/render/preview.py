@@ -699,6 +699,7 @@ def render_preview(
     max_rays: int = MAX_LIDAR_RAYS,
     force: bool = False,
     untrusted: Untrusted | None = None,
+    target_origin: str = "--target",
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -750,7 +751,7 @@ def render_preview(
     if target == "auto":
         target, target_reason = detect_target(robot)
     elif target in TARGETS:
-        target_reason = "chosen with --target"
+        target_reason = f"chosen with {target_origin}"
     else:
         msg = f"unknown target {target!r}: use auto, " + ", ".join(TARGETS)
         raise UsageError(msg)
