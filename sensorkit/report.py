@@ -61,9 +61,12 @@ def format_text(report: Report, *, color: bool = False) -> str:
         for err in fr.internal_errors:
             lines.append(f"  internal error: {err}")
     s = report.summary()
-    lines.append(
-        f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {len(report.files)} files"
-    )
+    failed = sum(1 for fr in report.files if fr.error)
+    checked = len(report.files) - failed
+    summary = f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {checked} files"
+    if failed:  # never a clean-looking summary when a file could not be checked at all
+        summary += f"; {failed} {'file' if failed == 1 else 'files'} could not be checked (see above)"
+    lines.append(summary)
     return "\n".join(lines) + "\n"
 
 
@@ -146,9 +149,28 @@ def to_sarif(report: Report) -> dict[str, Any]:
                     }
                 },
                 "results": results,
+                "invocations": [_invocation(report)],
             }
         ],
     }
+
+
+def _invocation(report: Report) -> dict[str, Any]:
+    """SARIF 3.20: a file sensorkit could not check is a failed execution with a
+    toolExecutionNotification naming it (a viewer must not show a clean run)."""
+    notes = [
+        {
+            "level": "error",
+            "message": {"text": fr.error},
+            "locations": [{"physicalLocation": {"artifactLocation": {"uri": fr.display}}}],
+        }
+        for fr in report.files
+        if fr.error
+    ]
+    inv: dict[str, Any] = {"executionSuccessful": not notes}
+    if notes:
+        inv["toolExecutionNotifications"] = notes
+    return inv
 
 
 def format_sarif(report: Report) -> str:

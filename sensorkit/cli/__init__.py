@@ -35,7 +35,7 @@ def _version(value: bool) -> None:
 @app.callback()
 def _root(
     version: bool = typer.Option(
-        False, "--version", callback=_version, is_eager=True, help="print the version"
+        False, "--version", "-V", callback=_version, is_eager=True, help="print the version"
     ),
 ) -> None:
     """sensorkit: validate, generate and preview robot sensors."""

@@ -125,6 +125,16 @@ def settings(
         target = cfg.target or default_target
         if cfg.target:
             used.append("target")
+    for item in package_path or ():
+        name, sep, folder = item.partition("=")
+        folder = folder if sep and name and "/" not in name else item
+        if not Path(folder).expanduser().is_dir():
+            die(f"--package-path {item}: no such folder")
+    for item in cfg.package_paths:
+        name, sep, folder = item.partition("=")
+        folder = folder if sep and name and "/" not in name else item
+        if not Path(folder).is_dir():
+            die(f"{cfg.path}: package-path {item}: no such folder")
     paths = tuple(package_path or ())
     if not paths and cfg.package_paths:
         paths = cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)

@@ -8,6 +8,7 @@ uses the 2D macro unless ``--3d`` is given; the vertical options need ``--3d``.
 from __future__ import annotations
 
 import enum
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -333,6 +334,12 @@ def _run(
     from sensorkit.engine import Options
     from sensorkit.loading.document import display_path
 
+    for angle in rpy:
+        if abs(angle) > 2 * math.pi:  # 90 means degrees, by habit: a quarter turn is 1.5708
+            die(
+                f"--rpy {' '.join(f'{a:g}' for a in rpy)}: {angle:g} is more than 2π; angles are "
+                f"in radians (radians? {angle:g}° is {math.radians(angle):.6g})"
+            )
     params = {key: _text(value) for key, value in options.items() if value is not None}
     for item in param or []:
         key, sep, value = item.partition("=")

@@ -106,7 +106,7 @@ def intrinsics(
 def export(
     file: FileArg,
     out: Annotated[
-        Path, typer.Option("--out", "-o", help="the folder to create (must be missing or empty)")
+        Path, typer.Option("--out", "-o", "--output", help="the folder to create (must be missing or empty)")
     ] = Path("sensorkit-export"),
     force: Annotated[
         bool, typer.Option("--force", help="replace --out if it is not empty")

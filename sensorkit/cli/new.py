@@ -22,7 +22,7 @@ def new(
     ],
     output: Annotated[
         Path,
-        typer.Option("-o", "--output", help="the package folder to create", show_default=False),
+        typer.Option("--out", "-o", "--output", help="the package folder to create", show_default=False),
     ],
     force: Annotated[
         bool, typer.Option("--force", help="replace OUTPUT if it is not empty")

@@ -12,9 +12,15 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
+from typer.core import TyperGroup
+
+try:  # typer 0.2x vendors click; older ones depend on it
+    from typer._click.exceptions import UsageError as ClickUsageError
+except ImportError:  # pragma: no cover - depends on the installed typer
+    from click.exceptions import UsageError as ClickUsageError  # type: ignore[no-redef]
 
 from sensorkit.cli.common import (
     ArgOpt,
@@ -28,8 +34,26 @@ from sensorkit.cli.common import (
     settings,
 )
 
+
+class _RenderGroup(TyperGroup):
+    """``sensorkit render robot.urdf`` is a common slip: name the subcommand it needs."""
+
+    def resolve_command(self, ctx: Any, args: list[str]) -> Any:
+        try:
+            return super().resolve_command(ctx, args)
+        except ClickUsageError:
+            if args and not args[0].startswith("-"):
+                raise ClickUsageError(
+                    f"render has no subcommand {args[0]!r}; did you mean: "
+                    f"sensorkit render preview {' '.join(args)}",
+                    ctx,
+                ) from None
+            raise
+
+
 render_app = typer.Typer(
     name="render",
+    cls=_RenderGroup,
     help="Render the robot's sensors in pybullet (no display needed).",
     no_args_is_help=True,
     add_completion=False,
@@ -64,6 +88,7 @@ def preview(
         typer.Option(
             "--out",
             "-o",
+            "--output",
             help="folder to write; replaced whole at the end (an earlier preview is replaced)",
         ),
     ] = Path("sensorkit-preview"),

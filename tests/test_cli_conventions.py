@@ -1,0 +1,97 @@
+"""Issue 13: command-line habits from ruff, cargo, xacro and ros2 launch that users try first."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+from pathlib import Path
+
+import pytest
+import yaml
+from conftest import ROOT, run_cli
+
+ROBOTS = Path(__file__).resolve().parent / "edit_robots"
+
+
+def test_short_version_flag() -> None:
+    res = run_cli("-V")
+    assert res.returncode == 0 and re.fullmatch(r"sensorkit \d+\.\d+\.\d+\s*", res.stdout)
+
+
+def test_render_without_subcommand_names_the_one_it_needs() -> None:
+    res = run_cli("render", "robot.urdf")
+    assert res.returncode == 2
+    text = " ".join(re.sub(r"[│╭╮╰╯─]", " ", res.stderr).split())  # rich draws a box
+    assert "did you mean: sensorkit render preview robot.urdf" in text, res.stderr
+    res = run_cli("render", "--bogus")  # an option is not a file: the usual message
+    assert res.returncode == 2 and "render preview" not in res.stderr
+
+
+def test_pre_commit_hook_skips_sdf_written_as_xacro() -> None:
+    hook = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())[0]
+    pattern = re.compile(hook["files"])
+    assert pattern.search("robot.urdf") and pattern.search("robot.urdf.xacro") and pattern.search("parts/arm.xacro")
+    assert not pattern.search("worlds/world.sdf.xacro") and not pattern.search("model.sdf")
+
+
+@pytest.mark.parametrize("cmd", [["validate"], ["intrinsics"], ["export", "--out", "x"], ["render", "preview"]])
+def test_a_package_path_that_does_not_exist_is_a_usage_error(tmp_path: Path, cmd: list[str]) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    res = run_cli(*cmd, str(path), "--package-path", str(tmp_path / "nope"), cwd=tmp_path)
+    assert res.returncode == 2 and f"--package-path {tmp_path / 'nope'}: no such folder" in res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1
+    res = run_cli(*cmd, str(path), "--package-path", f"pkg={tmp_path / 'nope'}", cwd=tmp_path)
+    assert res.returncode == 2 and "no such folder" in res.stderr
+    # Near miss: an existing folder is accepted.
+    res = run_cli("validate", str(path), "--package-path", str(tmp_path))
+    assert res.returncode == 0, res.stderr
+
+
+def test_rpy_in_degrees_is_refused_with_a_hint(tmp_path: Path) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    before = path.read_bytes()
+    res = run_cli("add-camera", str(path), "--name", "cam", "--parent", "base_link", "--rpy", "0", "0", "90")
+    assert res.returncode == 2 and "radians" in res.stderr and "1.5708" in res.stderr, res.stderr
+    assert path.read_bytes() == before
+    res = run_cli("add-camera", str(path), "--name", "cam", "--parent", "base_link", "--rpy", "0", "0", "6.2")
+    assert res.returncode == 0, res.stderr
+
+
+def test_one_spelling_for_output_folders(tmp_path: Path) -> None:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    for spelling in ("--out", "--output", "-o"):
+        out = tmp_path / f"exp{spelling}"
+        res = run_cli("export", str(path), spelling, str(out))
+        assert res.returncode in (0, 1) and out.is_dir(), res.stderr
+    spec = tmp_path / "robot.yaml"
+    spec.write_text("name: my_robot\n")
+    for spelling in ("--out", "--output", "-o"):
+        out = tmp_path / f"pkg{spelling}"
+        res = run_cli("new", str(spec), spelling, str(out))
+        assert res.returncode == 0 and (out / "package.xml").is_file(), res.stderr
+    res = run_cli("render", "preview", "-h")
+    assert "--output" in res.stdout and "--out" in res.stdout
+
+
+def test_a_file_that_cannot_be_checked_is_never_a_clean_run(tmp_path: Path) -> None:
+    good = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", good)
+    bad = tmp_path / "notes.urdf"
+    bad.write_text("<html><body>not a robot</body></html>\n")
+    res = run_cli("validate", str(good), str(bad))
+    assert res.returncode == 2
+    assert "1 file could not be checked" in res.stdout, res.stdout
+    res = run_cli("validate", "--format", "sarif", str(good), str(bad))
+    inv = json.loads(res.stdout)["runs"][0]["invocations"][0]
+    assert inv["executionSuccessful"] is False
+    uris = [n["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for n in inv["toolExecutionNotifications"]]
+    assert len(uris) == 1 and uris[0].endswith("notes.urdf"), uris
+    # Near miss: all files checked.
+    res = run_cli("validate", "--format", "sarif", str(good))
+    assert json.loads(res.stdout)["runs"][0]["invocations"][0] == {"executionSuccessful": True}
+    res = run_cli("validate", str(good))
+    assert "could not be checked" not in res.stdout
