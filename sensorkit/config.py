@@ -87,10 +87,16 @@ def find_config(start: Path) -> tuple[Path, dict[str, Any]] | None:
             return own, _read(own)
         pyproject = folder / "pyproject.toml"
         if pyproject.is_file():
-            table = _read(pyproject).get("tool", {}).get("sensorkit")
+            table = _tool_table(_read(pyproject))
             if table is not None:
                 return pyproject, table
     return None
+
+
+def _tool_table(data: dict[str, Any]) -> Any:
+    """``[tool.sensorkit]`` of a pyproject, or None (also when ``tool`` is not a table)."""
+    tool = data.get("tool")
+    return tool.get("sensorkit") if isinstance(tool, dict) else None
 
 
 def _read(path: Path) -> dict[str, Any]:
@@ -128,7 +134,7 @@ def load_config(start: Path | None = None, *, explicit: Path | None = None) -> C
             raise UsageError(msg)
         data = _read(explicit)
         found: tuple[Path, dict[str, Any]] | None = (
-            (explicit, data.get("tool", {}).get("sensorkit", {}))
+            (explicit, _tool_table(data) or {})
             if explicit.name == "pyproject.toml"
             else (explicit, data)
         )
