@@ -1,0 +1,340 @@
+"""Stereo pairs exported as pairs, read back as their consumers read them.
+
+Robots: sensorkit's own ``sensorkit_stereo_camera`` macro (with the ``sensorkit_imu`` macro)
+expanded for Gazebo Classic and for Gazebo Sim, and a hand-written Classic ``multicamera``.
+
+What each consumer reads, and where that is written down:
+
+- Kalibr camchain: top-level keys are the cameras (``numCameras`` = ``len(self.data)``,
+  ethz-asl/kalibr@aslam_offline_calibration/kalibr/python/kalibr_common/ConfigReader.py:753-754);
+  ``cam1.T_cn_cnm1`` = T_c1_c0 "takes cam0 to cam1 coordinates" and ``T_cam_imu`` takes IMU
+  coordinates to the camera's (github.com/ethz-asl/kalibr/wiki/yaml-formats; read at
+  ConfigReader.py:688-718).
+- ORB-SLAM3 v1.0: ``Camera.type "PinHole"``, ``Camera1.*``, ``Camera2.*``, the 4x4
+  ``Stereo.T_c1_c2`` whose translation norm is the baseline, ``Stereo.ThDepth``
+  (UZ-SLAMLab/ORB_SLAM3@src/Settings.cc:276-352), ``IMU.T_b_c1`` and ``IMU.*`` (:414-432),
+  laid out as Examples/Stereo-Inertial/EuRoC.yaml:18-78; matrices ``dt: f``, since
+  ``Converter::toSophus`` reads ``at<float>`` (src/Converter.cc:195-201, :300). Old format:
+  ``Camera.bf`` (src/Tracking.cc:1133-1148), ``Tbc`` and an int ``IMU.Frequency``
+  (:1301-1350).
+- camera_info: the right camera of a horizontal pair has ``Tx = -fx' * B``, the left Tx = 0
+  (ros2/common_interfaces@rolling:sensor_msgs/msg/CameraInfo.msg:93-98).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from sensorkit.cli import app
+from sensorkit.sensorinfo import describe, load
+
+try:
+    from macro_cases import MACROS_DIR, XACRO_NS
+except ImportError:  # tests/ collected as a package
+    from tests.macro_cases import MACROS_DIR, XACRO_NS
+
+BASELINE = 0.12
+WIDTH, HEIGHT, HFOV = 640, 480, 1.3962634  # the stereo macro's defaults
+FX = WIDTH / (2.0 * math.tan(HFOV / 2.0))
+IMU_RATE = 100.0  # the IMU macro's defaults
+GYRO_STDDEV, ACCEL_STDDEV = 2e-4, 1.7e-2
+EYE = 1e-9
+
+BASE_LINK = (
+    '<link name="base_link"><inertial><mass value="2.0"/>'
+    '<inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial></link>'
+)
+INERTIA = (
+    '<inertial><mass value="0.1"/>'
+    '<inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>'
+)
+OPTICAL_RPY = "-1.5707963267948966 0 -1.5707963267948966"
+
+
+# --------------------------------------------------------------------------- robots
+
+
+def macro_robot(sim: str, *, imus: tuple[str, ...] = ("imu",), extra: str = "") -> str:
+    """The stereo macro at (0.2, 0, 0.3) and IMU macros at (0, 0.1 k, 0.1), for ``sim``."""
+    imu_calls = "\n".join(
+        f'  <xacro:sensorkit_imu name="{name}" parent="base_link" sim="{sim}">'
+        f'<origin xyz="0 {0.1 * k:.1f} 0.1" rpy="0 0 0"/></xacro:sensorkit_imu>'
+        for k, name in enumerate(imus)
+    )
+    return f"""<?xml version="1.0"?>
+<robot name="rig" xmlns:xacro="{XACRO_NS}">
+  <xacro:include filename="{MACROS_DIR / "stereo_camera.urdf.xacro"}"/>
+  <xacro:include filename="{MACROS_DIR / "imu.urdf.xacro"}"/>
+  {BASE_LINK}
+  <xacro:sensorkit_stereo_camera name="front" parent="base_link" baseline="{BASELINE}" sim="{sim}">
+    <origin xyz="0.2 0 0.3" rpy="0 0 0"/>
+  </xacro:sensorkit_stereo_camera>
+{imu_calls}
+{extra}
+</robot>
+"""
+
+
+def _camera(name: str, pose: str = "", extra: str = "") -> str:
+    return (
+        f'<camera name="{name}">{pose}<horizontal_fov>{HFOV}</horizontal_fov>'
+        f"<image><width>{WIDTH}</width><height>{HEIGHT}</height><format>R8G8B8</format></image>"
+        f"<clip><near>0.05</near><far>20</far></clip>{extra}</camera>"
+    )
+
+
+def multicamera_robot(
+    *,
+    plugin: str = "libgazebo_ros_camera.so",
+    params: str = f"<hack_baseline>{BASELINE}</hack_baseline>",
+    right_pose: str = f"0 -{BASELINE} 0 0 0 0",
+    left_extra: str = "",
+    with_imu: bool = True,
+) -> str:
+    """A hand-written Classic multicamera "stereo": left at the link, right ``right_pose``."""
+    cams = _camera("left", extra=left_extra) + _camera("right", f"<pose>{right_pose}</pose>")
+    sensor = (
+        f'<sensor name="stereo" type="multicamera"><update_rate>20</update_rate>{cams}'
+        f'<plugin name="stereo_controller" filename="{plugin}">'
+        f"<frame_name>stereo_optical_frame</frame_name><frameName>stereo_optical_frame</frameName>"
+        f"{params}</plugin></sensor>"
+    )
+    imu = (
+        '<sensor name="imu" type="imu"><update_rate>200</update_rate>'
+        '<plugin name="imu_plugin" filename="libgazebo_ros_imu_sensor.so">'
+        "<ros><remapping>~/out:=imu</remapping></ros></plugin></sensor>"
+    )
+    return f"""<?xml version="1.0"?>
+<robot name="multi">
+  {BASE_LINK}
+  <link name="stereo_link">{INERTIA}</link>
+  <joint name="stereo_joint" type="fixed"><parent link="base_link"/><child link="stereo_link"/>
+    <origin xyz="0.3 0 0.2" rpy="0 0 0"/></joint>
+  <link name="stereo_optical_frame"/>
+  <joint name="stereo_optical_joint" type="fixed"><parent link="stereo_link"/>
+    <child link="stereo_optical_frame"/><origin xyz="0 0 0" rpy="{OPTICAL_RPY}"/></joint>
+  <link name="imu_link">{INERTIA}</link>
+  <joint name="imu_joint" type="fixed"><parent link="base_link"/><child link="imu_link"/>
+    <origin xyz="0 0 0.05" rpy="0 0 0"/></joint>
+  <gazebo reference="stereo_link">{sensor}</gazebo>
+  <gazebo reference="imu_link">{imu if with_imu else ""}</gazebo>
+</robot>
+"""
+
+
+def two_cameras_robot(
+    right_params: str = "", *, names: tuple[str, str] = ("cam_a", "cam_b")
+) -> str:
+    """Two Classic camera sensors on one link, the second ``BASELINE`` to the right."""
+
+    def sensor(name: str, y: float, params: str) -> str:
+        return (
+            f'<sensor name="{name}" type="camera"><update_rate>30</update_rate>'
+            f"<pose>0 {y} 0 0 0 0</pose>{_camera(name)}"
+            f'<plugin name="{name}_controller" filename="libgazebo_ros_camera.so">{params}</plugin>'
+            "</sensor>"
+        )
+
+    a, b = names
+    return f"""<?xml version="1.0"?>
+<robot name="pair">
+  {BASE_LINK}
+  <link name="rig_link">{INERTIA}</link>
+  <joint name="rig_joint" type="fixed"><parent link="base_link"/><child link="rig_link"/>
+    <origin xyz="0.2 0 0.3" rpy="0 0 0"/></joint>
+  <gazebo reference="rig_link">{sensor(a, BASELINE / 2, "")}{sensor(b, -BASELINE / 2, right_params)}</gazebo>
+</robot>
+"""
+
+
+@pytest.fixture
+def write(tmp_path: Path) -> Any:
+    counter = iter(range(10**6))
+
+    def put(text: str, suffix: str = ".urdf.xacro") -> Path:
+        path = tmp_path / f"robot{next(counter)}{suffix}"
+        path.write_text(text)
+        return path
+
+    return put
+
+
+# --------------------------------------------------------------------------- readers
+
+
+def run(*args: object) -> Any:
+    result = CliRunner().invoke(app, [str(a) for a in args])
+    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
+    return result
+
+
+def ok(*args: object) -> Any:
+    result = run(*args)
+    assert result.exit_code == 0, (result.stdout, result.stderr)
+    return result
+
+
+def _matrix(loader: Any, node: Any) -> dict[str, Any]:
+    mapping: dict[str, Any] = loader.construct_mapping(node, deep=True)
+    mapping["__opencv_matrix__"] = True
+    return mapping
+
+
+OpenCVLoader: Any = type("OpenCVLoader", (yaml.SafeLoader,), {})
+OpenCVLoader.add_constructor("tag:yaml.org,2002:opencv-matrix", _matrix)
+
+
+def load_opencv(text: str) -> dict[str, Any]:
+    """cv::FileStorage's YAML: ``%YAML:1.0`` first (a directive PyYAML refuses), then YAML
+    with ``!!opencv-matrix`` nodes; with OpenCV installed, cross-checked with its reader."""
+    first, rest = text.split("\n", 1)
+    assert first == "%YAML:1.0"
+    data = yaml.load(rest, Loader=OpenCVLoader)
+    assert isinstance(data, dict)
+    try:
+        import cv2  # type: ignore[import-not-found]
+    except ImportError:
+        return data
+    storage = cv2.FileStorage(text, cv2.FILE_STORAGE_READ | cv2.FILE_STORAGE_MEMORY)
+    for key, value in data.items():
+        node = storage.getNode(key)
+        if isinstance(value, dict):
+            assert np.allclose(node.mat(), matrix(value), atol=1e-6), key
+        elif isinstance(value, str):
+            assert node.isString() and node.string() == value, key
+        elif isinstance(value, float):
+            assert node.isReal() and node.real() == pytest.approx(value), key
+        else:
+            assert node.isInt() and int(node.real()) == value, key
+    return data
+
+
+def matrix(node: dict[str, Any]) -> np.ndarray[Any, Any]:
+    assert node["__opencv_matrix__"]
+    return np.array(node["data"], dtype=np.float64).reshape(node["rows"], node["cols"])
+
+
+def assert_rigid(T: np.ndarray[Any, Any]) -> None:
+    assert T.shape == (4, 4)
+    assert np.allclose(T[:3, :3] @ T[:3, :3].T, np.eye(3), atol=1e-12)
+    assert np.linalg.det(T[:3, :3]) == pytest.approx(1.0)
+    assert T[3].tolist() == [0.0, 0.0, 0.0, 1.0]
+
+
+def literal(text: str, key: str) -> str:
+    (match,) = re.findall(rf"^{re.escape(key)}:\s*(.*)$", text, re.MULTILINE)
+    return str(match)
+
+
+def kalibr_pair(data: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    assert set(data) == {"cam0", "cam1"}  # every top-level key is a camera to Kalibr
+    return data["cam0"], data["cam1"]
+
+
+def T_world(xyz: tuple[float, float, float], optical: bool) -> np.ndarray[Any, Any]:
+    T = np.eye(4)
+    T[:3, 3] = xyz
+    if optical:
+        T[:3, :3] = [[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
+    return T
+
+
+LEFT_EYE = T_world((0.2, BASELINE / 2, 0.3), optical=True)
+RIGHT_EYE = T_world((0.2, -BASELINE / 2, 0.3), optical=True)
+
+
+# --------------------------------------------------------------------------- detection
+
+
+@pytest.mark.parametrize(
+    ("sim", "target", "cx"), [("classic", "classic", 320.5), ("gz", "harmonic", 320.0)]
+)
+def test_macro_pair_is_described(write: Any, sim: str, target: str, cx: float) -> None:
+    info = describe(load(write(macro_robot(sim))), "auto")
+    assert info.target == target
+    (pair,) = info.stereo_pairs
+    assert (pair.name, pair.left.id, pair.right.id) == ("front", "front_left", "front_right")
+    assert pair.left.frame == "front_left_optical_frame"
+    assert pair.right.frame == "front_right_optical_frame"
+    assert pair.baseline == pytest.approx(BASELINE, abs=EYE) and pair.rectified
+    expected = np.eye(4)
+    expected[0, 3] = BASELINE
+    assert np.allclose(pair.T_left_right, expected, atol=EYE)
+    assert np.allclose(pair.T_right_left @ pair.T_left_right, np.eye(4), atol=EYE)
+    # the macro pins the right eye's Tx to -fx * baseline on both simulators
+    assert pair.right.intrinsics is not None and pair.left.intrinsics is not None
+    assert pair.right.intrinsics.baseline == pytest.approx(BASELINE)
+    assert pair.left.intrinsics.cx == cx
+    assert pair.notes == []
+
+
+def test_multicamera_pair_is_described(write: Any) -> None:
+    info = describe(load(write(multicamera_robot(), ".urdf")), "auto")
+    (pair,) = info.stereo_pairs
+    assert (pair.name, pair.left.id, pair.right.id, pair.how) == (
+        "stereo",
+        "stereo/left",
+        "stereo/right",
+        "multicamera",
+    )
+    assert pair.rectified and pair.baseline == pytest.approx(BASELINE)
+    said = " ".join(pair.notes)
+    # gazebo_ros_camera (ROS 2) reads <hack_baseline> for every camera of a multicamera
+    assert "stereo/left's camera_info carries P[0][3]" in said
+    assert "both eyes are stamped 'stereo_optical_frame'" in said
+
+
+def test_ros1_multicamera_pair(write: Any) -> None:
+    text = multicamera_robot(
+        plugin="libgazebo_ros_multicamera.so",
+        params=f"<hackBaseline>{BASELINE}</hackBaseline><cameraName>stereo</cameraName>",
+    )
+    info = describe(load(write(text, ".urdf")), "ros1")
+    (pair,) = info.stereo_pairs
+    assert (pair.left.id, pair.right.id) == ("stereo/left", "stereo/right")
+    # ROS 1 forces the left eye's baseline to 0 (gazebo_ros_multicamera.cpp:84-88)
+    assert not any("left's camera_info carries" in n for n in pair.notes)
+
+
+def test_multicamera_eyes_ordered_by_where_they_sit(write: Any) -> None:
+    # "right" placed to the left of "left": the pair follows the geometry, with a note
+    info = describe(
+        load(write(multicamera_robot(right_pose=f"0 {BASELINE} 0 0 0 0"), ".urdf")), "auto"
+    )
+    (pair,) = info.stereo_pairs
+    assert (pair.left.id, pair.right.id) == ("stereo/right", "stereo/left")
+    assert any("whatever their names say" in n for n in pair.notes)
+
+
+def test_pair_from_the_right_eyes_projection(write: Any) -> None:
+    text = two_cameras_robot(f"<hack_baseline>{BASELINE}</hack_baseline>")
+    (pair,) = describe(load(write(text, ".urdf")), "auto").stereo_pairs
+    assert (pair.name, pair.how) == ("cam_a+cam_b", "projection Tx")
+    assert pair.baseline == pytest.approx(BASELINE)
+
+
+def test_no_pair_without_names_or_baseline(write: Any) -> None:
+    assert describe(load(write(two_cameras_robot(), ".urdf")), "auto").stereo_pairs == []
+
+
+def test_baseline_that_disagrees_with_the_kinematics_is_noted(write: Any) -> None:
+    text = two_cameras_robot("<hack_baseline>0.07</hack_baseline>", names=("s_left", "s_right"))
+    (pair,) = describe(load(write(text, ".urdf")), "auto").stereo_pairs
+    assert pair.name == "s" and pair.baseline == pytest.approx(BASELINE)
+    assert any("baseline is 0.07 m" in n and "0.12 m apart" in n for n in pair.notes)
+
+
+def test_named_pair_in_the_wrong_order_is_not_a_pair(write: Any) -> None:
+    text = two_cameras_robot(names=("s_right", "s_left"))  # s_left sits to the right
+    info = describe(load(write(text, ".urdf")), "auto")
+    assert info.stereo_pairs == []
+    (right,) = [s for s in info.sensors if s.name == "s_right"]
+    assert any("not exported as a stereo pair" in n for n in right.notes)
