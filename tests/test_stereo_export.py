@@ -34,6 +34,14 @@ import yaml
 from typer.testing import CliRunner
 
 from sensorkit.cli import app
+from sensorkit.exporters import (
+    OrbImuSettings,
+    kalibr_stereo_camchain_yaml,
+    orbslam3_stereo_yaml,
+    stereo_camera_infos,
+)
+from sensorkit.exporters.opencv import opencv_matrix_lines
+from sensorkit.intrinsics import Intrinsics, InvalidValue
 from sensorkit.sensorinfo import describe, load
 
 try:
@@ -338,3 +346,114 @@ def test_named_pair_in_the_wrong_order_is_not_a_pair(write: Any) -> None:
     assert info.stereo_pairs == []
     (right,) = [s for s in info.sensors if s.name == "s_right"]
     assert any("not exported as a stereo pair" in n for n in right.notes)
+
+
+# --------------------------------------------------------------------------- writers
+
+
+def _eye(**kw: Any) -> Intrinsics:
+    base: dict[str, Any] = {
+        "width": WIDTH,
+        "height": HEIGHT,
+        "fx": FX,
+        "fy": FX,
+        "cx": 320.0,
+        "cy": 240.0,
+    }
+    return Intrinsics(**{**base, **kw})
+
+
+def _T(x: float = BASELINE, yaw: float = 0.0) -> np.ndarray[Any, Any]:
+    T = np.eye(4)
+    c, s = math.cos(yaw), math.sin(yaw)
+    T[:3, :3] = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]  # about the optical y (down) axis
+    T[0, 3] = x
+    return T
+
+
+def test_kalibr_stereo_writer() -> None:
+    T_c1_c0 = np.linalg.inv(_T())
+    text = kalibr_stereo_camchain_yaml(
+        _eye(), _eye(), rostopics=("/l/image_raw", "/r/image_raw"), T_cn_cnm1=T_c1_c0
+    )
+    cam0, cam1 = kalibr_pair(yaml.safe_load(text))
+    assert "T_cam_imu" not in cam0 and "T_cam_imu" not in cam1
+    assert np.array(cam1["T_cn_cnm1"]).tolist() == T_c1_c0.tolist()
+    with pytest.raises(InvalidValue, match="T_cn_cnm1 rotation"):
+        kalibr_stereo_camchain_yaml(
+            _eye(), _eye(), rostopics=("/l", "/r"), T_cn_cnm1=np.diag([1.0, 1.0, -1.0, 1.0])
+        )
+    with pytest.raises(InvalidValue, match="k3"):
+        kalibr_stereo_camchain_yaml(
+            _eye(),
+            _eye(distortion=(0.0, 0.0, 0.0, 0.0, 0.1)),
+            rostopics=("/l", "/r"),
+            T_cn_cnm1=T_c1_c0,
+        )
+
+
+def test_orbslam3_stereo_writer_v1_takes_any_rigid_pair() -> None:
+    T = _T(yaw=0.05)
+    text = orbslam3_stereo_yaml(_eye(), _eye(cx=330.0), T_c1_c2=T, fps=20, version="1.0")
+    data = load_opencv(text)
+    assert np.allclose(matrix(data["Stereo.T_c1_c2"]), T)
+    assert (data["Camera1.cx"], data["Camera2.cx"]) == (320.0, 330.0)
+    with pytest.raises(InvalidValue, match="rigid"):
+        orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=np.diag([2.0, 1.0, 1.0, 1.0]), fps=20)
+    with pytest.raises(InvalidValue, match="one image size"):
+        orbslam3_stereo_yaml(_eye(), _eye(width=320), T_c1_c2=_T(), fps=20)
+    with pytest.raises(InvalidValue, match="apart"):
+        orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=np.eye(4), fps=20)
+
+
+@pytest.mark.parametrize(
+    ("right", "T", "match"),
+    [
+        ({"cx": 330.0}, _T(), "one camera matrix"),
+        ({"distortion": (0.1, 0.0, 0.0, 0.0, 0.0)}, _T(), "no distortion"),
+        ({}, _T(yaw=0.05), "rectified pair"),
+    ],
+)
+def test_orbslam3_stereo_writer_old_needs_a_rectified_pair(
+    right: dict[str, Any], T: np.ndarray[Any, Any], match: str
+) -> None:
+    with pytest.raises(InvalidValue, match=match):
+        orbslam3_stereo_yaml(_eye(), _eye(**right), T_c1_c2=T, fps=20, version="old")
+
+
+def test_orbslam3_stereo_inertial_writer_kinds() -> None:
+    imu = OrbImuSettings(
+        T_b_c1=np.eye(4),
+        noise_gyro=1e-4,
+        noise_acc=1e-3,
+        gyro_walk=1e-5,
+        acc_walk=1e-3,
+        frequency=200.0,
+    )
+    v1 = orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=_T(), fps=30, imu=imu)
+    old = orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=_T(), fps=30, version="old", imu=imu)
+    assert literal(v1, "IMU.Frequency") == "200.0" and literal(old, "IMU.Frequency") == "200"
+    assert "IMU.T_b_c1: !!opencv-matrix" in v1 and "Tbc: !!opencv-matrix" in old
+    assert literal(old, "IMU.NoiseGyro") == "0.0001"
+    with pytest.raises(InvalidValue, match=r"IMU\.NoiseAcc"):
+        orbslam3_stereo_yaml(
+            _eye(),
+            _eye(),
+            T_c1_c2=_T(),
+            fps=30,
+            imu=OrbImuSettings(np.eye(4), 1e-4, 0.0, 1e-5, 1e-3, 200.0),
+        )
+
+
+def test_stereo_camera_infos() -> None:
+    left, right = stereo_camera_infos(_eye(baseline_tx=-5.0, p_ty=1.0), _eye(p_fx=400.0), BASELINE)
+    assert (left.P[0, 3], left.P[1, 3]) == (0.0, 0.0)
+    assert right.P[0, 3] == -400.0 * BASELINE and right.baseline == pytest.approx(BASELINE)
+    with pytest.raises(InvalidValue, match="baseline"):
+        stereo_camera_infos(_eye(), _eye(), 0.0)
+
+
+def test_opencv_matrix_dt() -> None:
+    assert "   dt: f" in opencv_matrix_lines("m", 1, 1, [1.0], dt="f")
+    with pytest.raises(InvalidValue, match="dt"):
+        opencv_matrix_lines("m", 1, 1, [1.0], dt="u")
