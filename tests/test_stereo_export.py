@@ -23,6 +23,7 @@ What each consumer reads, and where that is written down:
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
@@ -457,3 +458,317 @@ def test_opencv_matrix_dt() -> None:
     assert "   dt: f" in opencv_matrix_lines("m", 1, 1, [1.0], dt="f")
     with pytest.raises(InvalidValue, match="dt"):
         opencv_matrix_lines("m", 1, 1, [1.0], dt="u")
+
+
+# --------------------------------------------------------------------------- Kalibr
+
+
+@pytest.mark.parametrize(("sim", "cx"), [("classic", 320.5), ("gz", 320.0)])
+def test_kalibr_camchain(write: Any, tmp_path: Path, sim: str, cx: float) -> None:
+    robot = write(macro_robot(sim))
+    result = ok("intrinsics", robot, "--sensor", "front", "--format", "kalibr")
+    cam0, cam1 = kalibr_pair(yaml.safe_load(result.stdout))
+    for cam, eye in ((cam0, "left"), (cam1, "right")):
+        assert cam["camera_model"] == "pinhole" and cam["distortion_model"] == "radtan"
+        assert cam["intrinsics"] == pytest.approx([FX, FX, cx, (HEIGHT + (sim == "classic")) / 2])
+        assert all(type(v) is float for v in cam["intrinsics"])
+        assert cam["distortion_coeffs"] == [0.0, 0.0, 0.0, 0.0]
+        assert cam["resolution"] == [WIDTH, HEIGHT] and all(
+            type(v) is int for v in cam["resolution"]
+        )
+        assert cam["rostopic"] == f"/front/{eye}/image_raw"
+    assert "T_cn_cnm1" not in cam0
+    assert (cam0["cam_overlaps"], cam1["cam_overlaps"]) == ([1], [0])
+    T = np.array(cam1["T_cn_cnm1"])
+    assert_rigid(T)
+    # T_c1_c0 takes left-eye coordinates into the right eye's: the left eye sits the
+    # baseline along the right eye's -x (its "right" axis points away from the left eye)
+    assert np.allclose(T[:3, :3], np.eye(3), atol=EYE)
+    assert T[:3, 3] == pytest.approx([-BASELINE, 0.0, 0.0], abs=EYE)
+    assert float(np.linalg.norm(T[:3, 3])) == pytest.approx(BASELINE, abs=EYE)
+    # T_cam_imu for each camera, consistent with the chain: T_c1_i = T_c1_c0 T_c0_i
+    T0, T1 = np.array(cam0["T_cam_imu"]), np.array(cam1["T_cam_imu"])
+    assert_rigid(T0)
+    assert_rigid(T1)
+    assert np.allclose(T1, T @ T0, atol=EYE)
+    imu = T_world((0.0, 0.0, 0.1), optical=False)
+    assert np.allclose(T0, np.linalg.inv(LEFT_EYE) @ imu, atol=EYE)
+    assert np.allclose(T1, np.linalg.inv(RIGHT_EYE) @ imu, atol=EYE)
+
+
+def test_kalibr_camchain_of_a_multicamera(write: Any) -> None:
+    robot = write(multicamera_robot(), ".urdf")
+    result = ok("intrinsics", robot, "--sensor", "stereo", "--format", "kalibr")
+    cam0, cam1 = kalibr_pair(yaml.safe_load(result.stdout))
+    assert (cam0["rostopic"], cam1["rostopic"]) == (
+        "/stereo/left/image_raw",
+        "/stereo/right/image_raw",
+    )
+    assert np.array(cam1["T_cn_cnm1"])[:3, 3] == pytest.approx([-BASELINE, 0.0, 0.0])
+    # one camera of the multicamera still prints that camera alone
+    one = ok("intrinsics", robot, "--sensor", "stereo/right", "--format", "kalibr")
+    assert set(yaml.safe_load(one.stdout)) == {"cam0"}
+
+
+def test_pair_names_are_listed_for_an_unknown_sensor(write: Any) -> None:
+    result = run("intrinsics", write(macro_robot("classic")), "--sensor", "nope")
+    assert result.exit_code == 2
+    assert "front_left" in result.stderr and "stereo pairs: front" in result.stderr
+
+
+def test_json_lists_the_pair(write: Any) -> None:
+    data = json.loads(ok("intrinsics", write(macro_robot("gz"))).stdout)
+    (pair,) = data["stereo_pairs"]
+    assert (pair["left"], pair["right"], pair["rectified"]) == ("front_left", "front_right", True)
+    assert pair["baseline"] == pytest.approx(BASELINE)
+    assert np.array(pair["T_left_right"])[:3, 3] == pytest.approx([BASELINE, 0.0, 0.0])
+
+
+# --------------------------------------------------------------------------- ORB-SLAM3
+
+
+@pytest.mark.parametrize("sim", ["classic", "gz"])
+def test_orbslam3_v1_stereo(write: Any, sim: str) -> None:
+    robot = write(macro_robot(sim))
+    text = ok("intrinsics", robot, "--sensor", "front", "--format", "orbslam3-v1").stdout
+    data = load_opencv(text)
+    assert data["File.version"] == "1.0" and data["Camera.type"] == "PinHole"
+    info = describe(load(robot), "auto")
+    (pair,) = info.stereo_pairs
+    for key, eye in (("Camera1", pair.left), ("Camera2", pair.right)):
+        intr = eye.intrinsics
+        assert intr is not None
+        got = [data[f"{key}.{k}"] for k in ("fx", "fy", "cx", "cy")]
+        assert got == [intr.fx, intr.fy, intr.cx, intr.cy]
+        assert all(type(v) is float for v in got)
+        assert f"{key}.k1" not in data  # no distortion: nothing to undistort
+    for key in ("Camera.width", "Camera.height", "Camera.fps", "Camera.RGB"):
+        assert type(data[key]) is int, key
+    assert type(data["Stereo.ThDepth"]) is float
+    assert "dt: f" in text.split("Stereo.T_c1_c2:", 1)[1].split("data", 1)[0]
+    T = matrix(data["Stereo.T_c1_c2"])
+    assert_rigid(T)
+    assert T[:3, 3] == pytest.approx([BASELINE, 0.0, 0.0], abs=EYE)
+    # ORB-SLAM3 takes b = |t| and bf = b * Camera1.fx (Settings.cc:347-348)
+    assert float(np.linalg.norm(T[:3, 3])) * data["Camera1.fx"] == pytest.approx(FX * BASELINE)
+    assert "IMU.T_b_c1" not in data  # plain stereo without --imu
+
+
+def test_orbslam3_old_stereo_has_bf(write: Any) -> None:
+    text = ok(
+        "intrinsics", write(macro_robot("classic")), "--sensor", "front", "--format", "orbslam3"
+    ).stdout
+    data = load_opencv(text)
+    assert "File.version" not in data and data["Camera.type"] == "PinHole"
+    assert data["Camera.fx"] == pytest.approx(FX) and data["Camera.cx"] == 320.5
+    assert data["Camera.bf"] == pytest.approx(FX * BASELINE) and "." in literal(text, "Camera.bf")
+    assert type(data["Camera.bf"]) is float and type(data["ThDepth"]) is float
+    for key in ("Camera.k1", "Camera.k2", "Camera.p1", "Camera.p2"):
+        assert data[key] == 0.0 and type(data[key]) is float  # the old reader requires reals
+
+
+def test_orbslam3_stereo_inertial_with_imu(write: Any) -> None:
+    robot = write(macro_robot("gz"))
+    result = ok("intrinsics", robot, "--sensor", "front", "--format", "orbslam3-v1", "--imu", "imu")
+    data = load_opencv(result.stdout)
+    T_b_c1 = matrix(data["IMU.T_b_c1"])
+    assert_rigid(T_b_c1)
+    imu = T_world((0.0, 0.0, 0.1), optical=False)
+    assert np.allclose(T_b_c1, np.linalg.inv(imu) @ LEFT_EYE, atol=EYE)
+    # per-sample stddev -> density: stddev / sqrt(rate) (ORB-SLAM3 multiplies it back,
+    # Tracking.cc:613-614)
+    assert data["IMU.NoiseGyro"] == pytest.approx(GYRO_STDDEV / math.sqrt(IMU_RATE))
+    assert data["IMU.NoiseAcc"] == pytest.approx(ACCEL_STDDEV / math.sqrt(IMU_RATE))
+    assert data["IMU.Frequency"] == IMU_RATE and type(data["IMU.Frequency"]) is float
+    # the simulated bias does not walk: EuRoC's walks, said on stderr
+    assert data["IMU.GyroWalk"] == pytest.approx(1.9393e-05)
+    assert data["IMU.AccWalk"] == pytest.approx(3.0e-03)
+    assert "random walk" in result.stderr and "EuRoC" in result.stderr
+
+
+def test_orbslam3_walks_from_gz_dynamic_bias(write: Any) -> None:
+    noise = (
+        "<noise type='gaussian'><mean>0</mean><stddev>0.001</stddev>"
+        "<dynamic_bias_stddev>3e-5</dynamic_bias_stddev>"
+        "<dynamic_bias_correlation_time>1000</dynamic_bias_correlation_time></noise>"
+    )
+    axes = "".join(f"<{a}>{noise}</{a}>" for a in "xyz")
+    imu = (
+        '<link name="imu2_link">' + INERTIA + "</link>"
+        '<joint name="imu2_joint" type="fixed"><parent link="base_link"/><child link="imu2_link"/>'
+        '<origin xyz="0 0 0" rpy="0 0 0"/></joint>'
+        '<gazebo reference="imu2_link"><sensor name="imu2" type="imu"><update_rate>400</update_rate>'
+        f"<topic>imu2</topic><imu><angular_velocity>{axes}</angular_velocity></imu></sensor></gazebo>"
+    )
+    robot = write(macro_robot("gz", extra=imu))
+    result = ok(
+        "intrinsics", robot, "--sensor", "front", "--format", "orbslam3-v1", "--imu", "imu2"
+    )
+    data = load_opencv(result.stdout)
+    assert data["IMU.GyroWalk"] == pytest.approx(3e-5)  # gz-sensors' dynamic bias density
+    assert data["IMU.NoiseGyro"] == pytest.approx(0.001 / 20.0)
+    assert data["IMU.NoiseAcc"] == pytest.approx(2.0e-03)  # no accelerometer noise: EuRoC's
+    assert "no accelerometer noise" in result.stderr
+
+
+# --------------------------------------------------------------------------- export
+
+
+@pytest.mark.parametrize("sim", ["classic", "gz"])
+def test_export_writes_the_pair_folder(write: Any, tmp_path: Path, sim: str) -> None:
+    out = tmp_path / "out"
+    result = ok("export", write(macro_robot(sim)), "--out", out)
+    folder = out / "stereo_front_left_front_right"
+    assert {p.name for p in folder.iterdir()} == {
+        "stereo.json",
+        "left.yaml",
+        "right.yaml",
+        "kalibr_camchain.yaml",
+        "orbslam3_stereo.yaml",
+        "orbslam3_stereo_v1.yaml",
+        "orbslam3_stereo_inertial.yaml",
+        "orbslam3_stereo_inertial_v1.yaml",
+    }
+    assert (out / "front_left/camera_info.yaml").is_file()  # each eye keeps its own folder
+    # camera_info pair: Tx = Ty = 0 on the left, Tx = -fx' * B on the right
+    left = yaml.safe_load((folder / "left.yaml").read_text())
+    right = yaml.safe_load((folder / "right.yaml").read_text())
+    P_left = np.array(left["projection_matrix"]["data"]).reshape(3, 4)
+    P_right = np.array(right["projection_matrix"]["data"]).reshape(3, 4)
+    assert P_left[0, 3] == 0.0 and P_left[1, 3] == 0.0
+    assert P_right[0, 3] == pytest.approx(-P_right[0, 0] * BASELINE) and P_right[1, 3] == 0.0
+    assert P_right[0, 0] == pytest.approx(FX)
+    assert left["camera_matrix"] == right["camera_matrix"]
+    assert left["rectification_matrix"]["data"] == [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    # the same P as the simulator publishes for each eye
+    cameras = json.loads(ok("intrinsics", write(macro_robot(sim))).stdout)["cameras"]
+    published = {c["camera"]: c for c in cameras}
+    assert P_right.tolist() == published["front_right"]["P"]
+    assert P_left.tolist() == published["front_left"]["P"]
+    # stereo-inertial old format: Tbc and an int IMU.Frequency
+    old = (folder / "orbslam3_stereo_inertial.yaml").read_text()
+    data = load_opencv(old)
+    assert literal(old, "IMU.Frequency") == "100"
+    assert np.allclose(
+        matrix(data["Tbc"]),
+        matrix(
+            load_opencv((folder / "orbslam3_stereo_inertial_v1.yaml").read_text())["IMU.T_b_c1"]
+        ),
+    )
+    kalibr = yaml.safe_load((folder / "kalibr_camchain.yaml").read_text())
+    assert "T_cam_imu" in kalibr["cam0"] and "T_cam_imu" in kalibr["cam1"]
+    assert "not written" not in result.stderr
+
+
+def test_export_multicamera_pair_without_imu(write: Any, tmp_path: Path) -> None:
+    robot = write(multicamera_robot(with_imu=False), ".urdf")
+    out = tmp_path / "out"
+    result = run("export", robot, "--out", out)
+    folder = out / "stereo_stereo_left_stereo_right"
+    assert (folder / "kalibr_camchain.yaml").is_file()
+    assert (folder / "orbslam3_stereo_v1.yaml").is_file()
+    right = yaml.safe_load((folder / "right.yaml").read_text())
+    assert right["projection_matrix"]["data"][3] == pytest.approx(-FX * BASELINE)
+    left = yaml.safe_load((folder / "left.yaml").read_text())
+    assert left["projection_matrix"]["data"][3] == 0.0  # though Gazebo publishes it there
+    assert "stereo/left's camera_info carries" in result.stderr
+
+
+def test_unrectified_pair_keeps_the_whole_transform(write: Any, tmp_path: Path) -> None:
+    # the right eye toed in by 0.05 rad and 1 cm low
+    text = multicamera_robot(right_pose=f"0 -{BASELINE} -0.01 0 0 0.05")
+    robot = write(text, ".urdf")
+    (pair,) = describe(load(robot), "auto").stereo_pairs
+    assert not pair.rectified
+    out = tmp_path / "out"
+    result = ok("export", robot, "--out", out)
+    folder = out / "stereo_stereo_left_stereo_right"
+    names = {p.name for p in folder.iterdir()}
+    assert "left.yaml" not in names and "orbslam3_stereo.yaml" not in names
+    assert (
+        "rectified pair only" in result.stderr
+        and "orbslam3_stereo.yaml not written" in result.stderr
+    )
+    T_c1_c2 = matrix(
+        load_opencv((folder / "orbslam3_stereo_v1.yaml").read_text())["Stereo.T_c1_c2"]
+    )
+    T_cn_cnm1 = np.array(
+        yaml.safe_load((folder / "kalibr_camchain.yaml").read_text())["cam1"]["T_cn_cnm1"]
+    )
+    assert_rigid(T_c1_c2)
+    assert np.allclose(T_c1_c2 @ T_cn_cnm1, np.eye(4), atol=1e-6)
+    assert np.allclose(T_c1_c2, pair.T_left_right, atol=1e-6)  # dt: f keeps 7 digits; written exact
+    assert abs(T_c1_c2[1, 3] - 0.01) < 1e-9  # 1 cm low: +y (down) in the left optical frame
+
+
+def test_distorted_pair_goes_to_v1_only(write: Any, tmp_path: Path) -> None:
+    distortion = "<distortion><k1>-0.1</k1><k2>0.01</k2><p1>0.001</p1><p2>0.0</p2></distortion>"
+    robot = write(multicamera_robot(left_extra=distortion), ".urdf")
+    out = tmp_path / "out"
+    result = ok("export", robot, "--out", out)
+    folder = out / "stereo_stereo_left_stereo_right"
+    data = load_opencv((folder / "orbslam3_stereo_v1.yaml").read_text())
+    assert data["Camera1.k1"] == -0.1 and "Camera2.k1" not in data
+    assert not (folder / "orbslam3_stereo.yaml").exists()
+    assert "orbslam3_stereo.yaml not written" in result.stderr
+
+
+# --------------------------------------------------------------------------- --imu
+
+
+def test_imu_option_chooses_the_imu(write: Any) -> None:
+    robot = write(macro_robot("classic", imus=("imu_a", "imu_b")))
+    args = ("intrinsics", robot, "--sensor", "front", "--format", "kalibr")
+    first = ok(*args)
+    assert "IMU 'imu_a' is used (the first of 2: imu_a, imu_b)" in first.stderr
+    assert "--imu" in first.stderr
+    chosen = ok(*args, "--imu", "imu_b")
+    assert "is used" not in chosen.stderr
+    T_a = np.array(yaml.safe_load(first.stdout)["cam0"]["T_cam_imu"])
+    T_b = np.array(yaml.safe_load(chosen.stdout)["cam0"]["T_cam_imu"])
+    for T, y in ((T_a, 0.0), (T_b, 0.1)):
+        imu = T_world((0.0, y, 0.1), optical=False)
+        assert np.allclose(T, np.linalg.inv(LEFT_EYE) @ imu, atol=EYE)
+    # one camera too, and the export
+    single = ok(
+        "intrinsics", robot, "--sensor", "front_left", "--format", "kalibr", "--imu", "imu_b"
+    )
+    assert np.allclose(np.array(yaml.safe_load(single.stdout)["cam0"]["T_cam_imu"]), T_b)
+
+
+def test_imu_option_for_export(write: Any, tmp_path: Path) -> None:
+    robot = write(macro_robot("gz", imus=("imu_a", "imu_b")))
+    out = tmp_path / "out"
+    result = ok("export", robot, "--out", out, "--imu", "imu_b")
+    assert "is used" not in result.stderr
+    folder = out / "stereo_front_left_front_right"
+    T_b_c1 = matrix(
+        load_opencv((folder / "orbslam3_stereo_inertial_v1.yaml").read_text())["IMU.T_b_c1"]
+    )
+    imu_b = T_world((0.0, 0.1, 0.1), optical=False)
+    assert np.allclose(T_b_c1, np.linalg.inv(imu_b) @ LEFT_EYE, atol=EYE)
+    T = np.array(yaml.safe_load((out / "front_left/kalibr.yaml").read_text())["cam0"]["T_cam_imu"])
+    assert np.allclose(T, np.linalg.inv(LEFT_EYE) @ imu_b, atol=EYE)
+    again = ok("export", robot, "--out", tmp_path / "out2")
+    assert "IMU 'imu_a' is used (the first of 2: imu_a, imu_b)" in again.stderr
+
+
+@pytest.mark.parametrize("command", ["intrinsics", "export"])
+def test_unknown_imu_is_a_usage_error(write: Any, tmp_path: Path, command: str) -> None:
+    robot = write(macro_robot("classic", imus=("imu_a", "imu_b")))
+    extra = (
+        ("--out", tmp_path / "out")
+        if command == "export"
+        else ("--format", "kalibr", "--sensor", "front")
+    )
+    result = run(command, robot, *extra, "--imu", "nope")
+    assert result.exit_code == 2 and result.stdout == ""
+    message = result.stderr.strip()
+    assert "\n" not in message and message.startswith("sensorkit: ")
+    assert "'nope'" in message and "imu_a, imu_b" in message
+    assert not (tmp_path / "out").exists()
+
+
+def test_imu_option_on_a_robot_without_imu(write: Any) -> None:
+    result = run("intrinsics", write(two_cameras_robot(), ".urdf"), "--imu", "imu")
+    assert result.exit_code == 2 and "the robot has no IMU" in result.stderr
