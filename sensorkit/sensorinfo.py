@@ -15,7 +15,8 @@ the render preview compares against), without pybullet or any file written:
   ``sensorkit new`` uses.
 - :func:`body_frame`: the x-forward link at a camera's pose (LaserScans built from a
   depth image are stamped with it, never with the optical frame).
-- :func:`describe`: all of the above for every sensor, as :class:`RobotInfo`.
+- :func:`describe`: all of the above for every sensor, as :class:`RobotInfo`, with its
+  stereo pairs (:mod:`sensorkit.stereo`).
 
 ``sensorkit.exporters.robot`` turns a :class:`RobotInfo` into the ``intrinsics`` and
 ``export`` commands' documents.
@@ -50,6 +51,7 @@ if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
     from sensorkit.model.transforms import Mat
+    from sensorkit.stereo import StereoPair
 
 __all__ = [
     "LIDAR_DEFAULTS",
@@ -546,6 +548,7 @@ class RobotInfo:
     target_reason: str
     convention: Convention
     sensors: list[SensorInfo]
+    stereo_pairs: list[StereoPair] = field(default_factory=list)  # see sensorkit.stereo
 
     @property
     def cameras(self) -> list[CameraView]:
@@ -686,4 +689,8 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
                 except InvalidValue as exc:
                     info.scan_error = str(exc)
         infos.append(info)
-    return RobotInfo(robot, chosen, why, conv, infos)
+    from sensorkit.stereo import stereo_pairs
+
+    described = RobotInfo(robot, chosen, why, conv, infos)
+    described.stereo_pairs = stereo_pairs(described)
+    return described

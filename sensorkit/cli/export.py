@@ -24,6 +24,16 @@ from sensorkit.cli.common import (
     settings,
 )
 
+ImuOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--imu",
+        help="the IMU for Kalibr's T_cam_imu and the stereo-inertial files (default: the "
+        "first; a note names it when there are several)",
+        metavar="NAME",
+    ),
+]
+
 TargetOpt = Annotated[
     str | None,
     typer.Option(
@@ -42,7 +52,8 @@ def intrinsics(
         str | None,
         typer.Option(
             "--sensor",
-            help="only this camera (a sensor name, or SENSOR/CAMERA inside a multicamera)",
+            help="only this camera (a sensor name, or SENSOR/CAMERA inside a multicamera) "
+            "or stereo pair (kalibr and orbslam3 formats print the pair's document)",
             metavar="NAME",
         ),
     ] = None,
@@ -58,10 +69,12 @@ def intrinsics(
         typer.Option(
             "--format",
             "-f",
-            help="json (every camera), camera-info, orbslam3, orbslam3-v1 (monocular), "
-            "kalibr or opencv (one camera each)",
+            help="json (every camera), camera-info, orbslam3, orbslam3-v1 (monocular; "
+            "stereo for a pair, stereo-inertial with --imu), kalibr or opencv (one camera "
+            "or pair each)",
         ),
     ] = "json",
+    imu: ImuOpt = None,
     target: TargetOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
@@ -74,7 +87,7 @@ def intrinsics(
     Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
     """
     from sensorkit.errors import UsageError
-    from sensorkit.exporters.robot import FORMATS, intrinsics_document, select_cameras
+    from sensorkit.exporters.robot import FORMATS, intrinsics_output
     from sensorkit.sensorinfo import describe, load
 
     if fmt not in FORMATS:
@@ -95,8 +108,7 @@ def intrinsics(
     info = describe(robot, st.target, convention=convention)  # type: ignore[arg-type]
     if st.target != "auto":
         info.target_reason = f"chosen with {st.origin('target')}"
-    cameras = select_cameras(info, sensor, fmt)
-    text, notes = intrinsics_document(info, cameras, fmt)
+    text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
     sys.stdout.write(text)
     for note in notes:
         typer.echo(f"sensorkit: note: {note}", err=True)
@@ -111,6 +123,7 @@ def export(
     force: Annotated[
         bool, typer.Option("--force", help="replace --out if it is not empty")
     ] = False,
+    imu: ImuOpt = None,
     target: TargetOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
@@ -121,6 +134,8 @@ def export(
     """Write each sensor's config files into one folder per sensor.
 
     Cameras: camera_info, ORB-SLAM3 (old, v1.0), Kalibr, OpenCV, JSON.
+    Stereo pairs (stereo_LEFT_RIGHT/): camera_info left/right, Kalibr camchain,
+    ORB-SLAM3 stereo and, with an IMU, stereo-inertial.
     Depth cameras: depthimage_to_laserscan, ORB-SLAM3 RGB-D.
     Lidars: LaserScan, slam_toolbox, Nav2 obstacle layer, AMCL.
     Gazebo Sim: bridge.yaml for ros_gz_bridge.
@@ -145,7 +160,7 @@ def export(
     info = describe(robot, st.target)
     if st.target != "auto":
         info.target_reason = f"chosen with {st.origin('target')}"
-    plan = export_files(info)
+    plan = export_files(info, imu=imu)
     inputs = [file, *(Path(f) for f in robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:

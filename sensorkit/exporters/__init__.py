@@ -14,13 +14,13 @@ from sensorkit.exporters.bridge import (
     bridge_yaml,
     sensor_bridge_entries,
 )
-from sensorkit.exporters.camera_info import camera_info_yaml
+from sensorkit.exporters.camera_info import camera_info_yaml, stereo_camera_infos
 from sensorkit.exporters.data import camera_dict, laser_scan_dict, to_json
 from sensorkit.exporters.depth_scan import (
     depthimage_to_laserscan_remappings,
     depthimage_to_laserscan_yaml,
 )
-from sensorkit.exporters.kalibr import kalibr_camchain_yaml
+from sensorkit.exporters.kalibr import kalibr_camchain_yaml, kalibr_stereo_camchain_yaml
 from sensorkit.exporters.lidar import (
     amcl_yaml,
     nav2_obstacle_layer_yaml,
@@ -30,13 +30,16 @@ from sensorkit.exporters.lidar import (
 from sensorkit.exporters.opencv import opencv_yaml
 from sensorkit.exporters.orbslam3 import (
     OrbExtractorSettings,
+    OrbImuSettings,
     ViewerSettings,
+    orbslam3_stereo_yaml,
     orbslam3_yaml,
 )
 
 __all__ = [
     "BridgeEntry",
     "OrbExtractorSettings",
+    "OrbImuSettings",
     "ViewerSettings",
     "amcl_yaml",
     "bridge_types",
@@ -46,12 +49,15 @@ __all__ = [
     "depthimage_to_laserscan_remappings",
     "depthimage_to_laserscan_yaml",
     "kalibr_camchain_yaml",
+    "kalibr_stereo_camchain_yaml",
     "laser_scan_dict",
     "nav2_obstacle_layer_yaml",
     "opencv_yaml",
+    "orbslam3_stereo_yaml",
     "orbslam3_yaml",
     "scan_yaml",
     "sensor_bridge_entries",
     "slam_toolbox_yaml",
+    "stereo_camera_infos",
     "to_json",
 ]

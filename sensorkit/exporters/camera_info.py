@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
-from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import Intrinsics
+from dataclasses import replace
 
-__all__ = ["camera_info_yaml"]
+from sensorkit.exporters import _text as t
+from sensorkit.intrinsics import Intrinsics, InvalidValue
+
+__all__ = ["camera_info_yaml", "stereo_camera_infos"]
 
 
 def _matrix(name: str, rows: int, cols: int, data: list[float]) -> list[str]:
@@ -44,3 +46,27 @@ def camera_info_yaml(intr: Intrinsics, *, camera_name: str = "camera") -> str:
         *_matrix("projection_matrix", 3, 4, t.matrix_rows(intr.P)),
     ]
     return "\n".join(lines) + "\n"
+
+
+def stereo_camera_infos(
+    left: Intrinsics, right: Intrinsics, baseline: float
+) -> tuple[Intrinsics, Intrinsics]:
+    """The camera_info of a rectified horizontal pair: P's Tx = Ty = 0 on the left and
+    Tx = -fx' * ``baseline`` on the right (fx' is P's own fx), everything else as given.
+
+    sensor_msgs/CameraInfo: "The first camera always has Tx = Ty = 0. For the right
+    (second) camera of a horizontal stereo pair, Ty = 0 and Tx = -fx' * B, where B is the
+    baseline between the cameras" (ros2/common_interfaces@rolling:sensor_msgs/msg/CameraInfo.msg:93-98).
+
+    Raises:
+        InvalidValue: the baseline is not a positive finite number.
+    """
+    b = t.finite(baseline, "baseline")
+    if b <= 0.0:
+        msg = f"baseline must be greater than zero, got {baseline!r}"
+        raise InvalidValue(msg)
+    fx_p = float(right.P[0][0])
+    return (
+        replace(left, baseline_tx=0.0, p_ty=0.0),
+        replace(right, baseline_tx=-fx_p * b + 0.0, p_ty=0.0),
+    )

@@ -12,16 +12,22 @@ OPENCV_YAML_HEADER = "%YAML:1.0\n---\n"
 ``puts("%YAML:1.0\\n---\\n")``). Its reader also accepts files without the ``---``."""
 
 
-def opencv_matrix_lines(name: str, rows: int, cols: int, data: list[float]) -> list[str]:
-    """A ``!!opencv-matrix`` node of doubles (``dt: d``) in OpenCV's own layout."""
+def opencv_matrix_lines(
+    name: str, rows: int, cols: int, data: list[float], *, dt: str = "d"
+) -> list[str]:
+    """A ``!!opencv-matrix`` node in OpenCV's own layout: doubles (``dt: d``) unless
+    ``dt="f"`` (floats, for readers that take the matrix with ``at<float>``)."""
     if len(data) != rows * cols:
         msg = f"{name} needs {rows * cols} values, got {len(data)}"
+        raise InvalidValue(msg)
+    if dt not in ("d", "f"):
+        msg = f"dt must be 'd' or 'f', got {dt!r}"
         raise InvalidValue(msg)
     return [
         f"{name}: !!opencv-matrix",
         f"   rows: {rows}",
         f"   cols: {cols}",
-        "   dt: d",
+        f"   dt: {dt}",
         f"   data: {t.real_list(data, name)}",
     ]
 

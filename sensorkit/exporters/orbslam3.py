@@ -32,6 +32,23 @@ and ORB-SLAM3 checks the kind of every value it reads:
   (RGB-D) reals; ``Camera.fps`` read as a number, ``Camera.RGB`` as an int;
   ``ORBextractor.*`` as in v1.0.
 
+* **stereo pairs** (:func:`orbslam3_stereo_yaml`), v1.0: ``Camera.type: "PinHole"`` with
+  ``Camera1.*`` and ``Camera2.*`` and the 4x4 ``Stereo.T_c1_c2`` (``Settings::readCamera2``,
+  ``src/Settings.cc:276-352``: PinHole sets ``bNeedToRectify_``, reads ``Camera2.fx/fy/cx/cy``,
+  optional ``Camera2.k1..k3``, ``Stereo.T_c1_c2`` whose translation's norm is the baseline,
+  and ``Stereo.ThDepth``), as ``Examples/Stereo/EuRoC.yaml:18-60`` writes them; the
+  stereo-inertial file adds ``IMU.T_b_c1`` (4x4, left camera to IMU body) and
+  ``IMU.NoiseGyro``, ``NoiseAcc``, ``GyroWalk``, ``AccWalk``, ``Frequency`` (float; readIMU,
+  ``src/Settings.cc:414-432``; ``Examples/Stereo-Inertial/EuRoC.yaml:63-78``). Old format
+  (``Tracking::ParseCamParamFile``): one ``Camera.*`` set and ``Camera.bf`` (a rectified pair
+  only; ``src/Tracking.cc:1133-1148``), ``ThDepth`` (:1171-1184); stereo-inertial adds
+  ``Tbc`` (4x4) and ``IMU.*`` with ``IMU.Frequency`` an int (``ParseIMUParamFile``,
+  :1301-1419; ``Examples_old/Stereo-Inertial/EuRoC.yaml:34-49``). Every matrix is written
+  ``dt: f``: ORB-SLAM3 reads them element by element as ``float`` (``Converter::toSophus``
+  via ``toMatrix3d``/``toVector3d``, ``src/Converter.cc:171-201``, ``:300``; ``Tbc`` through
+  ``cvTbc.ptr<float>``, ``src/Tracking.cc:1323``), so a ``dt: d`` matrix would be read as
+  garbage.
+
 ``ThDepth`` is in baselines: points closer than ``ThDepth * b`` metres are "close".
 ``DepthMapFactor`` divides the raw depth: 1.0 for Gazebo's 32FC1 metres, 1000.0 for
 16UC1 millimetres, 5000.0 for TUM PNGs.
@@ -42,16 +59,21 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+import numpy as np
+import numpy.typing as npt
+
 from sensorkit.exporters import _text as t
-from sensorkit.exporters.opencv import OPENCV_YAML_HEADER
+from sensorkit.exporters.opencv import OPENCV_YAML_HEADER, opencv_matrix_lines
 from sensorkit.intrinsics import Intrinsics, InvalidValue
 
 __all__ = [
     "DEFAULT_RGBD_BASELINE",
     "OrbExtractorSettings",
+    "OrbImuSettings",
     "OrbSlam3Mode",
     "OrbSlam3Version",
     "ViewerSettings",
+    "orbslam3_stereo_yaml",
     "orbslam3_yaml",
 ]
 
@@ -262,3 +284,191 @@ def orbslam3_yaml(
     lines += _orb_lines(orb or OrbExtractorSettings())
     lines += _viewer_lines(viewer or ViewerSettings())
     return OPENCV_YAML_HEADER + "\n".join(lines) + "\n"
+
+
+@dataclass(frozen=True)
+class OrbImuSettings:
+    """``IMU.*`` of a stereo-inertial file.
+
+    ``T_b_c1`` maps left-camera (optical) coordinates into the IMU body frame ("Transformation
+    from camera 0 to body-frame (imu)", Examples/Stereo-Inertial/EuRoC.yaml:63-64); the
+    noises are continuous-time densities and walks (see :mod:`sensorkit.imu_noise`).
+    """
+
+    T_b_c1: npt.ArrayLike
+    noise_gyro: float
+    noise_acc: float
+    gyro_walk: float
+    acc_walk: float
+    frequency: float
+
+
+RIGID_TOL = 1e-6
+"""How far a transform's rotation block may be from orthonormal."""
+
+
+def _rigid(name: str, T: npt.ArrayLike) -> list[float]:
+    matrix = np.asarray(T, dtype=np.float64)
+    if matrix.shape != (4, 4) or not np.isfinite(matrix).all():
+        msg = f"{name} must be a finite 4x4 matrix, got shape {matrix.shape}"
+        raise InvalidValue(msg)
+    R = matrix[:3, :3]
+    if (
+        not np.allclose(R @ R.T, np.eye(3), atol=RIGID_TOL)
+        or np.linalg.det(R) < 0
+        or not np.array_equal(matrix[3], [0.0, 0.0, 0.0, 1.0])
+    ):
+        msg = f"{name} must be a rigid transform (proper rotation, last row 0 0 0 1)"
+        raise InvalidValue(msg)
+    return t.matrix_rows(matrix.tolist())
+
+
+def _camera_lines(prefix: str, intr: Intrinsics, *, with_distortion: bool) -> list[str]:
+    if intr.skew != 0.0:
+        msg = f"ORB-SLAM3's pinhole model has no skew, got skew={intr.skew!r}"
+        raise InvalidValue(msg)
+    lines = [
+        f"{prefix}.fx: {t.real(intr.fx, 'fx')}",
+        f"{prefix}.fy: {t.real(intr.fy, 'fy')}",
+        f"{prefix}.cx: {t.real(intr.cx, 'cx')}",
+        f"{prefix}.cy: {t.real(intr.cy, 'cy')}",
+    ]
+    if with_distortion:
+        k1, k2, p1, p2, k3 = intr.distortion
+        lines += [
+            f"{prefix}.k1: {t.real(k1, 'k1')}",
+            f"{prefix}.k2: {t.real(k2, 'k2')}",
+            f"{prefix}.p1: {t.real(p1, 'p1')}",
+            f"{prefix}.p2: {t.real(p2, 'p2')}",
+            f"{prefix}.k3: {t.real(k3, 'k3')}",
+        ]
+    return lines
+
+
+def _imu_lines(imu: OrbImuSettings, version: OrbSlam3Version) -> list[str]:
+    values = {
+        "NoiseGyro": imu.noise_gyro,
+        "NoiseAcc": imu.noise_acc,
+        "GyroWalk": imu.gyro_walk,
+        "AccWalk": imu.acc_walk,
+    }
+    for key, value in values.items():
+        if t.finite(value, f"IMU.{key}") <= 0.0:
+            msg = f"IMU.{key} must be greater than zero, got {value!r}"
+            raise InvalidValue(msg)
+    key = "IMU.T_b_c1" if version == "1.0" else "Tbc"
+    lines = opencv_matrix_lines(key, 4, 4, _rigid(key, imu.T_b_c1), dt="f")
+    lines += [f"IMU.{k}: {t.real(v, f'IMU.{k}')}" for k, v in values.items()]
+    if version == "1.0":  # readParameter<float>: a real
+        if t.finite(imu.frequency, "IMU.Frequency") <= 0.0:
+            msg = f"IMU.Frequency must be greater than zero, got {imu.frequency!r}"
+            raise InvalidValue(msg)
+        lines.append(f"IMU.Frequency: {t.real(imu.frequency, 'IMU.Frequency')}")
+    else:  # ParseIMUParamFile: node.isInt()
+        lines.append(f"IMU.Frequency: {t.integer(t.fps_int(imu.frequency, 'IMU.Frequency'))}")
+    return lines
+
+
+def orbslam3_stereo_yaml(
+    left: Intrinsics,
+    right: Intrinsics,
+    *,
+    T_c1_c2: npt.ArrayLike,
+    fps: float,
+    version: OrbSlam3Version = "1.0",
+    rgb: bool = True,
+    th_depth: float = 40.0,
+    imu: OrbImuSettings | None = None,
+    orb: OrbExtractorSettings | None = None,
+    viewer: ViewerSettings | None = None,
+) -> str:
+    """An ORB-SLAM3 settings file for a stereo pair (stereo-inertial with ``imu``).
+
+    ``T_c1_c2`` is the right camera's pose in the left camera's optical frame (it maps
+    right-camera coordinates into left-camera ones; a horizontal pair's translation is
+    ``[+baseline, 0, 0]``, as in Examples/Stereo/EuRoC.yaml:53-60).
+
+    ``version="1.0"``: ``Camera.type "PinHole"``, ``Camera1.*``, ``Camera2.*`` (with
+    ``k1..k3`` when a camera has distortion) and ``Stereo.T_c1_c2``; ORB-SLAM3 rectifies
+    the pair itself, so any pair will do. ``version="old"``: one ``Camera.*`` set and
+    ``Camera.bf`` = baseline * fx, which holds for a rectified pair only: same
+    intrinsics, no distortion, parallel axes, the right camera straight along x.
+
+    Raises:
+        InvalidValue: a value is out of range or of the wrong kind, a camera has skew,
+            the two images differ in size, a transform is not rigid, or (old format) the
+            pair is not rectified.
+    """
+    if version not in ("1.0", "old"):
+        msg = f"version must be '1.0' or 'old', got {version!r}"
+        raise InvalidValue(msg)
+    if (left.width, left.height) != (right.width, right.height):
+        msg = (
+            "ORB-SLAM3 reads one image size for both cameras, got "
+            f"{left.width}x{left.height} and {right.width}x{right.height}"
+        )
+        raise InvalidValue(msg)
+    T = np.asarray(T_c1_c2, dtype=np.float64)
+    T_rows = _rigid("Stereo.T_c1_c2", T)
+    baseline = float(np.linalg.norm(T[:3, 3]))
+    if baseline <= 0.0:
+        msg = "the two cameras of a stereo pair must be apart (T_c1_c2 has no translation)"
+        raise InvalidValue(msg)
+    frame_rate = t.fps_int(fps, "fps")
+    thd = t.finite(th_depth, "th_depth")
+    if thd <= 0.0:
+        msg = f"th_depth must be greater than zero, got {th_depth!r}"
+        raise InvalidValue(msg)
+    mode = "stereo-inertial" if imu is not None else "stereo"
+    lines: list[str] = [f"# ORB-SLAM3 settings ({mode}), written by sensorkit"]
+    if version == "1.0":
+        lines += ['File.version: "1.0"', 'Camera.type: "PinHole"']
+        lines += _camera_lines("Camera1", left, with_distortion=left.has_distortion)
+        lines += _camera_lines("Camera2", right, with_distortion=right.has_distortion)
+    else:
+        _check_rectified(left, right, T)
+        lines.append('Camera.type: "PinHole"')
+        lines += _camera_lines("Camera", left, with_distortion=True)
+    lines += [
+        f"Camera.width: {t.integer(left.width, 'width')}",
+        f"Camera.height: {t.integer(left.height, 'height')}",
+        f"Camera.fps: {t.integer(frame_rate, 'fps')}",
+        f"Camera.RGB: {1 if rgb else 0}",
+    ]
+    if version == "1.0":
+        lines.append(f"Stereo.ThDepth: {t.real(thd, 'th_depth')}")
+        lines += opencv_matrix_lines("Stereo.T_c1_c2", 4, 4, T_rows, dt="f")
+    else:
+        lines += [
+            f"Camera.bf: {t.real(baseline * left.fx, 'bf')}",
+            f"ThDepth: {t.real(thd, 'th_depth')}",
+        ]
+    if imu is not None:
+        lines += _imu_lines(imu, version)
+    lines += _orb_lines(orb or OrbExtractorSettings())
+    lines += _viewer_lines(viewer or ViewerSettings())
+    return OPENCV_YAML_HEADER + "\n".join(lines) + "\n"
+
+
+def _check_rectified(left: Intrinsics, right: Intrinsics, T: npt.NDArray[np.float64]) -> None:
+    if left.has_distortion or right.has_distortion:
+        msg = "the old format holds a rectified pair, which has no distortion"
+        raise InvalidValue(msg)
+    if left.K.tolist() != right.K.tolist():
+        msg = (
+            "the old format holds one camera matrix for both cameras, got "
+            f"{left.K.tolist()} and {right.K.tolist()}"
+        )
+        raise InvalidValue(msg)
+    off = T[:3, 3]
+    if (
+        not off[0] > 0.0
+        or abs(off[1]) > RIGID_TOL
+        or abs(off[2]) > RIGID_TOL
+        or float(np.abs(T[:3, :3] - np.eye(3)).max()) > RIGID_TOL
+    ):
+        msg = (
+            "the old format holds a rectified pair (parallel axes, the right camera along "
+            "the left one's x axis); use the v1.0 file, which carries Stereo.T_c1_c2"
+        )
+        raise InvalidValue(msg)

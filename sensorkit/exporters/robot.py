@@ -13,11 +13,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Literal, get_args
 
 from sensorkit.errors import InputError, UsageError
-from sensorkit.intrinsics import InvalidValue
+from sensorkit.intrinsics import Intrinsics, InvalidValue
 from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
 
 if TYPE_CHECKING:
+    from sensorkit.exporters.orbslam3 import OrbImuSettings
     from sensorkit.model.transforms import Mat
+    from sensorkit.stereo import StereoPair
 
 DEFAULT_FPS = 30
 """Frame rate written for ORB-SLAM3 when a camera's ``<update_rate>`` is 0 or missing."""
@@ -25,6 +27,8 @@ DEFAULT_FPS = 30
 IntrinsicsFormat = Literal["json", "camera-info", "orbslam3", "orbslam3-v1", "kalibr", "opencv"]
 FORMATS: tuple[str, ...] = get_args(IntrinsicsFormat)
 SINGLE_DOCUMENT_FORMATS = frozenset(FORMATS) - {"json"}
+PAIR_FORMATS = frozenset({"kalibr", "orbslam3", "orbslam3-v1"})
+"""Formats that hold a whole stereo pair in one document."""
 
 _BGR_FORMATS = frozenset({"B8G8R8", "BGR_INT8"})
 _COLOUR_FORMATS = frozenset({"R8G8B8", "RGB_INT8", "R16G16B16", "RGB_INT16"}) | _BGR_FORMATS
@@ -54,8 +58,11 @@ def select_cameras(info: RobotInfo, name: str | None, fmt: str) -> list[CameraVi
         raise UsageError(msg)
     if name is not None:
         picked = [c for c in cameras if name in (c.id, c.sensor.name)]
+        for pair in info.stereo_pairs:
+            if not picked and name in pair.aliases:
+                picked = [pair.left, pair.right]
         if not picked:
-            msg = f"--sensor {name}: no camera called {name!r} (cameras: {ids})"
+            msg = f"--sensor {name}: no camera called {name!r} (cameras: {ids}{_pair_list(info)})"
             raise UsageError(msg)
         cameras = picked
     if fmt in SINGLE_DOCUMENT_FORMATS and len(cameras) > 1:
@@ -72,6 +79,60 @@ def select_cameras(info: RobotInfo, name: str | None, fmt: str) -> list[CameraVi
             msg = f"camera {cam.id}: {cam.error}"
             raise InputError(msg)
     return cameras
+
+
+def _pair_list(info: RobotInfo) -> str:
+    if not info.stereo_pairs:
+        return ""
+    return "; stereo pairs: " + ", ".join(p.name for p in info.stereo_pairs)
+
+
+def select_pair(info: RobotInfo, name: str | None, fmt: str) -> StereoPair | None:
+    """The stereo pair ``name`` picks when ``fmt`` holds a pair (Kalibr, ORB-SLAM3): the
+    multicamera's sensor name, the pair's stem (``front`` for ``front_left`` and
+    ``front_right``) or ``LEFT+RIGHT``; else ``None``.
+
+    Raises:
+        InputError: an eye of the pair has intrinsics that cannot exist.
+    """
+    if name is None or fmt not in PAIR_FORMATS:
+        return None
+    for pair in info.stereo_pairs:
+        if name in pair.aliases:
+            for eye in (pair.left, pair.right):
+                if eye.intrinsics is None:
+                    msg = f"camera {eye.id}: {eye.error}"
+                    raise InputError(msg)
+            return pair
+    return None
+
+
+def select_imu(info: RobotInfo, name: str | None) -> tuple[SensorInfo | None, list[str]]:
+    """The IMU ``T_cam_imu`` and the stereo-inertial files use: ``name`` (``--imu``), else
+    the first, with a note naming it when the robot has several.
+
+    Raises:
+        UsageError: ``name`` is no IMU of the robot (the message lists them).
+    """
+    imus = info.imus
+    listing = ", ".join(s.name for s in imus)
+    if name is not None:
+        for imu in imus:
+            if imu.name == name:
+                return imu, []
+        msg = f"--imu {name}: no IMU called {name!r} " + (
+            f"(IMUs: {listing})" if imus else "(the robot has no IMU)"
+        )
+        raise UsageError(msg)
+    if not imus:
+        return None, []
+    notes = []
+    if len(imus) > 1:
+        notes.append(
+            f"IMU {imus[0].name!r} is used (the first of {len(imus)}: {listing}); "
+            "choose another with --imu NAME"
+        )
+    return imus[0], notes
 
 
 def _camera_record(view: CameraView, target: str) -> dict[str, object]:
@@ -112,36 +173,31 @@ def _rgb(view: CameraView, notes: list[str]) -> bool:
     return fmt not in _BGR_FORMATS
 
 
-def _T_cam_imu(view: CameraView, info: RobotInfo, notes: list[str]) -> Mat | None:
+def _T_cam_imu(view: CameraView, info: RobotInfo, imu: SensorInfo | None) -> Mat | None:
     """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
-    import numpy as np
+    from sensorkit.model.transforms import invert
+    from sensorkit.stereo import T_world_optical
 
-    from sensorkit.model.frames import render_pose
-    from sensorkit.model.transforms import R_BODY_OPTICAL, invert
-
-    imus = info.imus
-    if not imus:
+    if imu is None or imu.T_world_render is None:
         return None
-    T_world_render = render_pose(info.robot, view.sensor)
-    T_world_imu = imus[0].T_world_render
-    if T_world_render is None or T_world_imu is None:
+    T_world_cam = T_world_optical(info.robot, view)
+    if T_world_cam is None:
         return None
-    if view.spec.pose is not None and view.spec.pose.xyz is not None:
-        T_world_render = T_world_render @ view.spec.pose.matrix()
-    if len(imus) > 1:
-        notes.append(f"T_cam_imu uses the first IMU, {imus[0].name!r}")
-    T_render_optical = np.eye(4)
-    T_render_optical[:3, :3] = R_BODY_OPTICAL
-    T_world_optical = T_world_render @ T_render_optical
-    out: Mat = invert(T_world_optical) @ T_world_imu
+    out: Mat = invert(T_world_cam) @ imu.T_world_render
     out[3] = (0.0, 0.0, 0.0, 1.0)
     return out
 
 
 def camera_document(
-    view: CameraView, fmt: str, info: RobotInfo, notes: list[str], *, mode: str = "monocular"
+    view: CameraView,
+    fmt: str,
+    info: RobotInfo,
+    notes: list[str],
+    *,
+    mode: str = "monocular",
+    imu: SensorInfo | None = None,
 ) -> str:
-    """One camera in one single-document format.
+    """One camera in one single-document format (Kalibr's ``T_cam_imu`` from ``imu``).
 
     Raises:
         InvalidValue: the format cannot hold this camera (Kalibr: k3 or skew; a missing
@@ -173,29 +229,33 @@ def camera_document(
             msg = "no image topic for Kalibr's rostopic (the camera publishes nothing to ROS)"
             raise InvalidValue(msg)
         return kalibr_camchain_yaml(
-            intr, rostopic=view.image_topic, T_cam_imu=_T_cam_imu(view, info, notes)
+            intr, rostopic=view.image_topic, T_cam_imu=_T_cam_imu(view, info, imu)
         )
     msg = f"format {fmt!r} is not a single-document format"
     raise UsageError(msg)
 
 
 def intrinsics_document(
-    info: RobotInfo, cameras: Sequence[CameraView], fmt: str
+    info: RobotInfo, cameras: Sequence[CameraView], fmt: str, *, imu: str | None = None
 ) -> tuple[str, list[str]]:
     """``sensorkit intrinsics`` output for ``cameras`` in ``fmt``, and notes for stderr.
 
     ``json``: ``{"robot", "file", "target", "target_reason", "convention", "cameras":
-    [...]}``, each camera the exporter's ``camera_dict`` plus its sensor, topics and
-    frame. Every other format holds exactly one camera (see :func:`select_cameras`);
-    ORB-SLAM3 files are monocular.
+    [...], "stereo_pairs": [...]}``, each camera the exporter's ``camera_dict`` plus its
+    sensor, topics and frame, each pair of two listed cameras its baseline and transforms.
+    Every other format holds exactly one camera (see :func:`select_cameras`); ORB-SLAM3
+    files are monocular; Kalibr's ``T_cam_imu`` is from ``imu`` (see :func:`select_imu`).
 
     Raises:
         InvalidValue: the format cannot hold the camera.
+        UsageError: ``imu`` is no IMU of the robot.
     """
     from sensorkit.exporters import to_json
 
+    chosen, imu_notes = select_imu(info, imu)
     notes = [f"{c.id}: {n}" for c in cameras for n in c.notes]
     if fmt == "json":
+        ids = {c.id for c in cameras}
         data: dict[str, object] = {
             "robot": info.robot.name,
             "file": info.robot.document.display,
@@ -203,12 +263,149 @@ def intrinsics_document(
             "target_reason": info.target_reason,
             "convention": info.convention,
             "cameras": [_camera_record(c, info.target) for c in cameras],
+            "stereo_pairs": [
+                _pair_record(p) for p in info.stereo_pairs if p.left.id in ids and p.right.id in ids
+            ],
         }
         return to_json(data), notes
     (view,) = cameras
     extra: list[str] = []
-    text = camera_document(view, fmt, info, extra)
+    text = camera_document(view, fmt, info, extra, imu=chosen)
+    if fmt == "kalibr" and chosen is not None:
+        notes += imu_notes
     return text, notes + [f"{view.id}: {n}" for n in extra]
+
+
+def _pair_record(pair: StereoPair) -> dict[str, object]:
+    def rows(T: Mat) -> list[list[float]]:
+        return [[float(v) for v in row] for row in T]
+
+    return {
+        "name": pair.name,
+        "left": pair.left.id,
+        "right": pair.right.id,
+        "detected_from": pair.how,
+        "baseline": pair.baseline,
+        "rectified": pair.rectified,
+        "left_frame_id": pair.left.frame,
+        "right_frame_id": pair.right.frame,
+        "T_left_right": rows(pair.T_left_right),
+        "T_right_left": rows(pair.T_right_left),
+        "notes": list(pair.notes),
+    }
+
+
+def _imu_settings(
+    pair: StereoPair, info: RobotInfo, imu: SensorInfo, notes: list[str]
+) -> OrbImuSettings:
+    from sensorkit.exporters.orbslam3 import OrbImuSettings
+    from sensorkit.imu_noise import imu_noise
+    from sensorkit.model.transforms import invert
+
+    T_cam_imu = _T_cam_imu(pair.left, info, imu)
+    if T_cam_imu is None:
+        msg = f"IMU {imu.name!r} or camera {pair.left.id} is not on a link of the robot"
+        raise InvalidValue(msg)
+    noise, noise_notes = imu_noise(imu.sensor, info.target)
+    notes.extend(f"IMU {imu.name!r}: {n}" for n in noise_notes)
+    return OrbImuSettings(
+        T_b_c1=invert(T_cam_imu),
+        noise_gyro=noise.gyro_noise_density,
+        noise_acc=noise.accel_noise_density,
+        gyro_walk=noise.gyro_random_walk,
+        acc_walk=noise.accel_random_walk,
+        frequency=noise.rate,
+    )
+
+
+def pair_document(
+    pair: StereoPair,
+    fmt: str,
+    info: RobotInfo,
+    notes: list[str],
+    *,
+    imu: SensorInfo | None = None,
+    inertial: bool = False,
+) -> str:
+    """One stereo pair in a pair format: Kalibr camchain (``cam0`` left, ``cam1`` right,
+    ``T_cam_imu`` of each from ``imu``), ORB-SLAM3 stereo (``orbslam3``: old format,
+    ``orbslam3-v1``: v1.0), stereo-inertial with ``inertial`` (needs ``imu``).
+
+    Raises:
+        InvalidValue: the format cannot hold the pair (see the writers), or an eye
+            publishes no image topic (Kalibr's ``rostopic``).
+    """
+    from sensorkit.exporters.kalibr import kalibr_stereo_camchain_yaml
+    from sensorkit.exporters.orbslam3 import orbslam3_stereo_yaml
+
+    left, right = pair.left.intrinsics, pair.right.intrinsics
+    assert left is not None and right is not None
+    if fmt == "kalibr":
+        topics = (pair.left.image_topic, pair.right.image_topic)
+        if topics[0] is None or topics[1] is None:
+            msg = "no image topic for Kalibr's rostopic (an eye publishes nothing to ROS)"
+            raise InvalidValue(msg)
+        T_cam_imu = None
+        if imu is not None:
+            T_left, T_right = _T_cam_imu(pair.left, info, imu), _T_cam_imu(pair.right, info, imu)
+            T_cam_imu = (T_left, T_right) if T_left is not None and T_right is not None else None
+        return kalibr_stereo_camchain_yaml(
+            left,
+            right,
+            rostopics=(topics[0], topics[1]),
+            T_cn_cnm1=pair.T_right_left,
+            T_cam_imu=T_cam_imu,
+        )
+    if fmt in ("orbslam3", "orbslam3-v1"):
+        imu_settings = None
+        if inertial:
+            if imu is None:
+                msg = "stereo-inertial needs an IMU"
+                raise InvalidValue(msg)
+            imu_settings = _imu_settings(pair, info, imu, notes)
+        if pair.left.fps != pair.right.fps:
+            notes.append(
+                f"the eyes update at {pair.left.fps} and {pair.right.fps} Hz: Camera.fps "
+                "is the left one's"
+            )
+        return orbslam3_stereo_yaml(
+            left,
+            right,
+            T_c1_c2=pair.T_left_right,
+            fps=_fps(pair.left, notes),
+            version="1.0" if fmt == "orbslam3-v1" else "old",
+            rgb=_rgb(pair.left, notes),
+            imu=imu_settings,
+        )
+    msg = f"format {fmt!r} does not hold a stereo pair (use {', '.join(sorted(PAIR_FORMATS))})"
+    raise UsageError(msg)
+
+
+def intrinsics_output(
+    info: RobotInfo, sensor: str | None, fmt: str, *, imu: str | None = None
+) -> tuple[str, list[str]]:
+    """What ``sensorkit intrinsics`` prints, and its notes: a stereo pair's document when
+    ``sensor`` names a pair and ``fmt`` holds one (ORB-SLAM3 stereo-inertial when ``imu``
+    is given), else :func:`intrinsics_document` of :func:`select_cameras`.
+
+    Raises:
+        UsageError: see :func:`select_cameras` and :func:`select_imu`.
+        InputError: a chosen camera's intrinsics cannot exist.
+        InvalidValue: the format cannot hold the camera or pair.
+    """
+    pair = select_pair(info, sensor, fmt)
+    if pair is None:
+        cameras = select_cameras(info, sensor, fmt)
+        return intrinsics_document(info, cameras, fmt, imu=imu)
+    chosen, imu_notes = select_imu(info, imu)
+    inertial = imu is not None and fmt != "kalibr"
+    notes = [f"{pair.name}: {n}" for n in pair.notes]
+    notes += [f"{c.id}: {n}" for c in (pair.left, pair.right) for n in c.notes]
+    extra: list[str] = []
+    text = pair_document(pair, fmt, info, extra, imu=chosen, inertial=inertial)
+    if fmt == "kalibr" and chosen is not None:
+        notes += imu_notes
+    return text, notes + [f"{pair.name}: {n}" for n in dict.fromkeys(extra)]
 
 
 # --------------------------------------------------------------------------- export
@@ -279,7 +476,9 @@ def _sensor_record(s: SensorInfo, target: str) -> dict[str, object]:
     return record
 
 
-def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: str) -> None:
+def _export_camera(
+    plan: ExportFiles, s: SensorInfo, view: CameraView, folder: str, imu: SensorInfo | None
+) -> None:
     from sensorkit.exporters import depthimage_to_laserscan_yaml, to_json
 
     info = plan.info
@@ -291,7 +490,7 @@ def _export_camera(plan: ExportFiles, s: SensorInfo, view: CameraView, folder: s
     notes: list[str] = []
 
     def document(fmt: str, mode: str = "monocular") -> Callable[[], str]:
-        return lambda: camera_document(view, fmt, info, notes, mode=mode)
+        return lambda: camera_document(view, fmt, info, notes, mode=mode, imu=imu)
 
     _attempt(plan, f"{folder}/camera_info.yaml", "camera_info", document("camera-info"))
     _attempt(plan, f"{folder}/opencv.yaml", "OpenCV", document("opencv"))
@@ -400,6 +599,64 @@ def _export_lidar(plan: ExportFiles, s: SensorInfo, folder: str) -> None:
     _attempt(plan, f"{folder}/amcl.yaml", "AMCL", lambda: amcl_yaml(scan, scan_topic=topic))
 
 
+def _export_pair(plan: ExportFiles, pair: StereoPair, folder: str, imu: SensorInfo | None) -> None:
+    """A stereo pair's folder: ``stereo.json``; ``left.yaml``/``right.yaml`` camera_info
+    (a rectified pair); ``kalibr_camchain.yaml``; ORB-SLAM3 ``orbslam3_stereo.yaml`` (old
+    format) and ``orbslam3_stereo_v1.yaml``, with an IMU ``orbslam3_stereo_inertial.yaml``
+    and ``orbslam3_stereo_inertial_v1.yaml``."""
+    from sensorkit.exporters import camera_info_yaml, to_json
+    from sensorkit.exporters.camera_info import stereo_camera_infos
+
+    info = plan.info
+    plan.notes.extend(f"{pair.name}: {n}" for n in pair.notes)
+    plan.files[f"{folder}/stereo.json"] = to_json(_pair_record(pair))
+    left, right = pair.left.intrinsics, pair.right.intrinsics
+    if left is None or right is None:
+        bad = pair.left if left is None else pair.right
+        plan.skipped.append(f"{folder}/: stereo files: camera {bad.id}: {bad.error}")
+        return
+    notes: list[str] = []
+    if pair.rectified:
+        if left.P[:, :3].tolist() != right.P[:, :3].tolist():
+            notes.append(
+                "the eyes' P differ in fx', fy', cx' or cy': left.yaml/right.yaml keep each "
+                "eye's own (stereo_image_proc expects one rectified camera)"
+            )
+        pair_infos = stereo_camera_infos(left, right, pair.baseline)
+
+        def camera_info(intr: Intrinsics, name: str) -> Callable[[], str]:
+            return lambda: camera_info_yaml(intr, camera_name=name)
+
+        for side, eye, intr in zip(
+            ("left", "right"), (pair.left, pair.right), pair_infos, strict=True
+        ):
+            _attempt(plan, f"{folder}/{side}.yaml", "camera_info", camera_info(intr, eye.name))
+    else:
+        plan.notes.append(
+            f"{folder}/left.yaml, right.yaml not written: camera_info's Tx describes a "
+            "rectified pair only"
+        )
+
+    def document(fmt: str, inertial: bool = False) -> Callable[[], str]:
+        return lambda: pair_document(pair, fmt, info, notes, imu=imu, inertial=inertial)
+
+    if pair.left.image_topic is None or pair.right.image_topic is None:
+        plan.skipped.append(
+            f"{folder}/kalibr_camchain.yaml: no image topic for Kalibr's rostopic "
+            "(an eye publishes nothing to ROS)"
+        )
+    else:
+        _attempt(plan, f"{folder}/kalibr_camchain.yaml", "Kalibr", document("kalibr"), limit=True)
+    files = [("orbslam3_stereo", "orbslam3"), ("orbslam3_stereo_v1", "orbslam3-v1")]
+    for stem, fmt in files:
+        _attempt(plan, f"{folder}/{stem}.yaml", "ORB-SLAM3", document(fmt), limit=True)
+    if imu is not None:
+        for stem, fmt in files:
+            name = stem.replace("stereo", "stereo_inertial")
+            _attempt(plan, f"{folder}/{name}.yaml", "ORB-SLAM3", document(fmt, True), limit=True)
+    plan.notes.extend(f"{pair.name}: {n}" for n in dict.fromkeys(notes))
+
+
 def _bridge(plan: ExportFiles) -> None:
     from sensorkit.generate.bridge import bridge_entries, bridge_file_text
 
@@ -417,7 +674,7 @@ def _bridge(plan: ExportFiles) -> None:
         plan.skipped.append(f"bridge.yaml: {exc}")
 
 
-def export_files(info: RobotInfo) -> ExportFiles:
+def export_files(info: RobotInfo, *, imu: str | None = None) -> ExportFiles:
     """Every file ``sensorkit export`` writes, as text (nothing touches the disk).
 
     Per sensor, in a folder named after it: ``sensor.json`` (frames, topics); cameras
@@ -426,12 +683,20 @@ def export_files(info: RobotInfo) -> ExportFiles:
     RGB-D cameras ``depthimage_to_laserscan.yaml`` and, with colour,
     ``orbslam3_rgbd.yaml``/``orbslam3_rgbd_v1.yaml``; each camera of a multicamera in a
     subfolder; 2D lidars ``scan.yaml``, ``slam_toolbox.yaml``, ``nav2_obstacle_layer.yaml``,
-    ``amcl.yaml`` (3D lidars ``scan.yaml``). Gazebo Sim targets add ``bridge.yaml``.
+    ``amcl.yaml`` (3D lidars ``scan.yaml``). Each stereo pair in ``stereo_<left>_<right>``
+    (see :func:`_export_pair`). Gazebo Sim targets add ``bridge.yaml``. ``T_cam_imu`` and
+    the stereo-inertial files use the IMU ``imu`` names (see :func:`select_imu`).
+
+    Raises:
+        UsageError: ``imu`` is no IMU of the robot.
     """
     from sensorkit.exporters import to_json
     from sensorkit.model.targets import is_gz
 
     plan = ExportFiles(info)
+    chosen, imu_notes = select_imu(info, imu)
+    if chosen is not None and (info.stereo_pairs or any(s.has_colour for s in info.sensors)):
+        plan.notes.extend(imu_notes)
     taken: set[str] = set()
     for s in info.sensors:
         folder = _folder(s.name, taken)
@@ -447,9 +712,12 @@ def export_files(info: RobotInfo) -> ExportFiles:
             multi = len(s.cameras) > 1
             for view in s.cameras:
                 sub = f"{folder}/{_folder(view.spec.name or view.id, inner)}" if multi else folder
-                _export_camera(plan, s, view, sub)
+                _export_camera(plan, s, view, sub, chosen)
         elif s.sensor.kind == "lidar":
             _export_lidar(plan, s, folder)
+    for pair in info.stereo_pairs:
+        folder = _folder(f"stereo_{pair.left.id}_{pair.right.id}", taken)
+        _export_pair(plan, pair, folder, chosen)
     if is_gz(info.target):
         _bridge(plan)
     return plan
