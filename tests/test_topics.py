@@ -490,3 +490,367 @@ def test_bridge_on_a_classic_robot_is_ignored_with_a_note(tmp_path: Path) -> Non
     result = run("topics", path, "--bridge", tmp_path / "nothing.yaml")
     assert result.exit_code == 0
     assert "--bridge ignored" in result.stderr
+
+
+# --------------------------------------------------------------------------- frames to disk
+
+ROOT = Path(__file__).resolve().parent.parent
+NODE = ROOT / "templates" / "package" / "save_frames.py"
+
+
+@pytest.fixture(scope="module")
+def node() -> Any:
+    """templates/package/save_frames.py, imported with rclpy and sensor_msgs unimportable:
+    its ROS-free part must not need them."""
+    import importlib.util
+    import sys
+
+    blocked = ("rclpy", "sensor_msgs", "cv_bridge")
+    saved = {name: sys.modules.get(name) for name in blocked}
+    for name in blocked:
+        sys.modules[name] = None  # type: ignore[assignment]  # import raises ImportError
+    try:
+        spec = importlib.util.spec_from_file_location("save_frames_under_test", NODE)
+        assert spec is not None and spec.loader is not None
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        for name, value in saved.items():
+            if value is None:
+                del sys.modules[name]
+            else:
+                sys.modules[name] = value
+    return module
+
+
+def image_msg(
+    pixels: Any,
+    encoding: str,
+    *,
+    big_endian: bool = False,
+    pad: int = 0,
+    sec: int = 0,
+    nanosec: int = 0,
+) -> Any:
+    """A sensor_msgs/Image-shaped object holding ``pixels`` (rows padded by ``pad`` bytes)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    arr = np.asarray(pixels)
+    height, width = arr.shape[:2]
+    order = ">" if big_endian else "<"
+    raw = arr.astype(arr.dtype.newbyteorder(order)).reshape(height, -1).view(np.uint8)
+    rows = np.hstack([raw, np.full((height, pad), 0xAB, dtype=np.uint8)])
+    stamp = SimpleNamespace(sec=sec, nanosec=nanosec)
+    return SimpleNamespace(
+        header=SimpleNamespace(stamp=stamp, frame_id="camera_link_optical"),
+        height=height,
+        width=width,
+        encoding=encoding,
+        is_bigendian=int(big_endian),
+        step=rows.shape[1],
+        data=rows.tobytes(),
+    )
+
+
+def decode_png(data: bytes) -> tuple[int, int, Any]:
+    """``(bit depth, colour type, pixels)`` of a non-interlaced PNG with filter 0 rows."""
+    import struct
+    import zlib
+
+    import numpy as np
+
+    assert data.startswith(b"\x89PNG\r\n\x1a\n")
+    pos, idat, header = 8, b"", b""
+    while pos < len(data):
+        (length,) = struct.unpack(">I", data[pos : pos + 4])
+        kind, body = data[pos + 4 : pos + 8], data[pos + 8 : pos + 8 + length]
+        (crc,) = struct.unpack(">I", data[pos + 8 + length : pos + 12 + length])
+        assert zlib.crc32(kind + body) == crc
+        header = body if kind == b"IHDR" else header
+        idat += body if kind == b"IDAT" else b""
+        pos += 12 + length
+    width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", header)
+    assert interlace == 0
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}[colour]
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, -1)
+    assert (raw[:, 0] == 0).all()  # filter type 0
+    sample = np.dtype(">u2") if depth == 16 else np.dtype(np.uint8)
+    pixels = raw[:, 1:].copy().view(sample).astype(sample.newbyteorder("="))
+    shape = (height, width) if channels == 1 else (height, width, channels)
+    return depth, colour, pixels.reshape(shape)
+
+
+def test_node_imports_without_ros(node: Any) -> None:
+    assert callable(node.main) and callable(node.image_to_array)
+    text = NODE.read_text()
+    assert text.startswith("#!/usr/bin/env python3\n")
+    top_level = text.split("\ndef main(", 1)[0]
+    assert "import rclpy" not in top_level and "cv_bridge" not in top_level
+
+
+@pytest.mark.parametrize("big_endian", [False, True])
+@pytest.mark.parametrize(
+    ("encoding", "dtype", "channels"),
+    [
+        ("rgb8", "u1", 3),
+        ("bgr8", "u1", 3),
+        ("mono8", "u1", 1),
+        ("mono16", "u2", 1),
+        ("16UC1", "u2", 1),
+        ("32FC1", "f4", 1),
+        ("rgba8", "u1", 4),
+        ("rgb16", "u2", 3),
+    ],
+)
+def test_image_to_array_reads_every_encoding(
+    node: Any, encoding: str, dtype: str, channels: int, big_endian: bool
+) -> None:
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    shape = (3, 5) if channels == 1 else (3, 5, channels)
+    if dtype == "f4":
+        pixels = rng.uniform(0.1, 9.0, shape).astype(np.float32)
+    else:
+        pixels = rng.integers(0, np.iinfo(dtype).max, shape, endpoint=True).astype(dtype)
+    for pad in (0, 3):  # a step longer than a row: the padding is dropped
+        msg = image_msg(pixels, encoding, big_endian=big_endian, pad=pad)
+        got = node.image_to_array(msg)
+        assert got.dtype == np.dtype(dtype).newbyteorder("=")
+        assert got.shape == shape
+        np.testing.assert_array_equal(got, pixels)
+
+
+def test_image_to_array_refuses_what_it_cannot_read(node: Any) -> None:
+    import numpy as np
+
+    msg = image_msg(np.zeros((2, 2, 3), np.uint8), "rgb8")
+    msg.encoding = "yuv422"
+    with pytest.raises(ValueError, match="yuv422"):
+        node.image_to_array(msg)
+    msg = image_msg(np.zeros((2, 2, 3), np.uint8), "rgb8")
+    msg.step = 5  # shorter than a row of 2 rgb8 pixels
+    with pytest.raises(ValueError, match="step"):
+        node.image_to_array(msg)
+    msg = image_msg(np.zeros((2, 2, 3), np.uint8), "rgb8")
+    msg.data = msg.data[:-1]
+    with pytest.raises(ValueError, match="bytes of data"):
+        node.image_to_array(msg)
+
+
+def test_colour_frames_are_rgb_pngs(node: Any) -> None:
+    import numpy as np
+
+    rgb = np.array([[[255, 0, 0], [0, 255, 0]], [[0, 0, 255], [10, 20, 30]]], np.uint8)
+    for encoding, pixels in (("rgb8", rgb), ("bgr8", rgb[..., ::-1])):
+        ext, data = node.frame_file(image_msg(pixels, encoding, pad=2))
+        assert ext == "png"
+        depth, colour, got = decode_png(data)
+        assert (depth, colour) == (8, 2)
+        np.testing.assert_array_equal(got, rgb)  # bgr8 stored in RGB order
+    ext, data = node.frame_file(image_msg(rgb[..., 0], "mono8"))
+    assert decode_png(data)[:2] == (8, 0)
+    mono16 = np.array([[0, 1000], [65535, 300]], np.uint16)
+    depth, colour, got = decode_png(
+        node.frame_file(image_msg(mono16, "mono16", big_endian=True))[1]
+    )
+    assert (depth, colour) == (16, 0)
+    np.testing.assert_array_equal(got, mono16)
+
+
+def test_pngs_open_in_pillow(node: Any) -> None:
+    pil = pytest.importorskip("PIL.Image")
+    import io
+
+    import numpy as np
+
+    rgb = np.arange(2 * 3 * 3, dtype=np.uint8).reshape(2, 3, 3) * 10
+    image = pil.open(io.BytesIO(node.frame_file(image_msg(rgb[..., ::-1], "bgr8"))[1]))
+    assert image.mode == "RGB"
+    np.testing.assert_array_equal(np.asarray(image), rgb)
+    depth = np.array([[0.5, 1.25], [np.nan, 3.0]], np.float32)
+    image = pil.open(io.BytesIO(node.frame_file(image_msg(depth, "32FC1"))[1]))
+    assert image.mode.startswith("I")
+    np.testing.assert_array_equal(np.asarray(image), [[500, 1250], [0, 3000]])
+
+
+def test_depth_to_millimetres_rounds_and_blanks_what_has_no_depth(node: Any) -> None:
+    import numpy as np
+
+    metres = np.array(
+        [[1.2346, 0.0004, 0.0006, 65.535], [np.nan, np.inf, -np.inf, 0.0], [-1.0, 65.6, 2.0, 1e-9]],
+        np.float32,
+    )
+    mm = node.depth_to_millimetres(metres, "32FC1")
+    assert mm.dtype == np.uint16
+    np.testing.assert_array_equal(mm, [[1235, 0, 1, 65535], [0, 0, 0, 0], [0, 0, 2000, 0]])
+    raw = np.array([[0, 1234], [65535, 7]], np.uint16)  # 16UC1: millimetres already
+    np.testing.assert_array_equal(node.depth_to_millimetres(raw, "16UC1"), raw)
+    with pytest.raises(ValueError, match="depth encoding"):
+        node.depth_to_millimetres(raw, "mono16")
+
+
+def test_depth_frames_png_in_millimetres_or_npy(node: Any) -> None:
+    import io
+
+    import numpy as np
+
+    metres = np.array([[0.5, np.nan], [np.inf, 2.25]], np.float32)
+    msg = image_msg(metres, "32FC1", big_endian=True, pad=4)
+    ext, data = node.frame_file(msg, "png")
+    depth, colour, got = decode_png(data)
+    assert (ext, depth, colour) == ("png", 16, 0)
+    np.testing.assert_array_equal(got, [[500, 0], [0, 2250]])
+    ext, data = node.frame_file(msg, "npy")
+    assert ext == "npy"
+    np.testing.assert_array_equal(np.load(io.BytesIO(data)), metres)
+    with pytest.raises(ValueError, match="png or npy"):
+        node.frame_file(msg, "tiff")
+
+
+def test_interval_and_names(node: Any) -> None:
+    assert node.is_due(None, 0.0, 5.0)
+    assert not node.is_due(10.0, 14.999, 5.0)
+    assert node.is_due(10.0, 15.0, 5.0)
+    assert node.is_due(10.0, 3.0, 5.0)  # the clock went back: a reset simulation
+    assert node.is_due(10.0, 10.0, 0.0)  # interval 0: every frame
+    assert node.topic_folder("/rgbd/depth/image_raw") == "rgbd__depth__image_raw"
+    assert node.topic_folder("front_camera/image_raw") == "front_camera__image_raw"
+    with pytest.raises(ValueError):
+        node.topic_folder("/")
+    assert node.frame_name(12, 345000000, "png") == "0000000012_345000000.png"
+    names = [node.frame_name(s, n, "png") for s, n in ((9, 999999999), (10, 0), (100, 5))]
+    assert names == sorted(names)
+
+
+def test_frame_saver_writes_one_frame_per_interval(node: Any, tmp_path: Path) -> None:
+    import numpy as np
+
+    warnings: list[str] = []
+    saver = node.FrameSaver(
+        ["/cam/image_raw", "/cam/depth/image_raw"],
+        encodings=["bgr8", "32FC1"],
+        interval=2.0,
+        folder=str(tmp_path / "frames"),
+        warn=warnings.append,
+    )
+    bgr = np.zeros((2, 2, 3), np.uint8)
+    saved = [
+        saver.offer("/cam/image_raw", image_msg(bgr, "bgr8", sec=s, nanosec=n))
+        for s, n in ((1, 0), (2, 500000000), (3, 0), (3, 1))
+    ]
+    assert [p is not None for p in saved] == [True, False, True, False]
+    assert saved[0] == str(tmp_path / "frames" / "cam__image_raw" / "0000000001_000000000.png")
+    assert Path(saved[2]).is_file()
+    depth = np.ones((2, 2), np.float32)
+    path = saver.offer("/cam/depth/image_raw", image_msg(depth, "32FC1", sec=1))
+    assert path is not None and path.endswith("cam__depth__image_raw/0000000001_000000000.png")
+    # an unexpected encoding is saved, with one warning per topic
+    saver.offer("/cam/image_raw", image_msg(bgr, "rgb8", sec=9))
+    saver.offer("/cam/image_raw", image_msg(bgr, "rgb8", sec=20))
+    assert len([w for w in warnings if "expected 'bgr8'" in w]) == 1
+    # an encoding it cannot read is not saved, with one warning
+    bad = image_msg(bgr, "rgb8", sec=40)
+    bad.encoding = "yuv422"
+    assert saver.offer("/cam/image_raw", bad) is None
+    assert any("not saved" in w for w in warnings)
+    files = sorted(p.name for p in (tmp_path / "frames").rglob("*"))
+    assert not any(name.endswith(".tmp") for name in files)
+    for wrong in ({"interval": -1.0}, {"depth_format": "jpg"}, {"encodings": ["rgb8"]}):
+        with pytest.raises(ValueError):
+            node.FrameSaver(["/a", "/b"], **wrong)
+
+
+# --------------------------------------------------------------------------- generated launch
+
+
+def _launch_topics(path: Path) -> list[tuple[str, str]]:
+    import ast
+
+    tree = ast.parse(path.read_text(), str(path))
+    for stmt in tree.body:
+        if isinstance(stmt, ast.Assign) and any(
+            isinstance(t, ast.Name) and t.id == "TOPICS" for t in stmt.targets
+        ):
+            value: list[tuple[str, str]] = ast.literal_eval(stmt.value)
+            return value
+    raise AssertionError(f"{path}: no TOPICS")
+
+
+def _camera_images(xacro: Path, target: str, bridge: Path | None) -> set[tuple[str, str | None]]:
+    from sensorkit.loading.bridge import read_bridge
+    from sensorkit.sensorinfo import describe, load
+    from sensorkit.topics import BridgeConfig, robot_topics
+
+    info = describe(load(xacro), target)
+    config = BridgeConfig([str(bridge)], read_bridge(bridge)) if bridge else None
+    return {
+        (t.name, t.encoding)
+        for t in robot_topics(info, config).ros_topics
+        if t.role in ("image", "depth_image") and t.name
+    }
+
+
+CAMERAS_YAML = """\
+name: {name}
+sim: {sim}
+gz_version: jetty
+sensors:
+  - {{type: camera, name: front_camera, xyz: [0.25, 0, 0.1], options: {{format: B8G8R8}}}}
+  - {{type: depth_camera, name: rgbd, xyz: [0.2, 0, 0.15]}}
+  - {{type: stereo_camera, name: stereo, xyz: [0.2, 0, 0.3]}}
+  - {{type: lidar_2d, name: laser, xyz: [0, 0, 0.3]}}
+"""
+
+
+@pytest.mark.parametrize("sim", ["classic", "gz"])
+def test_generated_save_frames_launch_names_every_camera_topic(tmp_path: Path, sim: str) -> None:
+    spec = tmp_path / "robot.yaml"
+    spec.write_text(CAMERAS_YAML.format(name=f"{sim}_bot", sim=sim))
+    out = tmp_path / "pkg"
+    result = run("new", spec, "-o", out)
+    assert result.exit_code == 0, result.stderr
+    launch = out / "launch" / "save_frames.launch.py"
+    compile(launch.read_text(), str(launch), "exec")
+    topics = _launch_topics(launch)
+    target = "classic" if sim == "classic" else "jetty"
+    bridge = out / "config" / "bridge.yaml" if sim == "gz" else None
+    expected = _camera_images(out / "urdf" / f"{sim}_bot.urdf.xacro", target, bridge)
+    assert set(topics) == expected
+    names = {t for t, _ in topics}
+    assert {"/front_camera/image_raw", "/rgbd/depth/image_raw", "/stereo/left/image_raw"} <= names
+    assert "/stereo/right/image_raw" in names and not any("laser" in t for t in names)
+    encodings = dict(topics)
+    assert encodings["/rgbd/depth/image_raw"] == "32FC1"
+    # B8G8R8: bgr8 on Classic (gazebo_ros_camera.cpp:306-308); gz-sensors renders it as
+    # R8G8B8 (gz-sensors10:src/CameraSensor.cc:223-251) -> rgb8
+    assert encodings["/front_camera/image_raw"] == ("bgr8" if sim == "classic" else "rgb8")
+    node_file = out / "scripts" / "save_frames.py"
+    assert node_file.read_bytes() == NODE.read_bytes()
+    assert node_file.stat().st_mode & 0o111
+    cmake = (out / "CMakeLists.txt").read_text()
+    assert "PROGRAMS scripts/save_frames.py" in cmake and "DESTINATION lib/${PROJECT_NAME}" in cmake
+    deps = (out / "package.xml").read_text()
+    for dep in ("rclpy", "sensor_msgs", "python3-numpy"):
+        assert f"<exec_depend>{dep}</exec_depend>" in deps
+    readme = (out / "README.md").read_text()
+    assert "save_frames.launch.py" in readme and "`/rgbd/depth/image_raw`" in readme
+    assert f"sensorkit topics urdf/{sim}_bot.urdf.xacro" in readme
+
+
+def test_no_save_frames_without_cameras_or_simulator(tmp_path: Path) -> None:
+    cases = {
+        "lidar_only": "name: lidar_only\nsim: gz\nsensors:\n  - {type: lidar_2d, name: laser}\n",
+        "bare": CAMERAS_YAML.format(name="bare", sim="none"),
+    }
+    for name, text in cases.items():
+        spec = tmp_path / f"{name}.yaml"
+        spec.write_text(text)
+        out = tmp_path / name
+        assert run("new", spec, "-o", out).exit_code == 0
+        assert not (out / "launch" / "save_frames.launch.py").exists()
+        assert not (out / "scripts").exists()
+        assert "PROGRAMS" not in (out / "CMakeLists.txt").read_text()
+        assert "rclpy" not in (out / "package.xml").read_text()
