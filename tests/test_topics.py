@@ -677,6 +677,8 @@ def test_pngs_open_in_pillow(node: Any) -> None:
 
 
 def test_depth_to_millimetres_rounds_and_blanks_what_has_no_depth(node: Any) -> None:
+    # 32FC1 depth is metres with non-finite values for no depth; 16UC1 is millimetres with
+    # 0 for an invalid depth (ros-infrastructure/rep@79f7f76:rep-0118.rst:28-32, :43-48).
     import numpy as np
 
     metres = np.array(

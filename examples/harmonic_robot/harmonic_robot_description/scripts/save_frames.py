@@ -18,7 +18,8 @@ Parameters
              so no two topics share a folder)
   format     depth images (32FC1 metres, 16UC1 millimetres): "png" writes a 16-bit PNG in
              millimetres, 0 where there is no depth (NaN, +-inf, <= 0 or beyond 65.535 m), as
-             REP 118 defines 16UC1 depth images; "npy" writes the array as received
+             REP 118 defines 16UC1 depth images (ros-infrastructure/rep@79f7f76:
+             rep-0118.rst:43-48); "npy" writes the array as received
 
 Colour and grey images are written as PNG (8 or 16 bit, RGB order); a Bayer image as its
 raw one-channel mosaic. Every file is written whole or not at all (a temporary file renamed
@@ -103,10 +104,10 @@ def image_to_array(msg: Any) -> np.ndarray:
 def depth_to_millimetres(depth: np.ndarray, encoding: str) -> np.ndarray:
     """A depth image as uint16 millimetres, 0 where there is no depth.
 
-    32FC1 is metres: NaN, +-inf (REP 117: no return, too far, too close), values <= 0 and
-    values beyond 65.535 m (which 16 bits cannot hold) all become 0, the "invalid" of a
-    16UC1 depth image (REP 118); the rest is rounded to the nearest millimetre. 16UC1 is
-    millimetres already and is returned as it is.
+    32FC1 is metres, with non-finite values for no depth (rep-0118.rst:28-32): NaN, +-inf,
+    values <= 0 and values beyond 65.535 m (which 16 bits cannot hold) all become 0, the
+    "invalid depth" of a 16UC1 image in millimetres (rep-0118.rst:43-48); the rest is
+    rounded to the nearest millimetre. 16UC1 is millimetres already and is returned as is.
     """
     if encoding == "16UC1":
         return depth.astype(np.uint16)
