@@ -856,3 +856,25 @@ def test_no_save_frames_without_cameras_or_simulator(tmp_path: Path) -> None:
         assert not (out / "scripts").exists()
         assert "PROGRAMS" not in (out / "CMakeLists.txt").read_text()
         assert "rclpy" not in (out / "package.xml").read_text()
+
+
+def test_settings_file_and_untrusted_apply(tmp_path: Path) -> None:
+    # A sensor with <topic> and a Classic plugin: auto takes Classic, sensorkit.toml says gz.
+    sensor = gz_camera().replace(
+        "</sensor>",
+        '<plugin name="c" filename="libgazebo_ros_camera.so">'
+        "<frame_name>camera_link_optical</frame_name></plugin></sensor>",
+    )
+    path = write(tmp_path, robot(sensor))
+    assert topics_of(path)["target"] == "classic"
+    (tmp_path / "sensorkit.toml").write_text('target = "fortress"\n')
+    result = run("topics", path, "--format", "json", "--untrusted")
+    assert result.exit_code == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert doc["target"] == "fortress" and "sensorkit.toml" in doc["target_reason"]
+    assert {t["gz_type"] for t in doc["topics"]} == {
+        "ignition.msgs.Image",
+        "ignition.msgs.CameraInfo",
+    }
+    assert "target fortress from" in result.stderr
+    assert topics_of(path, "--target", "classic")["target"] == "classic"  # the flag wins
