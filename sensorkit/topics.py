@@ -17,6 +17,7 @@ as not bridged.
 from __future__ import annotations
 
 import json
+import math
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
@@ -225,8 +226,9 @@ def _view(info: SensorInfo, key: str) -> CameraView | None:
 
 
 def _rate(info: SensorInfo) -> float | None:
+    """The sensor's ``<update_rate>`` in Hz; None when missing, 0 or not a finite number."""
     rate = info.sensor.update_rate
-    return rate if rate is not None and rate > 0 else None
+    return rate if rate is not None and 0 < rate < math.inf else None
 
 
 def _ros_type(role: str, plugin: Plugin | None, ros1: bool) -> tuple[str | None, str | None]:

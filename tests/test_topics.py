@@ -878,3 +878,13 @@ def test_settings_file_and_untrusted_apply(tmp_path: Path) -> None:
     }
     assert "target fortress from" in result.stderr
     assert topics_of(path, "--target", "classic")["target"] == "classic"  # the flag wins
+
+
+@pytest.mark.parametrize("rate", ["inf", "0", "-5", "nan"])
+def test_a_rate_that_is_no_rate_is_null(tmp_path: Path, rate: str) -> None:
+    sensor = classic_depth_camera().replace(
+        "<update_rate>15</update_rate>", f"<update_rate>{rate}</update_rate>"
+    )
+    doc = topics_of(write(tmp_path, robot(sensor)))
+    assert len(doc["topics"]) == 5
+    assert {t["rate"] for t in doc["topics"]} == {None}
