@@ -3,10 +3,10 @@
 Found upward from the robot file (else the working folder), nearest first: a
 ``sensorkit.toml`` (keys at top level) or a ``pyproject.toml`` with a
 ``[tool.sensorkit]`` table (a pyproject without one is passed over); or given with
-``--config FILE``. It applies to validate, add-*, render, intrinsics, export and new.
+``--config FILE``. It applies to validate, add-*, render, intrinsics, export, topics and new.
 
 ```toml
-target = "harmonic"             # validate, add-* (gz blocks), render, intrinsics, export, new
+target = "harmonic"             # validate, add-* (gz blocks), render, intrinsics, export, topics, new
 select = ["SK5", "SK6"]         # validate
 ignore = ["SK104"]
 fail-on = "warning"

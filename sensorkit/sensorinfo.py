@@ -455,6 +455,12 @@ def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str
     return _ros2_topics(sensor)
 
 
+def gz_roles(sensor: Sensor, entry: BridgeEntry) -> list[str]:
+    """The roles :func:`sensor_topics` gives one gz topic of ``sensor`` (``image``,
+    ``depth_image``, ``camera_info``, ...; an RGB-D camera_info serves both images)."""
+    return list(_gz_roles(sensor, [entry]))
+
+
 # --------------------------------------------------------------------------- frames
 
 

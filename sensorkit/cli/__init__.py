@@ -44,7 +44,7 @@ def _root(
 def _register() -> None:
     import importlib
 
-    for name in ("validate", "edit", "new", "render", "export"):
+    for name in ("validate", "edit", "new", "render", "export", "topics"):
         try:
             module = importlib.import_module(f"sensorkit.cli.{name}")
         except ModuleNotFoundError as exc:

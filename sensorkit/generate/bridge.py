@@ -69,26 +69,46 @@ def _vertical_samples(sensor: etree._Element) -> int:
     return 1
 
 
+def published_entries(
+    sensor: etree._Element, gz_version: str, topic: str | None = None
+) -> list[BridgeEntry]:
+    """Every gz topic an expanded ``<sensor>`` publishes, as GZ_TO_ROS entries whose ROS
+    name is the gz name: what a bridge could carry, before :func:`sensor_entries` chooses.
+
+    ``topic`` stands in for the sensor's ``<topic>`` (a sensor without one publishes under
+    its scoped name); none and no ``<topic>``, or a type gz-sim does not create: empty.
+    """
+    stype = sensor.get("type") or ""
+    topic = topic or _text(sensor, "topic")
+    if stype not in _SENSOR_TYPES or topic is None:
+        return []
+    info_topic = (
+        _text(sensor, "camera/camera_info_topic") if stype in GZ_READS_CAMERA_INFO_TOPIC else None
+    )
+    out: list[BridgeEntry] = []
+    for entry in sensor_bridge_entries(stype, _rel(topic), gz_version=gz_version):
+        gz_name = _rel(entry.gz_topic_name)
+        if entry.ros_type_name.endswith("/CameraInfo") and info_topic is not None:
+            gz_name = _rel(info_topic)
+        out.append(entry._replace(gz_topic_name=gz_name, ros_topic_name=gz_name))
+    return out
+
+
 def sensor_entries(sensor: etree._Element, gz_version: str) -> list[BridgeEntry]:
     """GZ_TO_ROS entries for one expanded ``<sensor>`` (empty if it has no ``<topic>``)."""
     stype = sensor.get("type") or ""
     topic = _text(sensor, "topic")
-    if stype not in _SENSOR_TYPES or topic is None:
+    if topic is None:
         return []
     topic = _rel(topic)
     out: list[BridgeEntry] = []
     vertical = _vertical_samples(sensor)
-    info_topic = (
-        _text(sensor, "camera/camera_info_topic") if stype in GZ_READS_CAMERA_INFO_TOPIC else None
-    )
-    for entry in sensor_bridge_entries(stype, topic, gz_version=gz_version):
+    for entry in published_entries(sensor, gz_version):
         if stype in GZ_XFORWARD_CLOUD_TYPES and entry.ros_type_name.endswith("/PointCloud2"):
             continue  # x-forward cloud stamped optical: not bridged (see the file's header)
-        gz_name = _rel(entry.gz_topic_name)
-        ros_name = _rel(entry.ros_topic_name)
+        gz_name = entry.gz_topic_name
+        ros_name = gz_name
         kind = entry.ros_type_name
-        if kind.endswith("/CameraInfo") and info_topic is not None:
-            gz_name = ros_name = _rel(info_topic)
         if stype in ("rgbd_camera", "rgbd"):
             if gz_name == f"{topic}/image":
                 ros_name = f"{topic}/image_raw"
@@ -99,7 +119,7 @@ def sensor_entries(sensor: etree._Element, gz_version: str) -> list[BridgeEntry]
                 continue
             if topic.endswith("/scan"):
                 ros_name = f"{topic[: -len('/scan')]}/points"
-        out.append(entry._replace(gz_topic_name=gz_name, ros_topic_name=ros_name))
+        out.append(entry._replace(ros_topic_name=ros_name))
     return out
 
 

@@ -76,6 +76,31 @@ def _expand(spec: RobotSpec, xacro_file: Path) -> etree._Element:
     return etree.fromstring(outcome.xml.encode("utf-8"))
 
 
+def camera_images(spec: RobotSpec, root: Path, urdf: str) -> list[render.CameraImage]:
+    """Every camera image topic the package's robot publishes on its simulator, as
+    ``sensorkit topics`` lists them (on Gazebo Sim, as the written bridge names them).
+
+    Empty for ``sim: none``: no simulator, so no topics sensorkit can name.
+    """
+    if spec.sim not in ("classic", "gz"):
+        return []
+    from sensorkit.loading.bridge import read_bridge
+    from sensorkit.sensorinfo import describe, load
+    from sensorkit.topics import IMAGE_ROLES, BridgeConfig, robot_topics
+
+    robot = load(root / urdf)
+    info = describe(robot, "classic" if spec.sim == "classic" else spec.gz_version)
+    bridge = None
+    if spec.sim == "gz":
+        name = "config/bridge.yaml"
+        bridge = BridgeConfig([name], read_bridge(root / name, name))
+    return [
+        render.CameraImage(t.name, t.encoding or "", t.sensor, t.role == "depth_image")
+        for t in robot_topics(info, bridge).ros_topics
+        if t.role in IMAGE_ROLES and t.name is not None
+    ]
+
+
 def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[BridgeEntry]:
     """Write every file of the package for ``spec`` into the (empty) folder ``root``.
 
@@ -112,9 +137,16 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
     sim = render.sim_launch(spec)
     if sim is not None:
         _write(root, "launch/sim.launch.py", sim)
-    _write(root, "package.xml", render.package_xml(spec))
-    _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install)))
-    _write(root, "README.md", render.readme(spec, yaml_name, entries))
+    images = camera_images(spec, root, urdf)
+    programs: list[str] = []
+    if images:
+        _write(root, "launch/save_frames.launch.py", render.save_frames_launch(spec, images))
+        _write(root, render.SAVE_FRAMES_NODE, render.save_frames_node())
+        (root / render.SAVE_FRAMES_NODE).chmod(0o755)
+        programs.append(render.SAVE_FRAMES_NODE)
+    _write(root, "package.xml", render.package_xml(spec, python_node=bool(programs)))
+    _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install), programs))
+    _write(root, "README.md", render.readme(spec, yaml_name, entries, images))
     return entries
 
 

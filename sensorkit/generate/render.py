@@ -9,8 +9,10 @@ same bytes.
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
 
 from sensorkit.exporters.bridge import BridgeEntry
@@ -18,6 +20,17 @@ from sensorkit.generate.spec import RobotSpec
 from sensorkit.resources import templates_dir
 
 _PLACEHOLDER = re.compile(r"@([a-z_]+)@")
+SAVE_FRAMES_NODE = "scripts/save_frames.py"
+
+
+@dataclass(frozen=True)
+class CameraImage:
+    """A camera image topic the generated save_frames launch file saves."""
+
+    topic: str
+    encoding: str  # "" when sensorkit cannot say
+    sensor: str
+    depth: bool
 
 
 def fill(template_name: str, values: Mapping[str, str]) -> str:
@@ -44,17 +57,21 @@ def _common(spec: RobotSpec) -> dict[str, str]:
     }
 
 
-def exec_depends(spec: RobotSpec) -> list[str]:
+def exec_depends(spec: RobotSpec, *, python_node: bool = False) -> list[str]:
     deps = ["xacro", "robot_state_publisher", "launch", "launch_ros", "ament_index_python"]
     if spec.sim == "gz":
         deps += ["ros_gz_sim", "ros_gz_bridge"]
     elif spec.sim == "classic":
         deps += ["gazebo_ros", "gazebo_plugins"]
+    if python_node:  # scripts/save_frames.py
+        deps += ["rclpy", "sensor_msgs", "python3-numpy"]
     return deps
 
 
-def package_xml(spec: RobotSpec) -> str:
-    deps = "".join(f"  <exec_depend>{d}</exec_depend>\n" for d in exec_depends(spec))
+def package_xml(spec: RobotSpec, *, python_node: bool = False) -> str:
+    deps = "".join(
+        f"  <exec_depend>{d}</exec_depend>\n" for d in exec_depends(spec, python_node=python_node)
+    )
     return fill(
         "package.xml.in",
         {
@@ -69,8 +86,46 @@ def package_xml(spec: RobotSpec) -> str:
     )
 
 
-def cmakelists(spec: RobotSpec, install_dirs: Sequence[str]) -> str:
-    return fill("CMakeLists.txt.in", {**_common(spec), "install_dirs": " ".join(install_dirs)})
+def cmakelists(spec: RobotSpec, install_dirs: Sequence[str], programs: Sequence[str] = ()) -> str:
+    block = ""
+    if programs:
+        block = (
+            "\n# Python nodes, where ros2 run and launch_ros look for executables.\n"
+            f"install(\n  PROGRAMS {' '.join(programs)}\n  DESTINATION lib/${{PROJECT_NAME}}\n)\n"
+        )
+    return fill(
+        "CMakeLists.txt.in",
+        {**_common(spec), "install_dirs": " ".join(install_dirs), "install_programs": block},
+    )
+
+
+def save_frames_launch(spec: RobotSpec, images: Sequence[CameraImage]) -> str:
+    """``launch/save_frames.launch.py``: the save_frames node on every camera image."""
+    rows = [
+        (i.topic, f"{i.encoding or '?'}{' depth' if i.depth else ''}", f"[{i.sensor}]")
+        for i in images
+    ]
+    widths = [max(len(r[k]) for r in rows) for k in range(2)]
+    lines = [f"    {a.ljust(widths[0])}  {b.ljust(widths[1])}  {c}" for a, b, c in rows]
+    target = (
+        "Gazebo Classic" if spec.sim == "classic" else f"Gazebo Sim {spec.gz_version.capitalize()}"
+    )
+    return fill(
+        "save_frames.launch.py.in",
+        {
+            **_common(spec),
+            "target": target,
+            "topic_lines": "\n".join(lines),
+            "topics": "".join(
+                f"    ({json.dumps(i.topic)}, {json.dumps(i.encoding)}),\n" for i in images
+            ),
+        },
+    )
+
+
+def save_frames_node() -> str:
+    """``scripts/save_frames.py``, the same for every robot."""
+    return (templates_dir() / "package" / "save_frames.py").read_text(encoding="utf-8")
 
 
 def description_launch(spec: RobotSpec) -> str:
@@ -163,7 +218,12 @@ def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
     return "\n".join(lines)
 
 
-def readme(spec: RobotSpec, yaml_name: str, entries: Sequence[BridgeEntry]) -> str:
+def readme(
+    spec: RobotSpec,
+    yaml_name: str,
+    entries: Sequence[BridgeEntry],
+    images: Sequence[CameraImage] = (),
+) -> str:
     xacro_rel = f"urdf/{spec.name}.urdf.xacro"
     lines = [
         f"# {spec.package}",
@@ -220,6 +280,38 @@ def readme(spec: RobotSpec, yaml_name: str, entries: Sequence[BridgeEntry]) -> s
             "",
             "Each sensor's gazebo_ros plugin publishes straight to ROS; the topics are listed",
             "in the header of its macro in `urdf/sensors/`.",
+            "",
+        ]
+    if spec.sim in ("gz", "classic"):
+        lines += [
+            "Every topic with its message type, frame_id, encoding and rate:",
+            "",
+            "```bash",
+            f"sensorkit topics {xacro_rel}",
+            "```",
+            "",
+        ]
+    if images:
+        lines += [
+            "## Save camera frames",
+            "",
+            "With the simulation running, write a frame of every camera every 5 seconds of",
+            "message time into `frames/<topic, its slashes as __>/` (colour as PNG; depth as",
+            "16-bit PNG in millimetres, 0 = no depth, or with `format:=npy` as received):",
+            "",
+            "```bash",
+            f"ros2 launch {spec.package} save_frames.launch.py interval:=5.0 folder:=frames",
+            "```",
+            "",
+            "| topic | encoding | sensor |",
+            "|---|---|---|",
+        ]
+        for i in images:
+            kind = f"{i.encoding or '?'}{' (depth)' if i.depth else ''}"
+            lines.append(f"| `{i.topic}` | {kind} | {i.sensor} |")
+        lines += [
+            "",
+            "The node (`scripts/save_frames.py`) needs rclpy, sensor_msgs and numpy.",
             "",
         ]
     return "\n".join(lines)

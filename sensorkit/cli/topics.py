@@ -1,0 +1,124 @@
+"""``sensorkit topics``: every topic a robot's sensors will publish, as ``ros2 topic list -t``.
+
+Thin: parse options, call :mod:`sensorkit.topics`, print. The list goes to stdout, notes
+and the summary to stderr.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from sensorkit.cli.common import (
+    ArgOpt,
+    ConfigOpt,
+    EnvOpt,
+    FileArg,
+    PackagePathOpt,
+    UntrustedOpt,
+    handle_errors,
+    settings,
+)
+
+FORMATS = ("text", "json")
+
+
+@handle_errors
+def topics(
+    file: FileArg,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format",
+            "-f",
+            help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
+            "sensor of each topic) or json",
+        ),
+    ] = "text",
+    target: Annotated[
+        str | None,
+        typer.Option(
+            "--target",
+            help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings "
+            "file's, else auto: detected as validate does)",
+            show_default=False,
+        ),
+    ] = None,
+    bridge: Annotated[
+        list[Path] | None,
+        typer.Option(
+            "--bridge",
+            help="Gazebo Sim: ros_gz_bridge YAML that carries the robot's gz topics to ROS "
+            "(repeatable; default: parameter_bridge YAMLs in the robot package's config/)",
+        ),
+    ] = None,
+    arg: ArgOpt = None,
+    package_path: PackagePathOpt = None,
+    untrusted: UntrustedOpt = False,
+    env: EnvOpt = None,
+    config: ConfigOpt = None,
+) -> None:
+    """List every topic the sensors of FILE will publish: resolved name, message type,
+    frame_id, image encoding and rate; on Gazebo Sim with the gz topic and the ROS name
+    the bridge gives it, or "not bridged".
+
+    Exit status: 0, or 2 when it could not run.
+    """
+    from sensorkit.errors import UsageError
+    from sensorkit.model.targets import is_gz
+    from sensorkit.sensorinfo import describe, load
+    from sensorkit.topics import load_bridge, robot_topics, topics_json, topics_text
+
+    if fmt not in FORMATS:
+        raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+    st = settings(
+        file,
+        config=config,
+        target=target,
+        package_path=package_path,
+        arg=arg,
+        untrusted=untrusted,
+        env=env,
+    )
+    st.say_where()
+    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    info = describe(robot, st.target)
+    if st.target != "auto":
+        info.target_reason = f"chosen with {st.origin('target')}"
+    files = [str(b) for b in bridge or ()]
+    config_read = None
+    if is_gz(info.target):
+        config_read = load_bridge(robot, info.target, files)
+    elif files:
+        typer.echo(
+            f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", err=True
+        )
+    result = robot_topics(info, config_read)
+    sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
+    for note in result.notes:
+        typer.echo(f"sensorkit: note: {note}", err=True)
+    said: set[str] = set()
+    for t in result.topics:
+        for note in t.notes:
+            line = f"sensorkit: note: {t.gz_name or t.name}: {note}"
+            if line not in said:
+                said.add(line)
+                typer.echo(line, err=True)
+    shown = len(result.ros_topics)
+    extra = len(result.topics) - shown
+    typer.echo(
+        f"sensorkit: {shown} ROS topic{'' if shown == 1 else 's'}"
+        + (f" and {extra} gz topic{'' if extra == 1 else 's'} not bridged" if extra else "")
+        + f" from {result.sensors} sensor{'' if result.sensors == 1 else 's'} of "
+        f"{result.robot} (target {result.target}, {result.target_reason})"
+        + (f"; bridge: {', '.join(result.bridge_files)}" if result.bridge_files else ""),
+        err=True,
+    )
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``topics`` to ``app``."""
+    app.command("topics", no_args_is_help=True)(topics)

@@ -1,0 +1,519 @@
+"""What a robot's sensors will publish for one target: the facts behind ``sensorkit topics``.
+
+Every topic with its resolved name (namespace and remappings applied), ROS message type,
+frame_id, image encoding and rate. The names, frames and cameras come from
+:func:`sensorkit.sensorinfo.describe`, the same source ``validate``, ``export`` and the
+bridge generator use; message types and encodings from
+:mod:`sensorkit.knowledge.messages`.
+
+On Gazebo Sim a sensor publishes gz topics, which reach ROS only through ros_gz_bridge:
+each gz topic is listed with the ROS name the bridge configuration gives it (the
+``--bridge`` files, else the parameter_bridge YAMLs in the robot package's ``config/``), or
+as not bridged.
+
+:func:`robot_topics` builds the list; :func:`topics_text` and :func:`topics_json` format it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
+
+from sensorkit.knowledge import messages as msgs
+
+if TYPE_CHECKING:
+    from sensorkit.exporters.bridge import BridgeEntry
+    from sensorkit.loading.bridge import BridgeTopic
+    from sensorkit.model.robot import Robot
+    from sensorkit.model.sensors import Plugin
+    from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo
+
+__all__ = [
+    "BridgeConfig",
+    "RobotTopics",
+    "Topic",
+    "classic_encoding",
+    "gz_encoding",
+    "load_bridge",
+    "robot_topics",
+    "topics_json",
+    "topics_text",
+]
+
+CAMERA_ROLES = frozenset(
+    {"image", "camera_info", "depth_image", "depth_camera_info", "points", "trigger"}
+)
+IMAGE_ROLES = frozenset({"image", "depth_image"})
+
+
+@dataclass(frozen=True)
+class Topic:
+    """One topic a sensor publishes (or, for a camera's trigger, subscribes to)."""
+
+    name: str | None  # the resolved ROS name; None: a gz topic no bridge entry carries to ROS
+    type: str | None  # the ROS message type (None: sensorkit does not know it)
+    role: str  # image, camera_info, depth_image, ... (see sensorinfo.sensor_topics)
+    sensor: str
+    sensor_type: str
+    camera: str | None  # the camera's id (``<sensor>/<camera>`` in a multicamera)
+    frame: str | None  # header.frame_id
+    encoding: str | None  # images only
+    rate: float | None  # the sensor's <update_rate>, Hz
+    direction: str = "publishes"  # "subscribes": the trigger of a triggered camera
+    gz_name: str | None = None  # Gazebo Sim: the gz topic
+    gz_type: str | None = None
+    bridge: str | None = None  # Gazebo Sim: "FILE:LINE" of the bridge entry that carries it
+    notes: tuple[str, ...] = ()
+
+    @property
+    def bridged(self) -> bool | None:
+        """Gazebo Sim: whether a bridge entry carries it to ROS; None elsewhere."""
+        return None if self.gz_name is None else self.name is not None
+
+
+@dataclass
+class BridgeConfig:
+    """The ros_gz_bridge configuration that applies: its files and their entries."""
+
+    files: list[str]
+    topics: list[BridgeTopic]
+
+
+@dataclass
+class RobotTopics:
+    """Every topic of a robot's sensors under one target."""
+
+    robot: str
+    target: str
+    target_reason: str
+    topics: list[Topic]
+    sensors: int
+    bridge_files: list[str] | None = None  # Gazebo Sim: the bridge files read
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def ros_topics(self) -> list[Topic]:
+        """The topics ROS sees (on Gazebo Sim, the bridged ones)."""
+        return [t for t in self.topics if t.name is not None]
+
+
+# --------------------------------------------------------------------------- encodings
+
+
+def classic_encoding(
+    role: str, fmt: str | None, *, ros1: bool = False, plugin: Plugin | None = None
+) -> tuple[str | None, str | None]:
+    """``(encoding, note)`` of a Gazebo Classic camera topic (``image`` or ``depth_image``).
+
+    ``fmt`` is the camera's ``<image><format>`` (None: sdformat's default R8G8B8). ROS 1
+    depth images are 16UC1 when the plugin sets ``<useDepth16UC1Format>``.
+    """
+    if role == "depth_image":
+        if ros1 and plugin is not None and plugin.library in msgs.ROS1_DEPTH_LIBRARIES:
+            flag = (plugin.param(msgs.ROS1_DEPTH_16UC1_PARAM) or "").strip().lower()
+            if flag in ("true", "1"):
+                return "16UC1", None
+        return msgs.CLASSIC_DEPTH_ENCODING, None
+    if role != "image":
+        return None, None
+    written = (fmt or "").strip() or msgs.SDF_DEFAULT_IMAGE_FORMAT
+    encoding = msgs.CLASSIC_IMAGE_ENCODINGS.get(written)
+    if encoding is None:
+        return msgs.CLASSIC_UNSUPPORTED_ENCODING, (
+            f"<format>{written}</format> is not one gazebo_ros_camera knows: it publishes "
+            f"{msgs.CLASSIC_UNSUPPORTED_ENCODING}"
+        )
+    return encoding, None
+
+
+def _sdf_pixel_format(fmt: str) -> str:
+    if fmt in msgs.SDF_PIXEL_FORMAT_NAMES:
+        return fmt
+    return msgs.SDF_OLD_PIXEL_FORMATS.get(fmt, "UNKNOWN_PIXEL_FORMAT")
+
+
+def gz_encoding(
+    role: str, sensor_type: str, fmt: str | None, target: str
+) -> tuple[str | None, str | None]:
+    """``(encoding, note)`` of a Gazebo Sim image as ros_gz_bridge publishes it.
+
+    None with a note when the bridge has no encoding for the gz pixel format (Bayer).
+    """
+    if role == "depth_image":
+        return msgs.ROS_GZ_ENCODINGS[msgs.GZ_DEPTH_PIXEL_FORMAT], None
+    if role != "image":
+        return None, None
+    note = None
+    written = (fmt or "").strip() or msgs.SDF_DEFAULT_IMAGE_FORMAT
+    if sensor_type in ("rgbd_camera", "rgbd"):
+        pixel = msgs.GZ_RGBD_IMAGE_PIXEL_FORMAT
+        if _sdf_pixel_format(written) != pixel:
+            note = (
+                f"an rgbd_camera's colour image is {pixel} whatever <format>{written}</format> says"
+            )
+    else:
+        pixel = _sdf_pixel_format(written)
+        rendered = msgs.GZ_CAMERA_PIXEL_FORMATS.get(target, frozenset())
+        if pixel not in rendered:
+            note = (
+                f"gz-sensors on {target} does not render <format>{written}</format>: "
+                f"the camera publishes {msgs.GZ_CAMERA_FALLBACK_FORMAT}"
+            )
+            pixel = msgs.GZ_CAMERA_FALLBACK_FORMAT
+    encoding = msgs.ROS_GZ_ENCODINGS.get(pixel)
+    if encoding is None:
+        return None, (
+            f"ros_gz_bridge has no ROS encoding for {pixel}: the bridged Image has an empty "
+            "encoding and no data"
+        )
+    return encoding, note
+
+
+# --------------------------------------------------------------------------- bridge
+
+
+def load_bridge(robot: Robot, target: str, files: Sequence[str] = ()) -> BridgeConfig:
+    """The bridge configuration for ``robot``: ``files``, else the package's ``config/``
+    parameter_bridge YAMLs (as ``sensorkit validate`` reads them).
+
+    Raises:
+        UsageError: a file that is not a ros_gz_bridge configuration.
+    """
+    from sensorkit.engine import Options, load_bridges
+
+    found = load_bridges(robot, Options(target=target, bridges=tuple(files)))
+    return BridgeConfig(list(found.files), list(found.topics))
+
+
+def _abs(topic: str) -> str:
+    return "/" + topic.strip().strip("/")
+
+
+def _matches(written: str, gz_name: str, scoped: bool) -> bool:
+    """A bridge entry's gz name ``written`` names the gz topic ``gz_name``.
+
+    A scoped name (a sensor without ``<topic>``) matches by its tail from ``/sensor/``:
+    the world and model names are the launch's. Placeholders a launch file fills in
+    (``<namespace>``, ``$(var x)``) match one name part.
+    """
+    want = _abs(gz_name)
+    have = _abs(written)
+    if scoped:
+        tail = want[want.index("/sensor/") :]
+        return have.endswith(tail)
+    if "<" in have or "$(" in have:
+        parts = re.split(r"<[^>]*>|\$\([^)]*\)", have)
+        return re.fullmatch("[^/]*".join(re.escape(p) for p in parts), want) is not None
+    return have == want
+
+
+# --------------------------------------------------------------------------- topics
+
+
+def _view(info: SensorInfo, key: str) -> CameraView | None:
+    """The camera a role belongs to: ``key`` is the camera name of a multicamera role."""
+    if not info.cameras:
+        return None
+    if key:
+        for view in info.cameras:
+            if view.id == f"{info.name}/{key}":
+                return view
+    return info.cameras[0]
+
+
+def _rate(info: SensorInfo) -> float | None:
+    """The sensor's ``<update_rate>`` in Hz; None when missing, 0 or not a finite number."""
+    rate = info.sensor.update_rate
+    return rate if rate is not None and 0 < rate < math.inf else None
+
+
+def _ros_type(role: str, plugin: Plugin | None, ros1: bool) -> tuple[str | None, str | None]:
+    """``(message type, reason it publishes nothing)`` of a Classic topic."""
+    library = plugin.library if plugin is not None else ""
+    if ros1:
+        if role in CAMERA_ROLES:
+            return msgs.ros1_type(msgs.ROS2_ROLE_TYPES[role]), None
+        return msgs.ROS1_LIBRARY_TYPES.get(library), None
+    if library == "gazebo_ros_ray_sensor" and plugin is not None:
+        output = (plugin.param("output_type") or msgs.RAY_DEFAULT_OUTPUT).strip()
+        if output not in msgs.RAY_OUTPUT_MESSAGES:
+            return None, f"<output_type>{output}</output_type> is invalid: it publishes nothing"
+        return msgs.RAY_OUTPUT_MESSAGES[output], None
+    if role == "out":
+        return msgs.ROS2_OUT_TYPES.get(library), None
+    return msgs.ROS2_ROLE_TYPES.get(role), None
+
+
+def _classic_topics(info: SensorInfo, target: str, notes: list[str]) -> list[Topic]:
+    from sensorkit.model.frames import ros_plugin
+
+    ros1 = target == "ros1"
+    plugin = ros_plugin(info.sensor, target)
+    out: list[Topic] = []
+    for key, name in info.topics.items():
+        cam, _, role = key.rpartition("/")
+        mtype, nothing = _ros_type(role, plugin, ros1)
+        if nothing is not None:
+            notes.append(f"sensor {info.name!r}: {nothing}")
+            continue
+        view = _view(info, cam) if role in CAMERA_ROLES else None
+        fmt = view.spec.format if view is not None else None
+        encoding, why = (
+            classic_encoding(role, fmt, ros1=ros1, plugin=plugin)
+            if role in IMAGE_ROLES
+            else (None, None)
+        )
+        out.append(
+            Topic(
+                name=name,
+                type=mtype,
+                role=role,
+                sensor=info.name,
+                sensor_type=info.sensor.type,
+                camera=view.id if view is not None else None,
+                frame=view.frame if view is not None else info.frame,
+                encoding=encoding,
+                rate=_rate(info),
+                direction="subscribes" if role == "trigger" else "publishes",
+                notes=(why,) if why else (),
+            )
+        )
+    return out
+
+
+def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str | None:
+    """What a gz sensor without ``<topic>`` publishes on: its scoped name plus the suffix
+    gz-sim gives its kind (see ``sensorkit.rules.plugins.GZ_DEFAULT_SUFFIX``)."""
+    from sensorkit.rules.plugins import GZ_DEFAULT_SUFFIX
+
+    kind = info.sensor.kind
+    if kind not in GZ_DEFAULT_SUFFIX:
+        return None
+    # rgbd_camera's suffix is "": it publishes BASE/image, BASE/depth_image, ...
+    suffix = "" if kind == "rgbd" else GZ_DEFAULT_SUFFIX[kind]
+    link = survivor or info.sensor.reference or "LINK"
+    return f"/world/WORLD/model/MODEL/link/{link}/sensor/{info.name}{suffix}"
+
+
+def _gz_topics(
+    robot: Robot,
+    info: SensorInfo,
+    target: str,
+    bridge: BridgeConfig,
+    survivor: str | None,
+    notes: list[str],
+) -> list[Topic]:
+    from sensorkit.generate.bridge import published_entries
+    from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+    from sensorkit.sensorinfo import gz_roles
+
+    sensor = info.sensor
+    if sensor.type in GZ_UNSUPPORTED_SENSOR_TYPES:
+        notes.append(
+            f"sensor {info.name!r}: gz-sim never creates a {sensor.type!r} sensor, so it "
+            f"publishes nothing (use {GZ_UNSUPPORTED_SENSOR_TYPES[sensor.type]})"
+        )
+        return []
+    scoped = None if sensor.topic else _scoped_topic(robot, info, survivor)
+    entries: list[BridgeEntry] = published_entries(sensor.element, target, topic=scoped)
+    if not entries:
+        why = (
+            "sensorkit does not know the gz topics of this sensor type"
+            if sensor.topic or scoped is None
+            else "no ros_gz_bridge message type for this sensor type"
+        )
+        notes.append(f"sensor {info.name!r} ({sensor.type}): {why}")
+        return []
+    out: list[Topic] = []
+    for entry in entries:
+        roles = gz_roles(sensor, entry) or ["out"]
+        role = roles[0]
+        view = _view(info, "") if role in CAMERA_ROLES else None
+        fmt = view.spec.format if view is not None else None
+        encoding, encoding_note = gz_encoding(role, sensor.type, fmt, target)
+        base = Topic(
+            name=None,
+            type=entry.ros_type_name,
+            role=role,
+            sensor=info.name,
+            sensor_type=sensor.type,
+            camera=view.id if view is not None else None,
+            frame=view.frame if view is not None else info.frame,
+            encoding=encoding,
+            rate=_rate(info),
+            gz_name=_abs(entry.gz_topic_name),
+            gz_type=entry.gz_type_name,
+            notes=(encoding_note,) if encoding_note else (),
+        )
+        carried = [
+            t
+            for t in bridge.topics
+            if t.to_ros and _matches(t.gz, entry.gz_topic_name, scoped is not None)
+        ]
+        if not carried:
+            out.append(base)
+        for t in carried:
+            extra: tuple[str, ...] = ()
+            said = (t.ros_type or "").replace("/msg/", "/")
+            if said and said != entry.ros_type_name.replace("/msg/", "/"):
+                extra = (f"the bridge entry says ros_type_name {t.ros_type}",)
+            out.append(
+                replace(
+                    base,
+                    name=_abs(t.ros or t.gz),
+                    bridge=f"{t.file}:{t.line}" if t.line else t.file,
+                    notes=base.notes + extra,
+                )
+            )
+    return out
+
+
+def _sort_key(t: Topic) -> tuple[bool, str, str, str]:
+    return (t.name is None, t.name or t.gz_name or "", t.sensor, t.role)
+
+
+def robot_topics(info: RobotInfo, bridge: BridgeConfig | None = None) -> RobotTopics:
+    """Every topic of ``info``'s sensors, sorted by name (gz topics no bridge carries last).
+
+    ``bridge`` matters on Gazebo Sim only; None there means no configuration is known, so
+    nothing is bridged.
+    """
+    from sensorkit.model.targets import is_gz
+
+    target = info.target
+    notes: list[str] = []
+    topics: list[Topic] = []
+    gz = is_gz(target)
+    config = bridge if bridge is not None else BridgeConfig([], [])
+    survivors: dict[str, str] = {}
+    if gz and any(not s.sensor.topic for s in info.sensors):
+        from sensorkit.model.sdf import convert
+
+        conversion = convert(info.robot)
+        survivors = {
+            s.name: conversion.survivor(s.link) for s in info.sensors if s.link is not None
+        }
+    for s in info.sensors:
+        if gz:
+            topics += _gz_topics(info.robot, s, target, config, survivors.get(s.name), notes)
+        else:
+            if not s.topics:
+                notes += [f"sensor {s.name!r}: {n}" for n in s.topic_notes]
+            topics += _classic_topics(s, target, notes)
+    topics.sort(key=_sort_key)
+    result = RobotTopics(
+        robot=info.robot.name,
+        target=target,
+        target_reason=info.target_reason,
+        topics=topics,
+        sensors=len(info.sensors),
+        bridge_files=list(config.files) if gz else None,
+        notes=notes,
+    )
+    if gz and topics:
+        if not config.files:
+            notes.append(
+                "no ros_gz_bridge configuration found (none given with --bridge, no "
+                "parameter_bridge YAML in the robot package's config/): no gz topic reaches "
+                "ROS; `sensorkit export` writes a bridge.yaml"
+            )
+        elif any(t.name is not None for t in topics):
+            notes.append(
+                "bridged names are shown in the root namespace: a bridge node started in a "
+                "namespace puts its relative names under it"
+            )
+    return result
+
+
+# --------------------------------------------------------------------------- formats
+
+
+def _type_list(topics: Iterable[Topic]) -> dict[str, list[str]]:
+    by_name: dict[str, list[str]] = {}
+    for t in topics:
+        if t.name is None:
+            continue
+        types = by_name.setdefault(t.name, [])
+        shown = t.type or "?"
+        if shown not in types:
+            types.append(shown)
+    return by_name
+
+
+def _rate_text(rate: float | None) -> str:
+    return f"{rate:g} Hz" if rate is not None else "-"
+
+
+def _table(rows: list[list[str]]) -> list[str]:
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    return ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip() for r in rows]
+
+
+def topics_text(result: RobotTopics) -> str:
+    """The ``ros2 topic list -t`` lines (``/name [type]``, sorted by name: the shape
+    ros2/ros2cli@humble 28d73d25:ros2topic/ros2topic/verb/list.py:74-79 prints), then a blank
+    line and one row per topic: frame_id, encoding, rate, sensor (and, on Gazebo Sim, the
+    gz topic; a gz topic no bridge entry carries shows ``(not bridged)``)."""
+    lines = [
+        f"{name} [{', '.join(types)}]" for name, types in sorted(_type_list(result.topics).items())
+    ]
+    if not result.topics:
+        return ""
+    gz = result.bridge_files is not None
+    head = ["topic", *(["gz topic"] if gz else []), "frame_id", "encoding", "rate", "sensor"]
+    rows = [head]
+    for t in result.topics:
+        who = f"{t.sensor} ({t.sensor_type})"
+        if t.direction != "publishes":
+            who += f", {t.direction}"
+        rows.append(
+            [
+                t.name or "(not bridged)",
+                *([t.gz_name or "-"] if gz else []),
+                t.frame or "-",
+                t.encoding or "-",
+                _rate_text(t.rate),
+                who,
+            ]
+        )
+    if lines:
+        lines.append("")
+    lines += _table(rows)
+    return "\n".join(lines) + "\n"
+
+
+def _topic_json(t: Topic) -> dict[str, Any]:
+    return {
+        "topic": t.name,
+        "type": t.type,
+        "direction": t.direction,
+        "frame_id": t.frame,
+        "encoding": t.encoding,
+        "rate": t.rate,
+        "sensor": t.sensor,
+        "sensor_type": t.sensor_type,
+        "role": t.role,
+        "camera": t.camera,
+        "gz_topic": t.gz_name,
+        "gz_type": t.gz_type,
+        "bridged": t.bridged,
+        "bridge_entry": t.bridge,
+        "notes": list(t.notes),
+    }
+
+
+def topics_json(result: RobotTopics) -> str:
+    """The list as one JSON document (``topics`` in the order of :func:`topics_text`)."""
+    doc = {
+        "robot": result.robot,
+        "target": result.target,
+        "target_reason": result.target_reason,
+        "bridge_files": result.bridge_files,
+        "topics": [_topic_json(t) for t in result.topics],
+        "notes": result.notes,
+    }
+    return json.dumps(doc, indent=2, allow_nan=False) + "\n"
