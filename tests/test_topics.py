@@ -888,3 +888,27 @@ def test_a_rate_that_is_no_rate_is_null(tmp_path: Path, rate: str) -> None:
     doc = topics_of(write(tmp_path, robot(sensor)))
     assert len(doc["topics"]) == 5
     assert {t["rate"] for t in doc["topics"]} == {None}
+
+
+def test_a_triggered_camera_subscribes_to_image_trigger_under_its_name(tmp_path: Path) -> None:
+    # gazebo_ros_pkgs@d52f7c4 gazebo_plugins/src/gazebo_ros_camera.cpp:271 reads <triggered>
+    # from the plugin element; a <triggered> inside <camera> is not what it reads.
+    from builders import camera_sensor, robot
+
+    from sensorkit.model import load_robot
+    from sensorkit.rules.plugins import plugin_topics
+
+    def names(params: str, camera_extra: str = "") -> list[str]:
+        cam = camera_sensor(params="<frame_name>camera_optical_frame</frame_name>" + params)
+        if camera_extra:
+            cam = cam.replace("<camera>", "<camera>" + camera_extra, 1)
+        path = tmp_path / "r.urdf"
+        path.write_text(robot(camera=cam))
+        loaded = load_robot(path)
+        assert loaded.robot is not None
+        s = next(x for x in loaded.robot.sensors if x.name == "front_camera")
+        return plugin_topics(s.plugins[0], s)
+
+    assert "front_camera/image_trigger" in names("<triggered>true</triggered>")
+    assert "front_camera/image_trigger" not in names("", "<triggered>true</triggered>")
+    assert "front_camera/image_trigger" not in names("<triggered>false</triggered>")

@@ -19,7 +19,7 @@ from sensorkit.knowledge.gazebo_ros import (
 )
 from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
-from sensorkit.model.robot import child, children, local, text_of
+from sensorkit.model.robot import child, children, local
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
 from sensorkit.rules.base import Context, rule
@@ -254,10 +254,10 @@ def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
             names = []
             for c in s.cameras:
                 names += [f"{cam}/{c.name}/image_raw", f"{cam}/{c.name}/camera_info"]
-        if child(s.element, "camera") is not None and text_of(s.element, "camera", "triggered") in (
-            "true",
-            "1",
-        ):
+        # <triggered> is read from the plugin element, not the sensor's <camera>
+        # (gazebo_ros_pkgs@d52f7c4 gazebo_plugins/src/gazebo_ros_camera.cpp:271
+        # `_sdf->Get<bool>("triggered", false)`, _sdf being the plugin's SDF).
+        if (p.param("triggered") or "").strip().lower() in ("true", "1"):
             names.append(f"{cam}/image_trigger")
         return names
     # Other sensor plugins: the topics the plugin table lists (gazebo_ros_camera's depend on
