@@ -11,6 +11,7 @@ real-world corpora (fixed on copies: no crash, idempotent, still expanding, no n
 
 from __future__ import annotations
 
+import codecs
 import re
 import shutil
 import stat
@@ -309,6 +310,48 @@ def test_lexical_scan_skips_comments_cdata_and_quoted_markup(here: Path) -> None
     fix(one_line)
     assert rules(one_line)["SK505"] == 0
     assert one_line.read_text() == flat.replace('rpy="-1.57 0 -1.57"', f'rpy="{OPTICAL}"')
+
+
+def test_bom_non_ascii_and_latin1_keep_their_bytes(here: Path) -> None:
+    text = robot(optical="-1.57 0 -1.57").replace("<!-- a rover", "<!-- caméra ü ∑ a rover")
+    path = here / "utf8.urdf"
+    path.write_bytes(codecs.BOM_UTF8 + text.encode())
+    old = path.read_bytes()
+    fix(path)
+    assert_only(old, path.read_bytes(), named("joint", "camera_optical_joint"))
+    assert path.read_bytes().startswith(codecs.BOM_UTF8)
+    latin = text.replace(" ∑", "").replace(
+        '<?xml version="1.0"?>', '<?xml version="1.0" encoding="ISO-8859-1"?>'
+    )
+    path = here / "latin1.urdf"
+    path.write_bytes(latin.encode("latin-1"))
+    old = path.read_bytes()
+    fix(path)
+    assert_only(old, path.read_bytes(), named("joint", "camera_optical_joint"))
+    assert "caméra ü".encode("latin-1") in path.read_bytes() and rules(path)["SK505"] == 0
+
+
+def test_a_write_meanwhile_is_not_lost(here: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Another writer changes the file between planning and writing: the plan is made again
+    under the folder lock, from what that writer left."""
+    from sensorkit.fix import apply
+
+    path = write(here, "rover.urdf", robot(optical="-1.57 0 -1.57"))
+    plan = apply.plan_file
+    calls: list[int] = []
+
+    def meddling(*args: object, **kw: object) -> FileFix:
+        out = plan(*args, **kw)  # type: ignore[arg-type]
+        if not calls:
+            path.write_text(path.read_text().replace("a rover for", "another writer's rover for"))
+        calls.append(1)
+        return out
+
+    monkeypatch.setattr(apply, "plan_file", meddling)
+    fix(path)
+    assert len(calls) == 2
+    text = path.read_text()
+    assert "another writer's rover" in text and f'rpy="{OPTICAL}"' in text
 
 
 # --------------------------------------------------------------------------- SK602
