@@ -838,3 +838,15 @@ def test_real_world_corpora_fixed_on_copies(
         )
     assert not problems, "\n".join(problems)
     assert fixed >= 50
+
+
+def test_edits_apply_back_to_front_and_overlaps_are_seen() -> None:
+    from sensorkit.fix.source import Edit, apply_edits, overlaps
+
+    data = b"<a><b/></a>"
+    ins1, ins2 = Edit("f", 3, 3, b"<x/>"), Edit("f", 3, 3, b"<y/>")
+    swap = Edit("f", 3, 7, b"<c/>")
+    assert apply_edits(data, [ins1, ins2, swap]) == b"<a><x/><y/><c/></a>"
+    assert not overlaps(ins1, ins2) and not overlaps(ins1, swap)
+    assert overlaps(swap, Edit("f", 5, 9, b"")) and overlaps(swap, Edit("f", 4, 4, b"z"))
+    assert not overlaps(swap, Edit("g", 3, 7, b""))

@@ -331,6 +331,9 @@ def _candidates(
                 ),
                 None,
             )
+        edits = fix.edits
+        if why is None and any(overlaps(a, b) for i, a in enumerate(edits) for b in edits[i + 1 :]):
+            why = f"internal error in the {f.rule} fixer: its edits overlap"
         if why is not None:
             notes.append(Note(f, "unfixable", why))
         elif not fix.edits:
