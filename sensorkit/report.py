@@ -219,8 +219,11 @@ def render(report: Report, fmt: str, *, color: bool = False) -> str:
 
 def rule_table() -> str:
     """The Markdown rule table for the README, generated from the registry."""
-    lines = ["| id | severity | checks | existing tool |", "|---|---|---|---|"]
+    from sensorkit.fix import fixable
+
+    lines = ["| id | severity | checks | existing tool | `--fix` |", "|---|---|---|---|---|"]
     for rid in sorted(RULES):
         info = RULES[rid]
-        lines.append(f"| {rid} | {info.severity} | {info.title} | {info.existing} |")
+        fix = fixable(rid)
+        lines.append(f"| {rid} | {info.severity} | {info.title} | {info.existing} | {fix} |")
     return "\n".join(lines) + "\n"

@@ -63,6 +63,21 @@ def validate(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    fix: Annotated[
+        bool,
+        typer.Option("--fix", help="apply the safe fixes, then report what remains"),
+    ] = False,
+    diff: Annotated[
+        bool,
+        typer.Option("--diff", help="print the fixes as a unified diff; write nothing"),
+    ] = False,
+    unsafe_fixes: Annotated[
+        bool,
+        typer.Option(
+            "--unsafe-fixes",
+            help="with --fix or --diff: also fixes that change behaviour beyond the finding",
+        ),
+    ] = False,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 
@@ -110,6 +125,10 @@ def validate(
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
     )
+    if fix or diff or unsafe_fixes:
+        from sensorkit.cli.fixing import run_fix
+
+        run_fix(files, options, fmt, threshold, diff=diff, fix=fix, unsafe=unsafe_fixes)
     report = validate_paths(files, options)
     from sensorkit.cli import leave_quickly
 
@@ -134,6 +153,8 @@ def rules(
     if fmt == "markdown":
         sys.stdout.write(rule_table())
         return
+    from sensorkit.fix import fixable
+
     for rid in sorted(RULES):
         info = RULES[rid]
-        typer.echo(f"{rid}  {info.severity:<13} {info.title}")
+        typer.echo(f"{rid}  {info.severity:<13} {fixable(rid) or '-':<11} {info.title}")

@@ -129,3 +129,77 @@ RAY_OUTPUT_TYPES = {
     "sensor_msgs/PointCloud2",
     "sensor_msgs/Range",
 }
+
+# What ``sensorkit validate --fix`` may rewrite (SK602): ROS 1 tags whose ROS 2 form is a
+# direct one, per ROS 2 library that reads it. Read from ros-simulation/gazebo_ros_pkgs
+# @ros2 (d52f7c4) and @noetic-devel (f9e1a46); nothing else in the tables is a guess.
+#
+# Same value, other tag name. ROS 2: gazebo_ros/src/utils.cpp:52-61 (frame_name, every
+# sensor plugin through SensorFrameID); gazebo_plugins/src/gazebo_ros_camera.cpp:179
+# camera_name, :361-364 cx/cy, :372 focal_length, :399 hack_baseline, :476-478 min_depth/
+# max_depth; gazebo_ros_imu_sensor.cpp:76-82 initial_orientation_as_reference;
+# gazebo_ros_diff_drive.cpp:257-380. ROS 1: gazebo_ros_camera_utils.cpp:140-197,
+# gazebo_ros_openni_kinect.cpp:101-108, gazebo_ros_imu_sensor.cpp:48-56,
+# gazebo_ros_diff_drive.cpp:92-103.
+ROS1_RENAMES: dict[str, dict[str, str]] = {
+    "gazebo_ros_camera": {
+        "frameName": "frame_name",
+        "cameraName": "camera_name",
+        "hackBaseline": "hack_baseline",
+        "focalLength": "focal_length",
+        "Cx": "cx",
+        "Cy": "cy",
+        "pointCloudCutoff": "min_depth",
+        "pointCloudCutoffMax": "max_depth",
+    },
+    "gazebo_ros_ray_sensor": {"frameName": "frame_name"},
+    "gazebo_ros_imu_sensor": {
+        "frameName": "frame_name",
+        "initialOrientationAsReference": "initial_orientation_as_reference",
+    },
+    "gazebo_ros_gps_sensor": {"frameName": "frame_name"},
+    "gazebo_ros_diff_drive": {
+        "leftJoint": "left_joint",
+        "rightJoint": "right_joint",
+        "wheelSeparation": "wheel_separation",
+        "wheelDiameter": "wheel_diameter",
+        "wheelTorque": "max_wheel_torque",
+        "wheelAcceleration": "max_wheel_acceleration",
+        "updateRate": "update_rate",
+        "odometryFrame": "odometry_frame",
+        "robotBaseFrame": "robot_base_frame",
+        "publishWheelTF": "publish_wheel_tf",
+        "publishOdomTF": "publish_odom_tf",
+    },
+}
+# ROS 1 tags where 0 means "compute the default" (gazebo_ros_camera_utils.cpp:506-509 for
+# Cx and Cy) while ROS 2 takes 0 literally (gazebo_ros_camera.cpp:361-364 defaults only
+# when the tag is absent): a 0 is dropped, not renamed.
+ROS1_ZERO_MEANS_DEFAULT = frozenset({"Cx", "Cy"})
+# ROS 1 topic tags and the ROS 2 name they become a remapping of. ROS 1 advertises them
+# relative to robotNamespace/cameraName for cameras (gazebo_ros_camera_utils.cpp:288) and
+# to robotNamespace otherwise (gazebo_ros_laser.cpp:131, gazebo_ros_imu_sensor.cpp:83,
+# gazebo_ros_diff_drive.cpp via GazeboRos); ROS 2 publishes camera topics as
+# <camera_name>/... (gazebo_ros_camera.cpp:187-262), ray and IMU data on ~/out
+# (gazebo_ros_ray_sensor.cpp:119-134, gazebo_ros_imu_sensor.cpp:95-96), and diff drive
+# subscribes cmd_vel and publishes odom (gazebo_ros_diff_drive.cpp), all relative to
+# <ros><namespace>; <ros><remapping> renames them (gazebo_ros/src/node.cpp:62-95).
+ROS1_TOPIC_REMAPS: dict[str, dict[str, str]] = {
+    "gazebo_ros_camera": {
+        "imageTopicName": "image_raw",
+        "cameraInfoTopicName": "camera_info",
+        "depthImageTopicName": "depth/image_raw",
+        "depthImageCameraInfoTopicName": "depth/camera_info",
+        "pointCloudTopicName": "points",
+    },
+    "gazebo_ros_ray_sensor": {"topicName": "~/out"},
+    "gazebo_ros_imu_sensor": {"topicName": "~/out"},
+    "gazebo_ros_diff_drive": {"commandTopic": "cmd_vel", "odometryTopic": "odom"},
+}
+# Camera topics are relative to the camera name in both generations (see above).
+ROS1_CAMERA_RELATIVE = frozenset({"gazebo_ros_camera"})
+# ROS 1 sensor plugins' rate tags: the plugin throttled its publishing to this rate (0:
+# unthrottled; gazebo_ros_camera_utils.cpp:151-157 and :441-444,
+# gazebo_ros_imu_sensor.cpp:214-223). ROS 2 sensor plugins publish at the sensor's own
+# <update_rate>, so that is where the rate goes.
+ROS1_SENSOR_RATE_TAGS = frozenset({"updateRate", "updateRateHZ"})

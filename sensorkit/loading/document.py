@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -196,12 +197,16 @@ def load_description(
     resolver: PackageResolver | None = None,
     timeout: float = 60.0,
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> LoadResult:
     """Read ``path`` (URDF or xacro) into a Document, or findings explaining why not.
 
     Raises InputError when the file cannot be read or is not a robot description.
+    ``overlay`` maps absolute paths to bytes used instead of the files' own (``--fix``
+    validates an edit in memory before writing it).
     """
-    data = read_input(path)
+    key = os.path.abspath(path)
+    data = overlay[key] if overlay and key in overlay else read_input(path)
     if not looks_like_xacro(path, data):
         return parse_plain(path, data)
     where = display_path(path)
@@ -212,7 +217,9 @@ def load_description(
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
-    outcome = expand(path, dict(args or {}), resolver, timeout=timeout, untrusted=untrusted)
+    outcome = expand(
+        path, dict(args or {}), resolver, timeout=timeout, untrusted=untrusted, overlay=overlay
+    )
     if outcome.error_kind is not None:
         return LoadResult(None, [_expansion_finding(path, outcome)])
     assert outcome.xml is not None

@@ -19,6 +19,7 @@ import os
 import re
 import sys
 import traceback
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -75,7 +76,12 @@ def forbid_entities(data: bytes) -> str | None:
     return None
 
 
-def _loc_parser(files: list[str], orig_parse: Any, confine: Confinement | None = None) -> Any:
+def _loc_parser(
+    files: list[str],
+    orig_parse: Any,
+    confine: Confinement | None = None,
+    overlay: Mapping[str, bytes] | None = None,
+) -> Any:
     import xml.dom.minidom
     from xml.dom import expatbuilder
 
@@ -107,7 +113,7 @@ def _loc_parser(files: list[str], orig_parse: Any, confine: Confinement | None =
                 xacro.filestack.pop()
             raise xacro.XacroException(confine.refuse(full))
         try:
-            data = Path(full).read_bytes()
+            data = overlay[full] if overlay and full in overlay else Path(full).read_bytes()
         except OSError as exc:
             if xacro.filestack:
                 xacro.filestack.pop()
@@ -140,11 +146,14 @@ def expand_in_process(
     args: dict[str, str],
     resolver: PackageResolver,
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> ExpandOutcome:
     """Expand ``path`` with xacro in this process (resets xacro's globals first).
 
     With ``untrusted``, xacro's ways of reading the machine are narrowed for the duration
     (see ``sensorkit.loading.untrusted``); everything patched is restored afterwards.
+    ``overlay`` maps absolute paths to bytes read instead of the file's (``--fix`` checks
+    an edit before it writes anything).
     """
     import xacro
     import xacro.substitution_args as sa
@@ -171,7 +180,7 @@ def expand_in_process(
         return str(hit)
 
     _reset_xacro()
-    xacro.parse = _loc_parser(files, saved_x["parse"], confine)
+    xacro.parse = _loc_parser(files, saved_x["parse"], confine, overlay)
     sa._eval_find = find
     sa._eval_dict["find"] = find
     if untrusted is not None and confine is not None:
@@ -357,16 +366,19 @@ def expand(
     *,
     timeout: float = DEFAULT_TIMEOUT,
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> ExpandOutcome:
     """Expand ``path`` isolated from this process where possible (see the module doc)."""
     if not hasattr(os, "fork") or os.environ.get("SENSORKIT_XACRO_INPROCESS"):
-        return expand_in_process(path, args, resolver, untrusted)
+        return expand_in_process(path, args, resolver, untrusted, overlay)
     import multiprocessing as mp
     import pickle
 
     ctx = mp.get_context("fork")
     recv, send = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(path, args, resolver, send, untrusted), daemon=True)
+    proc = ctx.Process(
+        target=_child, args=(path, args, resolver, send, untrusted, overlay), daemon=True
+    )
     proc.start()
     send.close()
     outcome: ExpandOutcome | None = None
@@ -402,6 +414,7 @@ def _child(
     resolver: PackageResolver,
     send: Any,
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> None:
     import pickle
 
@@ -418,7 +431,7 @@ def _child(
     except (ImportError, ValueError, OSError):
         pass
     try:
-        outcome = expand_in_process(path, args, resolver, untrusted)
+        outcome = expand_in_process(path, args, resolver, untrusted, overlay)
     except BaseException as exc:
         outcome = ExpandOutcome(error_kind="xacro", message=str(exc) or repr(exc))
     try:

@@ -1,0 +1,88 @@
+"""``sensorkit validate --fix | --diff [--unsafe-fixes]``: apply fixes, say what happened.
+
+stdout carries what validate prints after fixing (or, with ``--diff``, only the patch);
+stderr says, per finding, what was fixed and why the others were not, then
+``fixed N findings (M remain)``. The exit status is validate's on the fixed files.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import NoReturn
+
+import typer
+
+from sensorkit.engine import Options
+from sensorkit.findings import Finding, Severity
+
+
+def _where(f: Finding) -> str:
+    return f"{f.file}:{f.line}" if f.line else str(f.file)
+
+
+def _plural(n: int) -> str:
+    return f"{n} finding" if n == 1 else f"{n} findings"
+
+
+def run_fix(
+    files: Sequence[Path],
+    options: Options,
+    fmt: str,
+    threshold: Severity,
+    *,
+    diff: bool,
+    fix: bool,
+    unsafe: bool,
+) -> NoReturn:
+    from sensorkit.errors import UsageError
+
+    if unsafe and not (fix or diff):
+        raise UsageError("--unsafe-fixes only means something with --fix or --diff")
+    from sensorkit.fix.apply import fix_paths
+
+    run = fix_paths(files, options, unsafe=unsafe, write=not diff)
+    verb = "would fix" if diff else "fixed"
+    for ff in run.files:
+        for fx in ff.applied:
+            f = fx.finding
+            typer.echo(f"sensorkit: {verb} {_where(f)} {f.rule}: {fx.title}", err=True)
+        for f in ff.revealed:
+            typer.echo(
+                f"sensorkit: {_where(f)} {f.rule} shows now that the plugin loads "
+                f"(it was folded into SK601): {' '.join(f.message.split())}",
+                err=True,
+            )
+        for note in ff.notes:
+            f = note.finding
+            if note.kind == "unsafe":
+                why = f"an unsafe fix ({note.text}) needs --unsafe-fixes"
+            elif note.kind == "deferred":
+                why = f"waits: {note.text}"
+            else:
+                why = note.text
+            typer.echo(f"sensorkit: not fixed {_where(f)} {f.rule}: {why}", err=True)
+        if ff.more:
+            typer.echo(f"sensorkit: {ff.path}: more fixes remain; run --fix again", err=True)
+    if diff:
+        sys.stdout.write(run.diff())
+        for ff in run.files:
+            if ff.error:
+                typer.echo(f"sensorkit: {ff.error}", err=True)
+        typer.echo(f"would fix {_plural(run.fixed)} ({run.remaining} would remain)", err=True)
+        failed = any(ff.error or ff.internal_errors for ff in run.files)
+        bad = any(f.severity >= threshold for ff in run.files for f in ff.after)
+        raise typer.Exit(2 if failed else 1 if bad else 0)
+    from sensorkit.engine import validate_paths
+    from sensorkit.report import render
+
+    report = validate_paths(files, options)
+    sys.stdout.write(render(report, fmt, color=fmt == "text" and sys.stdout.isatty()))
+    for fr in report.files:
+        if fr.error:
+            typer.echo(f"sensorkit: {fr.error}", err=True)
+        for err in fr.internal_errors:
+            typer.echo(f"sensorkit: internal error: {err}", err=True)
+    typer.echo(f"fixed {_plural(run.fixed)} ({len(report.findings)} remain)", err=True)
+    raise typer.Exit(report.exit_code(threshold))
