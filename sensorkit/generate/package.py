@@ -9,19 +9,23 @@ one out in a single rename.
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from sensorkit.atomic import check_replaceable, staged_folder
 from sensorkit.errors import InputError
 from sensorkit.exporters.bridge import BridgeEntry
-from sensorkit.generate import render
+from sensorkit.generate import render, rviz
 from sensorkit.generate.bridge import bridge_entries, bridge_file_text
 from sensorkit.generate.spec import Mark, RobotSpec, load_spec
 from sensorkit.intrinsics import InvalidValue
+
+if TYPE_CHECKING:
+    from sensorkit.topics import Topic
 
 
 @dataclass
@@ -76,8 +80,8 @@ def _expand(spec: RobotSpec, xacro_file: Path) -> etree._Element:
     return etree.fromstring(outcome.xml.encode("utf-8"))
 
 
-def camera_images(spec: RobotSpec, root: Path, urdf: str) -> list[render.CameraImage]:
-    """Every camera image topic the package's robot publishes on its simulator, as
+def ros_topics(spec: RobotSpec, root: Path, urdf: str) -> list[Topic]:
+    """Every ROS topic of the package's robot's sensors on its simulator, as
     ``sensorkit topics`` lists them (on Gazebo Sim, as the written bridge names them).
 
     Empty for ``sim: none``: no simulator, so no topics sensorkit can name.
@@ -86,7 +90,7 @@ def camera_images(spec: RobotSpec, root: Path, urdf: str) -> list[render.CameraI
         return []
     from sensorkit.loading.bridge import read_bridge
     from sensorkit.sensorinfo import describe, load
-    from sensorkit.topics import IMAGE_ROLES, BridgeConfig, robot_topics
+    from sensorkit.topics import BridgeConfig, robot_topics
 
     robot = load(root / urdf)
     info = describe(robot, "classic" if spec.sim == "classic" else spec.gz_version)
@@ -94,9 +98,16 @@ def camera_images(spec: RobotSpec, root: Path, urdf: str) -> list[render.CameraI
     if spec.sim == "gz":
         name = "config/bridge.yaml"
         bridge = BridgeConfig([name], read_bridge(root / name, name))
+    return robot_topics(info, bridge).ros_topics
+
+
+def camera_images(topics: Sequence[Topic]) -> list[render.CameraImage]:
+    """The camera image topics among ``topics``."""
+    from sensorkit.topics import IMAGE_ROLES
+
     return [
         render.CameraImage(t.name, t.encoding or "", t.sensor, t.role == "depth_image")
-        for t in robot_topics(info, bridge).ros_topics
+        for t in topics
         if t.role in IMAGE_ROLES and t.name is not None
     ]
 
@@ -118,7 +129,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
         _write(root, f"urdf/sensors/{macro.file.name}", macro.file.read_bytes())
 
     robot = _expand(spec, root / urdf)
-    install = ["launch", "urdf"]
+    install = ["launch", "rviz", "urdf"]
     entries: list[BridgeEntry] = []
     if spec.sim == "gz":
         entries = bridge_entries(robot, spec.gz_version)
@@ -137,7 +148,12 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
     sim = render.sim_launch(spec)
     if sim is not None:
         _write(root, "launch/sim.launch.py", sim)
-    images = camera_images(spec, root, urdf)
+    _write(root, "launch/display.launch.py", render.display_launch(spec))
+    topics = ros_topics(spec, root, urdf)
+    displays, unshown = rviz.sensor_displays(topics)
+    frame = rviz.fixed_frame(spec, robot)
+    _write(root, f"rviz/{spec.name}.rviz", rviz.rviz_config(spec, frame, displays, unshown))
+    images = camera_images(topics)
     programs: list[str] = []
     if images:
         _write(root, "launch/save_frames.launch.py", render.save_frames_launch(spec, images))
@@ -146,7 +162,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
         programs.append(render.SAVE_FRAMES_NODE)
     _write(root, "package.xml", render.package_xml(spec, python_node=bool(programs)))
     _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install), programs))
-    _write(root, "README.md", render.readme(spec, yaml_name, entries, images))
+    _write(root, "README.md", render.readme(spec, yaml_name, entries, images, unshown, frame))
     return entries
 
 

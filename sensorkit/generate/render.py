@@ -13,11 +13,15 @@ import json
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
 from sensorkit.exporters.bridge import BridgeEntry
 from sensorkit.generate.spec import RobotSpec
 from sensorkit.resources import templates_dir
+
+if TYPE_CHECKING:
+    from sensorkit.generate.rviz import Unshown
 
 _PLACEHOLDER = re.compile(r"@([a-z_]+)@")
 SAVE_FRAMES_NODE = "scripts/save_frames.py"
@@ -59,6 +63,7 @@ def _common(spec: RobotSpec) -> dict[str, str]:
 
 def exec_depends(spec: RobotSpec, *, python_node: bool = False) -> list[str]:
     deps = ["xacro", "robot_state_publisher", "launch", "launch_ros", "ament_index_python"]
+    deps += ["joint_state_publisher", "joint_state_publisher_gui", "rviz2"]  # display.launch.py
     if spec.sim == "gz":
         deps += ["ros_gz_sim", "ros_gz_bridge"]
     elif spec.sim == "classic":
@@ -130,6 +135,20 @@ def save_frames_node() -> str:
 
 def description_launch(spec: RobotSpec) -> str:
     return fill("description.launch.py.in", _common(spec))
+
+
+def display_launch(spec: RobotSpec) -> str:
+    """``launch/display.launch.py``: robot_state_publisher, joint_state_publisher(_gui), rviz2."""
+    note = ""
+    if spec.sim in ("gz", "classic"):
+        note = (
+            "\nThe sensor displays of the configuration carry data only while the simulator runs;\n"
+            "sim.launch.py already runs robot_state_publisher and the simulator publishes the\n"
+            "joint states, so open RViz2 alone beside it:\n\n"
+            f"    share=$(ros2 pkg prefix {spec.package})/share/{spec.package}\n"
+            f"    rviz2 -d $share/rviz/{spec.name}.rviz --ros-args -p use_sim_time:=true\n"
+        )
+    return fill("display.launch.py.in", {**_common(spec), "sim_note": note})
 
 
 def sim_launch(spec: RobotSpec) -> str | None:
@@ -218,11 +237,21 @@ def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
     return "\n".join(lines)
 
 
+def rviz_unshown_groups(unshown: Sequence[Unshown]) -> list[tuple[str, str, list[str]]]:
+    """``(message type, why, topics)`` of the topics without an RViz display, by type."""
+    groups: dict[str, tuple[str, list[str]]] = {}
+    for u in unshown:
+        groups.setdefault(u.type, (u.why, []))[1].append(u.topic)
+    return [(mtype, why, names) for mtype, (why, names) in groups.items()]
+
+
 def readme(
     spec: RobotSpec,
     yaml_name: str,
     entries: Sequence[BridgeEntry],
     images: Sequence[CameraImage] = (),
+    unshown: Sequence[Unshown] = (),
+    fixed_frame: str = "base_link",
 ) -> str:
     xacro_rel = f"urdf/{spec.name}.urdf.xacro"
     lines = [
@@ -253,10 +282,43 @@ def readme(
         "```bash",
         f"colcon build --packages-select {spec.package} && source install/setup.bash",
         f"ros2 launch {spec.package} description.launch.py   # robot_state_publisher only",
+        f"ros2 launch {spec.package} display.launch.py       # the model in RViz2, joint sliders",
     ]
     if spec.sim in ("gz", "classic"):
         lines.append(f"ros2 launch {spec.package} sim.launch.py           # the simulator too")
     lines += ["```", ""]
+    lines += ["## RViz2", ""]
+    rviz_file = f"`rviz/{spec.name}.rviz` (fixed frame `{fixed_frame}`)"
+    if spec.sim in ("gz", "classic"):
+        lines += [
+            f"`display.launch.py` opens {rviz_file}: the robot",
+            "model, TF and one display per sensor topic, subscribed best effort (which receives",
+            "from reliable and best-effort publishers alike). `gui:=false` starts",
+            "joint_state_publisher instead of the slider window.",
+            "",
+            "The sensor displays show data while the simulator runs. `sim.launch.py` already",
+            "runs robot_state_publisher and the simulator publishes the joint states, so open",
+            "RViz2 alone beside it:",
+            "",
+            "```bash",
+            f"rviz2 -d install/{spec.package}/share/{spec.package}/rviz/{spec.name}.rviz "
+            "--ros-args -p use_sim_time:=true",
+            "```",
+            "",
+        ]
+    else:
+        lines += [
+            f"`display.launch.py` opens {rviz_file}: the robot",
+            "model and TF (no simulator, so no sensor topics sensorkit can name). `gui:=false`",
+            "starts joint_state_publisher instead of the slider window.",
+            "",
+        ]
+    if unshown:
+        lines += ["Not shown:", ""]
+        for mtype, why, names in rviz_unshown_groups(unshown):
+            listed = ", ".join(f"`{n}`" for n in names)
+            lines.append(f"- {mtype} ({listed}): {why}")
+        lines.append("")
     if spec.sim == "gz":
         lines += [
             f"## Topics (Gazebo Sim {spec.gz_version.capitalize()}, "
