@@ -125,11 +125,12 @@ def _box(o: Array, d: Array, h: Array) -> tuple[Array, Array]:
         inv = 1.0 / d
         t1 = (-h - o) * inv
         t2 = (h - o) * inv
-    # a ray parallel to a slab: inside it for all t, or never
+    # a ray parallel to a slab: inside it for all t (enters at -inf, leaves at +inf), or
+    # never (enters at +inf)
     parallel = d == 0
     inside_slab = np.abs(o) <= h
     t1 = np.where(parallel, np.where(inside_slab, -np.inf, np.inf), t1)
-    t2 = np.where(parallel, np.where(inside_slab, np.inf, -np.inf), t2)
+    t2 = np.where(parallel, np.inf, t2)
     entry = np.minimum(t1, t2)
     axis = entry.argmax(axis=1)
     t_near = entry.max(axis=1)
