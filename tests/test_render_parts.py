@@ -21,7 +21,15 @@ from sensorkit.model import load_robot
 from sensorkit.model.sensors import LidarSpec
 from sensorkit.model.transforms import transform
 from sensorkit.render.camera import RenderCamera, depth_from_buffer
-from sensorkit.render.lidar import LidarScan, cast, lidar_beams, range_check
+from sensorkit.render.lidar import (
+    SAMPLE_BEAMS,
+    LidarScan,
+    _first_hits,
+    cast,
+    check_sample,
+    lidar_beams,
+    range_check,
+)
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
 from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
@@ -207,6 +215,51 @@ def _lidar_spec(rows: int, cols: int, v_half: float = 0.2618) -> LidarSpec:
     return spec
 
 
+@pytest.mark.parametrize(
+    ("rows", "cols"), [(1, 360), (16, 256), (16, 1800), (128, 2048), (5000, 3), (1, 900_000)]
+)
+def test_range_check_sample_is_bounded_and_keeps_every_row(rows: int, cols: int) -> None:
+    sample = check_sample(rows, cols)
+    assert len(sample) == len(np.unique(sample)) and (np.diff(sample) > 0).all()
+    assert sample.min() >= 0 and sample.max() < rows * cols
+    if rows * cols <= SAMPLE_BEAMS:
+        assert len(sample) == rows * cols  # a small scan is checked whole
+    else:
+        assert len(sample) <= max(SAMPLE_BEAMS, min(rows, SAMPLE_BEAMS))
+    picked_rows = np.unique(sample // cols)
+    if rows <= SAMPLE_BEAMS:
+        assert len(picked_rows) == rows  # every row represented
+        per_row = np.bincount(sample // cols, minlength=rows)
+        assert per_row.max() - per_row.min() == 0
+        # and the columns cover the whole azimuth range, not one slice of it
+        assert np.ptp(sample % cols) >= 0.9 * (cols - 1) or len(sample) == rows
+    np.testing.assert_array_equal(sample, check_sample(rows, cols))  # deterministic
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_pruned_first_hits_equal_every_shape_tested(seed: int) -> None:
+    """Skipping the shapes a ray cannot reach never changes its first hit."""
+    rng = np.random.default_rng(seed)
+    shapes = list(default_scene(0.5).shapes)
+    for k in range(6):  # and shapes around and above the origin
+        T = transform(tuple(rng.uniform(-2, 2, 3)), tuple(rng.uniform(-3, 3, 3)))
+        kind = ("box", "sphere", "cylinder")[k % 3]
+        size = {"box": tuple(rng.uniform(0.05, 1.0, 3)), "sphere": (rng.uniform(0.05, 1),)}
+        shapes.append(Shape(f"s{k}", kind, T, size.get(kind, tuple(rng.uniform(0.05, 1, 2)))))
+    origin = rng.uniform(-1, 1, 3) + np.array([0, 0, 1.0])
+    dirs = rng.normal(size=(3000, 3))
+    dirs[:5] = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [-1, -1e-17, 0]]
+    dirs /= np.linalg.norm(dirs, axis=1)[:, None]
+    t, i, _ = _first_hits(shapes, origin, dirs, 0.3)
+    starts = origin + 0.3 * dirs
+    every = np.array([s.intersect(starts, dirs) for s in shapes])
+    exact = np.fmin.reduce(every, axis=0)
+    np.testing.assert_array_equal(np.isfinite(t), np.isfinite(exact))
+    np.testing.assert_array_equal(t[np.isfinite(t)], exact[np.isfinite(exact)])
+    assert (every[i[np.isfinite(t)], np.flatnonzero(np.isfinite(t))] == t[np.isfinite(t)]).all()
+
+
 def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, dict]:
     from sensorkit.render.sim import World
 
@@ -217,12 +270,61 @@ def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, 
         return scan, dict(world.shape_of)
 
 
+def _beam_on(scan: LidarScan, shapes_of: dict, name: str, among: np.ndarray) -> int:
+    """The beam of ``among`` nearest the middle of the shape called ``name``."""
+    (key,) = [k for k, shapes in shapes_of.items() if any(s.name == name for s in shapes)]
+    on = among[(scan.hits.body[among] == key[0]) & (scan.hits.link[among] == key[1])]
+    H = scan.beams.shape[1]
+    off = np.abs(scan.beams.elevation[on // H]) + np.abs(scan.beams.azimuth[on % H])
+    return int(on[np.argmin(off)])
+
+
+@pytest.mark.parametrize(("rows", "cols"), [(1, 360), (16, 200), (128, 2048)])
+def test_range_check_fails_a_wrong_range_on_a_sampled_beam(rows: int, cols: int) -> None:
+    scan, shapes_of = _scan_in(default_scene(0.5), _lidar_spec(rows, cols))
+    good = range_check(scan, shapes_of)
+    assert good.status == "ok", good.message
+    assert good.details["rays"] == rows * cols
+    assert good.details["sampled"] == min(rows * cols, len(check_sample(rows, cols)))
+    assert good.details["beams"] > 0.8 * good.details["sampled"]
+    beam = _beam_on(scan, shapes_of, "wall_+x", check_sample(rows, cols))
+    flat = scan.ranges.reshape(-1)
+    right = float(flat[beam])
+    flat[beam] = right + 0.02  # 2 cm long
+    bad = range_check(scan, shapes_of)
+    assert bad.status == "fail" and bad.value == pytest.approx(0.02, abs=1e-3), bad.message
+    flat[beam] = right
+    scan.hits.body[beam] = -1  # pybullet saw nothing where the wall is
+    missed = range_check(scan, shapes_of)
+    assert missed.status == "fail" and missed.details["missed"] == 1, missed.message
+
+
 def test_a_2d_lidar_above_the_crates_passes_the_range_check() -> None:
     """Level beams over a crate's top face do not hit it (they once did, in the exact
     geometry, and the check failed 57 beams that pybullet rightly saw hit the wall)."""
     scan, shapes_of = _scan_in(default_scene(0.5), _lidar_spec(1, 360), z=1.0)
     check = range_check(scan, shapes_of)
     assert check.status == "ok" and check.details["wrong_shape"] == 0, check.message
+
+
+def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
+    """A 4 cm bar across the middle row of a 15-row scan (rows 2 degrees apart): the rows
+    above and below miss it, yet its beams are compared, and a wrong range there fails."""
+    bar = Shape("bar", "box", transform((3.0, 0.0, 0.8)), (0.05, 1.0, 0.02), rgba=(1, 0, 0, 1))
+    ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
+    scene = Scene([ground, bar], "bar", 4.0)
+    spec = _lidar_spec(15, 240, v_half=math.radians(14))
+    scan, shapes_of = _scan_in(scene, spec)
+    V, H = scan.beams.shape
+    assert scan.beams.elevation[7] == pytest.approx(0.0, abs=1e-12)
+    (key,) = [k for k, shapes in shapes_of.items() if shapes == [bar]]
+    on_bar = (scan.hits.body == key[0]).reshape(V, H)
+    assert on_bar.any(axis=1).tolist() == [r == 7 for r in range(V)]  # one row sees it
+    good = range_check(scan, shapes_of)
+    assert good.status == "ok", good.message
+    scan.ranges[on_bar] += 0.05
+    bad = range_check(scan, shapes_of)
+    assert bad.status == "fail" and bad.value == pytest.approx(0.05, abs=1e-3), bad.message
 
 
 # ---- kinematics ------------------------------------------------------------------------------

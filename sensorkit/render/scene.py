@@ -95,6 +95,17 @@ class Shape:
             return np.full(len(o), np.nan), np.zeros((len(o), 3))
         return t, n @ R.T
 
+    @property
+    def bounding_radius(self) -> float:
+        """Radius of a sphere about ``centre`` holding the whole shape (inf: unbounded)."""
+        if self.kind == "box":
+            return math.sqrt(sum(float(v) * float(v) for v in self.size))
+        if self.kind == "sphere":
+            return float(self.size[0])
+        if self.kind == "cylinder":
+            return math.hypot(float(self.size[0]), float(self.size[1]))
+        return math.inf
+
     def footprint(self) -> Array:
         """Points whose xy convex hull is the shape seen from above."""
         if self.kind == "box":
