@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from sensorkit.errors import UsageError
@@ -238,6 +238,7 @@ def test_range_check_sample_is_bounded_and_keeps_every_row(rows: int, cols: int)
 
 @settings(max_examples=25, deadline=None)
 @given(st.integers(0, 2**32 - 1))
+@example(1503)  # once off in the last bit
 def test_pruned_first_hits_equal_every_shape_tested(seed: int) -> None:
     """Skipping the shapes a ray cannot reach never changes its first hit."""
     rng = np.random.default_rng(seed)
@@ -255,9 +256,11 @@ def test_pruned_first_hits_equal_every_shape_tested(seed: int) -> None:
     starts = origin + 0.3 * dirs
     every = np.array([s.intersect(starts, dirs) for s in shapes])
     exact = np.fmin.reduce(every, axis=0)
-    np.testing.assert_array_equal(np.isfinite(t), np.isfinite(exact))
-    np.testing.assert_array_equal(t[np.isfinite(t)], exact[np.isfinite(exact)])
-    assert (every[i[np.isfinite(t)], np.flatnonzero(np.isfinite(t))] == t[np.isfinite(t)]).all()
+    hit = np.isfinite(t)
+    np.testing.assert_array_equal(hit, np.isfinite(exact))
+    # equal up to the last bit: a matrix product rounds differently on fewer rows
+    np.testing.assert_allclose(t[hit], exact[hit], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(every[i[hit], np.flatnonzero(hit)], t[hit], rtol=1e-12)
 
 
 def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, dict]:
