@@ -32,6 +32,7 @@ from sensorkit.render.lidar import (
 )
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
+from sensorkit.render.raster import Canvas
 from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
 from sensorkit.render.urdf_out import prepare_urdf
 
@@ -69,6 +70,47 @@ def test_png_refuses_what_it_cannot_write() -> None:
         encode_png(np.zeros((2, 2), dtype=np.float32))
     with pytest.raises(ValueError, match="H, W"):
         encode_png(np.zeros((2, 2, 2), dtype=np.uint8))
+
+
+# ---- drawing -------------------------------------------------------------------------------
+def _dots_one_by_one(
+    canvas: Canvas, pts: np.ndarray, colours: np.ndarray | tuple[int, int, int], radius: float
+) -> None:
+    """Canvas dots as the first version drew them: offset by offset, dot by dot (a
+    square of them for dots of their own colour, a disc for dots of one colour)."""
+    r = max(0, math.ceil(radius - 0.5))
+    offsets = [
+        (dx, dy)
+        for dx in range(-r, r + 1)
+        for dy in range(-r, r + 1)
+        if isinstance(colours, np.ndarray) or dx * dx + dy * dy <= radius * radius + 0.25
+    ]
+    for dx, dy in offsets:
+        for k, (x, y) in enumerate(pts):
+            if not np.isfinite([x, y]).all():
+                continue
+            px, py = int(np.rint(x)) + dx, int(np.rint(y)) + dy
+            if 0 <= px < canvas.width and 0 <= py < canvas.height:
+                canvas.image[py, px] = colours[k] if isinstance(colours, np.ndarray) else colours
+
+
+@pytest.mark.parametrize("per_dot", [True, False])
+@pytest.mark.parametrize("radius", [0.5, 1.0, 2.0])
+def test_many_dots_draw_the_picture_few_dots_draw(per_dot: bool, radius: float) -> None:
+    """Past a few thousand dots the canvas paints by pixel; the picture must not change,
+    down to which of two dots on one pixel shows (the later)."""
+    rng = np.random.default_rng(int(radius * 10) + per_dot)
+    pts = rng.uniform(-5, 45, (6000, 2)).round(1)  # many share a pixel, some off the canvas
+    pts[::97] = np.nan
+    colours = rng.integers(0, 256, (len(pts), 3)).astype(np.uint8)
+    fast, slow = Canvas(40, 30, (9, 9, 9)), Canvas(40, 30, (9, 9, 9))
+    if per_dot:
+        fast.points(pts, colours, radius=radius)
+        _dots_one_by_one(slow, pts, colours, radius)
+    else:
+        fast.points(pts, (200, 10, 50), radius=radius)
+        _dots_one_by_one(slow, pts, (200, 10, 50), radius)
+    np.testing.assert_array_equal(fast.image, slow.image)
 
 
 # ---- projection --------------------------------------------------------------------------
