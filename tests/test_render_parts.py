@@ -32,6 +32,7 @@ from sensorkit.render.lidar import (
 )
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
+from sensorkit.render.preview import SensorPreview
 from sensorkit.render.raster import Canvas
 from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
 from sensorkit.render.urdf_out import prepare_urdf
@@ -370,6 +371,37 @@ def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
     scan.ranges[on_bar] += 0.05
     bad = range_check(scan, shapes_of)
     assert bad.status == "fail" and bad.value == pytest.approx(0.05, abs=1e-3), bad.message
+
+
+# ---- rendering in several processes --------------------------------------------------------
+def test_sensors_are_split_over_processes_by_work() -> None:
+    from sensorkit.render.preview import _cost, _groups, _plan
+
+    robot = load_robot(HERE / "gz_bot.urdf").robot
+    assert robot is not None
+    jobs = [j for j in _plan(robot, (), Path("out")) if not isinstance(j, SensorPreview)]
+    names = [j.name for j in jobs]
+    assert names == ["gz_cam", "lens_cam", "velo"]
+    assert _cost(jobs[2]) > _cost(jobs[0]) + _cost(jobs[1])  # 28,800 rays, 2 x 161x121
+    assert [[j.name for j in g] for g in _groups(jobs, 1)] == [names]
+    # the biggest to a forked process: this one has the overview and validate to do after
+    assert [[j.name for j in g] for g in _groups(jobs, 2)] == [["gz_cam", "lens_cam"], ["velo"]]
+    assert [[j.name for j in g] for g in _groups(jobs, 4)] == [["lens_cam"], ["gz_cam"], ["velo"]]
+
+
+def test_a_lidar_cast_in_a_forked_process_gives_the_same_files(tmp_path: Path) -> None:
+    from sensorkit.render import render_preview
+
+    robot, scene = HERE / "gz_bot.urdf", HERE / "wall_scene.urdf"
+    one = render_preview(robot, tmp_path / "one", scene=scene, workers=1)
+    two = render_preview(robot, tmp_path / "two", scene=scene, workers=2)
+    for a, b in zip(one.sensors, two.sensors, strict=True):
+        assert [c.to_dict() for c in a.checks] == [c.to_dict() for c in b.checks]
+        for key, path in a.files.items():
+            assert path.read_bytes() == b.files[key].read_bytes(), (a.name, key)
+    assert (tmp_path / "one" / "overview.png").read_bytes() == (
+        tmp_path / "two" / "overview.png"
+    ).read_bytes()
 
 
 # ---- kinematics ------------------------------------------------------------------------------
