@@ -236,8 +236,9 @@ def range_check(
     ``EDGE_M`` away, whichever is nearer, meets something else; see ``_probe_dirs``),
     and beams meeting the surface more than 75 degrees from its normal, are left out:
     there a ray's range depends on a hair's breadth of angle or of surface tolerance.
-    An object seen by a single row of a sparse 3D scan is compared away from its edges. A beam that pybullet says hit nothing
-    while a known shape lies within range counts as missed.
+    An object seen by a single row of a sparse 3D scan is compared away from its edges.
+    A beam that pybullet says hit nothing while a known shape lies within range counts
+    as missed.
     """
     hits = scan.hits
     rmin, rmax = scan.beams.range_min, scan.beams.range_max
