@@ -1,29 +1,40 @@
 """How much does ``sensorkit render preview`` cost over pybullet doing the same work?
 
-Both sides run as whole processes (interpreter start, imports, everything), several
-times each; the medians are compared:
+For each sensor kind a one-sensor robot is previewed, and a raw pybullet script does the
+same work by hand and writes nothing: that script is the floor any pybullet preview
+stands on. The robots:
 
-* sensorkit: ``sensorkit render preview`` of a robot with two 640x480 cameras and a
-  360-beam lidar, in the default scene (all files, all checks, validate's findings).
-* raw pybullet: a script that builds the same world by hand (ground, four textured
-  walls, four textured crates, 72 marker spheres, the robot's URDF), renders the two
-  640x480 frames with TinyRenderer and casts the 360 beams in one rayTestBatch, and
-  writes nothing.
+* ``camera``: one 640x480 camera (classic, with a ROS plugin).
+* ``scan``: a 360-beam 2D lidar (classic ``ray``, with a ROS plugin).
+* ``velo``: a 128 x 2048 3D lidar (gz ``gpu_lidar``; 262,144 rays, 17 rayTestBatch calls).
+* ``mixed`` (with ``--mixed``): two 640x480 cameras and the 360-beam lidar, the robot of
+  the first version of this benchmark, where the preview spreads sensors over processes.
 
-The library call alone (``render_preview`` in a bare ``python -c``) is timed as well, to
-separate the command line's start-up (typer, which imports pydantic, and rich) from the
-preview's own cost.
+The raw script builds the same world (ground, four textured walls, four textured crates,
+72 marker spheres, the robot's URDF), then renders the frames with TinyRenderer and casts
+the beams with rayTestBatch in batches of 16,383 rays, as the preview does.
 
-It also times one 16 x 1800 3D lidar scan (28,800 rays) inside one process, as the
-preview casts it, and pybullet's raw rayTestBatch for the same rays.
+Both sides run as whole processes (interpreter start, imports, everything), paired and
+interleaved: run k previews every robot and runs its raw script back to back, the order
+of the pair alternating from one run to the next, so a machine that gets busier or
+quieter weighs on both sides alike. Each run's CPU time is what
+``resource.getrusage(RUSAGE_CHILDREN)`` adds up over the process and every process it
+forked (pybullet's ray threads included); wall time is printed beside it. The ratios are
+of the medians; the median of the per-pair ratios is printed too.
 
-Run: ``.venv/bin/python benchmarks/bench_render.py [--runs N]``. Target: ratio <= 1.5.
+CPU time is the figure to read on a shared machine: wall time counts whatever else is
+running, and a preview that renders in parallel spends more CPU than wall time.
+
+Run by hand, never from the tests:
+``PYTHONPATH=. .venv/bin/python benchmarks/bench_render.py [--runs N] [--only KIND ...]``.
+Targets: velo <= 1.5, camera <= 1.3 (CPU time).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -31,37 +42,33 @@ import tempfile
 import time
 from pathlib import Path
 
-ROBOT = """<?xml version="1.0"?>
-<robot name="bench_bot">
+INERTIAL = '<inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>'
+BASE = """
   <link name="base_link">
     <inertial><mass value="5"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
     <visual><origin xyz="0 0 0.15"/><geometry><box size="0.5 0.4 0.3"/></geometry></visual>
     <collision><origin xyz="0 0 0.15"/><geometry><box size="0.5 0.4 0.3"/></geometry></collision>
-  </link>
-  <link name="front_cam"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <joint name="front_cam_joint" type="fixed"><parent link="base_link"/><child link="front_cam"/><origin xyz="0.25 0 0.5"/></joint>
-  <link name="front_cam_optical"/>
-  <joint name="front_cam_optical_joint" type="fixed"><parent link="front_cam"/><child link="front_cam_optical"/>
+  </link>"""
+
+
+def _camera(name: str, xyz: str, rpy: str, hfov: float) -> str:
+    return f"""
+  <link name="{name}_cam">{INERTIAL}</link>
+  <joint name="{name}_cam_joint" type="fixed"><parent link="base_link"/><child link="{name}_cam"/><origin xyz="{xyz}" rpy="{rpy}"/></joint>
+  <link name="{name}_cam_optical"/>
+  <joint name="{name}_cam_optical_joint" type="fixed"><parent link="{name}_cam"/><child link="{name}_cam_optical"/>
     <origin rpy="-1.5707963267948966 0 -1.5707963267948966"/></joint>
-  <link name="rear_cam"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <joint name="rear_cam_joint" type="fixed"><parent link="base_link"/><child link="rear_cam"/><origin xyz="-0.25 0 0.5" rpy="0 0.2 3.141592653589793"/></joint>
-  <link name="rear_cam_optical"/>
-  <joint name="rear_cam_optical_joint" type="fixed"><parent link="rear_cam"/><child link="rear_cam_optical"/>
-    <origin rpy="-1.5707963267948966 0 -1.5707963267948966"/></joint>
-  <link name="laser"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <gazebo reference="{name}_cam">
+    <sensor name="{name}" type="camera"><camera><horizontal_fov>{hfov}</horizontal_fov>
+      <image><width>640</width><height>480</height></image><clip><near>0.05</near><far>50</far></clip></camera>
+      <plugin name="{name}_driver" filename="libgazebo_ros_camera.so"><frame_name>{name}_cam_optical</frame_name></plugin>
+    </sensor>
+  </gazebo>"""
+
+
+SCAN = f"""
+  <link name="laser">{INERTIAL}</link>
   <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser"/><origin xyz="0 0 0.4"/></joint>
-  <gazebo reference="front_cam">
-    <sensor name="front" type="camera"><camera><horizontal_fov>1.2</horizontal_fov>
-      <image><width>640</width><height>480</height></image><clip><near>0.05</near><far>50</far></clip></camera>
-      <plugin name="front_driver" filename="libgazebo_ros_camera.so"><frame_name>front_cam_optical</frame_name></plugin>
-    </sensor>
-  </gazebo>
-  <gazebo reference="rear_cam">
-    <sensor name="rear" type="camera"><camera><horizontal_fov>1.5</horizontal_fov>
-      <image><width>640</width><height>480</height></image><clip><near>0.05</near><far>50</far></clip></camera>
-      <plugin name="rear_driver" filename="libgazebo_ros_camera.so"><frame_name>rear_cam_optical</frame_name></plugin>
-    </sensor>
-  </gazebo>
   <gazebo reference="laser">
     <sensor name="scan" type="ray"><ray>
       <scan><horizontal><samples>360</samples><resolution>1</resolution>
@@ -70,9 +77,50 @@ ROBOT = """<?xml version="1.0"?>
       <plugin name="scan_driver" filename="libgazebo_ros_ray_sensor.so">
         <ros><remapping>~/out:=scan</remapping></ros><frame_name>laser</frame_name></plugin>
     </sensor>
-  </gazebo>
-</robot>
-"""
+  </gazebo>"""
+
+VELO = f"""
+  <link name="lidar_link">{INERTIAL}</link>
+  <joint name="lidar_joint" type="fixed"><parent link="base_link"/><child link="lidar_link"/><origin xyz="0 0 0.8"/></joint>
+  <gazebo reference="lidar_link">
+    <sensor name="velo" type="gpu_lidar">
+      <gz_frame_id>lidar_link</gz_frame_id>
+      <topic>velo/scan</topic>
+      <lidar>
+        <scan>
+          <horizontal><samples>2048</samples><resolution>1</resolution><min_angle>-3.141592653589793</min_angle><max_angle>3.141592653589793</max_angle></horizontal>
+          <vertical><samples>128</samples><resolution>1</resolution><min_angle>-0.39269908169872414</min_angle><max_angle>0.39269908169872414</max_angle></vertical>
+        </scan>
+        <range><min>0.3</min><max>30</max></range>
+      </lidar>
+    </sensor>
+  </gazebo>"""
+
+FRONT = _camera("front", "0.25 0 0.5", "0 0 0", 1.2)
+REAR = _camera("rear", "-0.25 0 0.5", "0 0.2 3.141592653589793", 1.5)
+
+
+def _robot(name: str, *parts: str) -> str:
+    return f'<?xml version="1.0"?>\n<robot name="{name}">{BASE}{"".join(parts)}\n</robot>\n'
+
+
+# kind -> (robot, the raw script's work: "cam:x,y,z,tx,ty,tz,hfov" / "rays:z,rows,vlo,vhi,cols,min,max")
+CASES: dict[str, tuple[str, list[str]]] = {
+    "camera": (_robot("cam_bot", FRONT), ["cam:0.25,0,0.5,1.25,0,0.5,1.2"]),
+    "scan": (_robot("scan_bot", SCAN), ["rays:0.4,1,0,0,360,0.12,12"]),
+    "velo": (
+        _robot("velo_bot", VELO),
+        ["rays:0.8,128,-0.39269908169872414,0.39269908169872414,2048,0.3,30"],
+    ),
+    "mixed": (
+        _robot("mixed_bot", FRONT, REAR, SCAN),
+        [
+            "cam:0.25,0,0.5,1.25,0,0.5,1.2",
+            "cam:-0.25,0,0.5,-1.25,0,0.2973,1.5",
+            "rays:0.4,1,0,0,360,0.12,12",
+        ],
+    ),
+}
 
 # The same world built by hand with pybullet alone: what any pybullet preview must do.
 RAW = r"""
@@ -80,7 +128,7 @@ import math, sys
 import numpy as np
 import pybullet as p
 
-robot, textures = sys.argv[1], sys.argv[2]
+robot, textures, work = sys.argv[1], sys.argv[2], sys.argv[3:]
 p.connect(p.DIRECT)
 
 def box_mesh(h, k):
@@ -124,86 +172,58 @@ for axis, sign in ((0, 1), (0, -1), (1, 1), (1, -1)):
 p.createMultiBody(0, p.createCollisionShape(p.GEOM_SPHERE, radius=0.05),
                   p.createVisualShape(p.GEOM_SPHERE, radius=0.05, rgbaColor=[1, 0.1, 0.9, 1]), batchPositions=markers)
 body = p.loadURDF(robot, useFixedBase=True)
+p.performCollisionDetection()
 
-def frame(eye, target, hfov):
-    vfov = math.degrees(2 * math.atan(math.tan(hfov / 2) * 480 / 640))
-    view = p.computeViewMatrix(eye, target, [0, 0, 1])
-    proj = p.computeProjectionMatrixFOV(vfov, 640 / 480, 0.05, 50)
-    return p.getCameraImage(640, 480, view, proj, renderer=p.ER_TINY_RENDERER,
-                            flags=p.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX, shadow=0)
-
-frame([0.25, 0, 0.5], [1.25, 0, 0.5], 1.2)
-frame([-0.25, 0, 0.5], [-1.25, 0, 0.5 - 0.2027], 1.5)
-a = np.linspace(-math.pi, math.pi, 360)
-d = np.stack([np.cos(a), np.sin(a), np.zeros_like(a)], axis=1)
-o = np.array([0.0, 0.0, 0.4])
-p.rayTestBatch(o + 0.12 * d, o + 12.0 * d, numThreads=0)
+for job in work:
+    what, _, numbers = job.partition(":")
+    a = [float(x) for x in numbers.split(",")]
+    if what == "cam":
+        eye, target, hfov = a[0:3], a[3:6], a[6]
+        vfov = math.degrees(2 * math.atan(math.tan(hfov / 2) * 480 / 640))
+        view = p.computeViewMatrix(eye, target, [0, 0, 1])
+        proj = p.computeProjectionMatrixFOV(vfov, 640 / 480, 0.05, 50)
+        p.getCameraImage(640, 480, view, proj, renderer=p.ER_TINY_RENDERER,
+                         flags=p.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX, shadow=0)
+    else:
+        z, rows, vlo, vhi, cols, rmin, rmax = a
+        az = np.linspace(-math.pi, math.pi, int(cols))[None, :]
+        el = (np.linspace(vlo, vhi, int(rows)) if rows > 1 else np.zeros(1))[:, None]
+        d = np.stack(np.broadcast_arrays(np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)), axis=-1).reshape(-1, 3)
+        o = np.array([0.0, 0.0, z])
+        starts, ends = o + rmin * d, o + rmax * d
+        for lo in range(0, len(d), 16383):
+            p.rayTestBatch(starts[lo:lo + 16383], ends[lo:lo + 16383], numThreads=0)
 """
 
 
-def _median(command: list[str], runs: int, env: dict[str, str]) -> tuple[float, list[float]]:
-    times = []
-    for _ in range(runs):
-        start = time.perf_counter()
-        proc = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
-        times.append(time.perf_counter() - start)
-        if proc.returncode not in (0, 1):
-            sys.exit(f"failed ({proc.returncode}): {' '.join(command)}\n{proc.stderr}")
-    return statistics.median(times), times
+def _run(command: list[str], env: dict[str, str]) -> tuple[float, float]:
+    """(CPU seconds of the process and its children, wall seconds) of one run."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    proc = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode not in (0, 1):
+        sys.exit(f"failed ({proc.returncode}): {' '.join(command)}\n{proc.stderr}")
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return cpu, wall
 
 
-def _lidar_3d() -> tuple[float, float, int]:
-    """(preview cast seconds, raw rayTestBatch seconds, calls) for a 16 x 1800 scan."""
-    import numpy as np
-
-    from sensorkit.model.sensors import LidarSpec
-    from sensorkit.model.transforms import transform
-    from sensorkit.render.lidar import cast, lidar_beams
-    from sensorkit.render.scene import default_scene
-    from sensorkit.render.sim import MAX_RAYS, World
-
-    spec = LidarSpec(element=None, source=None)  # type: ignore[arg-type]
-    spec.samples, spec.resolution, spec.min_angle, spec.max_angle = 1800, 1.0, -np.pi, np.pi
-    spec.has_vertical, spec.v_samples, spec.v_resolution = True, 16, 1.0
-    spec.v_min_angle, spec.v_max_angle = -0.26, 0.26
-    spec.range_min, spec.range_max = 0.3, 30.0
-    beams = lidar_beams(spec)
-    scene = default_scene(0.5)
-    with World() as world:
-        world.add_default_shapes(scene, scene.half_extent)
-        T = transform((0.0, 0.0, 0.8))
-        cast(world, T, beams)  # warm up
-        runs = []
-        for _ in range(5):
-            start = time.perf_counter()
-            scan = cast(world, T, beams)
-            runs.append(time.perf_counter() - start)
-        dirs = beams.directions().reshape(-1, 3)
-        starts, ends = T[:3, 3] + 0.3 * dirs, T[:3, 3] + 30.0 * dirs
-        raw = []
-        for _ in range(5):
-            start = time.perf_counter()
-            for lo in range(0, len(dirs), MAX_RAYS):
-                world.p.rayTestBatch(
-                    starts[lo : lo + MAX_RAYS],
-                    ends[lo : lo + MAX_RAYS],
-                    numThreads=0,
-                    physicsClientId=world.client,
-                )
-            raw.append(time.perf_counter() - start)
-    return statistics.median(runs), statistics.median(raw), scan.hits.calls
+def _fmt(values: list[float]) -> str:
+    return ", ".join(f"{v:.2f}" for v in values)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("--runs", type=int, default=7)
+    parser.add_argument("--runs", type=int, default=9)
+    parser.add_argument("--only", nargs="*", choices=sorted(CASES), default=None)
+    parser.add_argument("--mixed", action="store_true", help="add the two-camera + lidar robot")
     options = parser.parse_args()
+    kinds = options.only or ["camera", "scan", "velo"] + (["mixed"] if options.mixed else [])
     with tempfile.TemporaryDirectory(prefix="bench-render-") as tmp:
         folder = Path(tmp)
-        robot = folder / "bench_bot.urdf"
-        robot.write_text(ROBOT)
         textures = folder / "textures"
         textures.mkdir()
         from sensorkit.render.png import write_png
@@ -215,54 +235,57 @@ def main() -> None:
             write_png(textures / f"crate{k}.png", feature_texture(200 + k, 128))
         raw_script = folder / "raw.py"
         raw_script.write_text(RAW)
-        sk = [
-            sys.executable,
-            "-c",
-            "from sensorkit.cli import main; main()",
-            "render",
-            "preview",
-            str(robot),
-            "--out",
-            str(folder / "out"),
-        ]
-        raw = [sys.executable, str(raw_script), str(robot), str(textures)]
-        lib = [
-            sys.executable,
-            "-c",
-            "import os, sys; from pathlib import Path; from sensorkit.render import render_preview; "
-            "render_preview(Path(sys.argv[1]), Path(sys.argv[2]), workers=min(4, os.cpu_count() or 1))",
-            str(robot),
-            str(folder / "out-lib"),
-        ]
+        commands: dict[str, tuple[list[str], list[str]]] = {}
+        for kind in kinds:
+            text, work = CASES[kind]
+            robot = folder / f"{kind}.urdf"
+            robot.write_text(text)
+            sk = [sys.executable, "-m", "sensorkit", "render", "preview", str(robot)]
+            sk += ["--out", str(folder / f"out-{kind}")]
+            commands[kind] = (
+                sk,
+                [sys.executable, str(raw_script), str(robot), str(textures), *work],
+            )
         # Both sides run as installed code does: with bytecode cached (kept in a temporary
         # folder, so the source tree stays clean, whatever PYTHONDONTWRITEBYTECODE says).
         env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
         env["PYTHONPYCACHEPREFIX"] = str(folder / "pycache")
-        _median(sk, 1, env)  # warm the bytecode and file caches on both sides
-        _median(raw, 1, env)
-        _median(lib, 1, env)
-        sk_median, sk_times = _median(sk, options.runs, env)
-        raw_median, raw_times = _median(raw, options.runs, env)
-        lib_median, lib_times = _median(lib, options.runs, env)
-    print(f"runs: {options.runs} each (whole processes)")
+        for sk, raw in commands.values():  # warm the bytecode and file caches on both sides
+            _run(sk, env)
+            _run(raw, env)
+        load = os.getloadavg()[0]
+        times: dict[str, dict[str, list[tuple[float, float]]]] = {
+            kind: {"sk": [], "raw": []} for kind in kinds
+        }
+        for k in range(options.runs):
+            for kind, (sk, raw) in commands.items():
+                order = [("sk", sk), ("raw", raw)] if k % 2 == 0 else [("raw", raw), ("sk", sk)]
+                for side, command in order:
+                    times[kind][side].append(_run(command, env))
     print(
-        f"sensorkit render preview: median {sk_median:.3f} s  ({', '.join(f'{t:.3f}' for t in sk_times)})"
+        f"runs: {options.runs} pairs per robot, interleaved; cores: {os.cpu_count()}; "
+        f"load average before: {load:.2f}, after: {os.getloadavg()[0]:.2f}"
     )
-    print(
-        f"raw pybullet, same work:  median {raw_median:.3f} s  ({', '.join(f'{t:.3f}' for t in raw_times)})"
-    )
-    print(f"ratio: {sk_median / raw_median:.2f}  (target <= 1.5)")
-    print(
-        f"render_preview() without the CLI: median {lib_median:.3f} s  ({', '.join(f'{t:.3f}' for t in lib_times)})"
-    )
-    print(
-        f"ratio without the CLI: {lib_median / raw_median:.2f}; the CLI's own start-up costs {sk_median - lib_median:.3f} s"
-    )
-    print(f"cores: {os.cpu_count()}, load average before: {os.getloadavg()[0]:.2f}")
-    cast_s, raw_s, calls = _lidar_3d()
-    print(
-        f"16 x 1800 3D lidar (28,800 rays): preview cast {cast_s * 1000:.1f} ms in {calls} rayTestBatch calls; raw rayTestBatch {raw_s * 1000:.1f} ms"
-    )
+    print(f"{'robot':8} {'side':5} {'CPU median':>10} {'wall median':>11}   CPU per run (s)")
+    for kind in kinds:
+        for side in ("sk", "raw"):
+            cpu = [c for c, _ in times[kind][side]]
+            wall = [w for _, w in times[kind][side]]
+            label = "sk" if side == "sk" else "raw"
+            print(
+                f"{kind:8} {label:5.5} {statistics.median(cpu):10.3f} {statistics.median(wall):11.3f}   {_fmt(cpu)}"
+            )
+    print(f"\n{'robot':8} {'CPU ratio':>9} {'paired':>7} {'wall ratio':>10}")
+    for kind in kinds:
+        sk_cpu = [c for c, _ in times[kind]["sk"]]
+        raw_cpu = [c for c, _ in times[kind]["raw"]]
+        sk_wall = [w for _, w in times[kind]["sk"]]
+        raw_wall = [w for _, w in times[kind]["raw"]]
+        paired = statistics.median(a / b for a, b in zip(sk_cpu, raw_cpu, strict=True))
+        print(
+            f"{kind:8} {statistics.median(sk_cpu) / statistics.median(raw_cpu):9.2f} {paired:7.2f} "
+            f"{statistics.median(sk_wall) / statistics.median(raw_wall):10.2f}"
+        )
 
 
 if __name__ == "__main__":

@@ -12,17 +12,29 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from sensorkit.errors import UsageError
 from sensorkit.loading import PackageResolver
 from sensorkit.model import load_robot
+from sensorkit.model.sensors import LidarSpec
 from sensorkit.model.transforms import transform
 from sensorkit.render.camera import RenderCamera, depth_from_buffer
+from sensorkit.render.lidar import (
+    SAMPLE_BEAMS,
+    LidarScan,
+    _first_hits,
+    cast,
+    check_sample,
+    lidar_beams,
+    range_check,
+)
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
-from sensorkit.render.scene import GROUND, Shape, default_scene
+from sensorkit.render.preview import SensorPreview
+from sensorkit.render.raster import Canvas
+from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
 from sensorkit.render.urdf_out import prepare_urdf
 
 HERE = Path(__file__).parent / "render_robots"
@@ -59,6 +71,47 @@ def test_png_refuses_what_it_cannot_write() -> None:
         encode_png(np.zeros((2, 2), dtype=np.float32))
     with pytest.raises(ValueError, match="H, W"):
         encode_png(np.zeros((2, 2, 2), dtype=np.uint8))
+
+
+# ---- drawing -------------------------------------------------------------------------------
+def _dots_one_by_one(
+    canvas: Canvas, pts: np.ndarray, colours: np.ndarray | tuple[int, int, int], radius: float
+) -> None:
+    """Canvas dots as the first version drew them: offset by offset, dot by dot (a
+    square of them for dots of their own colour, a disc for dots of one colour)."""
+    r = max(0, math.ceil(radius - 0.5))
+    offsets = [
+        (dx, dy)
+        for dx in range(-r, r + 1)
+        for dy in range(-r, r + 1)
+        if isinstance(colours, np.ndarray) or dx * dx + dy * dy <= radius * radius + 0.25
+    ]
+    for dx, dy in offsets:
+        for k, (x, y) in enumerate(pts):
+            if not np.isfinite([x, y]).all():
+                continue
+            px, py = int(np.rint(x)) + dx, int(np.rint(y)) + dy
+            if 0 <= px < canvas.width and 0 <= py < canvas.height:
+                canvas.image[py, px] = colours[k] if isinstance(colours, np.ndarray) else colours
+
+
+@pytest.mark.parametrize("per_dot", [True, False])
+@pytest.mark.parametrize("radius", [0.5, 1.0, 2.0])
+def test_many_dots_draw_the_picture_few_dots_draw(per_dot: bool, radius: float) -> None:
+    """Past a few thousand dots the canvas paints by pixel; the picture must not change,
+    down to which of two dots on one pixel shows (the later)."""
+    rng = np.random.default_rng(int(radius * 10) + per_dot)
+    pts = rng.uniform(-5, 45, (6000, 2)).round(1)  # many share a pixel, some off the canvas
+    pts[::97] = np.nan
+    colours = rng.integers(0, 256, (len(pts), 3)).astype(np.uint8)
+    fast, slow = Canvas(40, 30, (9, 9, 9)), Canvas(40, 30, (9, 9, 9))
+    if per_dot:
+        fast.points(pts, colours, radius=radius)
+        _dots_one_by_one(slow, pts, colours, radius)
+    else:
+        fast.points(pts, (200, 10, 50), radius=radius)
+        _dots_one_by_one(slow, pts, (200, 10, 50), radius)
+    np.testing.assert_array_equal(fast.image, slow.image)
 
 
 # ---- projection --------------------------------------------------------------------------
@@ -172,6 +225,12 @@ def test_shape_intersections() -> None:
     assert side[0][0] == pytest.approx(1.8) and side[1][0] == pytest.approx([-1, 0, 0])
     inside = np.array([[3.0, 0.0, 1.0]])
     assert np.isnan(box.intersect(inside, np.array([[1.0, 0.0, 0.0]])))[0]
+    # a ray parallel to a face, beside the box, never enters it (nor one along an edge's
+    # slab but off to the side)
+    level = Shape("l", "box", transform((3.0, 0.0, 0.4)), (0.3, 0.3, 0.4))
+    over = level.intersect(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.4]]), np.array([[1.0, 0, 0]] * 2))
+    assert np.isnan(over).all()
+    assert level.intersect(np.array([[0.0, 0.0, 0.5]]), np.array([[1.0, 0, 0]]))[0] == 2.7
 
 
 def test_default_scene_keeps_the_axes_clear_and_grows_with_the_robot() -> None:
@@ -186,6 +245,163 @@ def test_default_scene_keeps_the_axes_clear_and_grows_with_the_robot() -> None:
         firsts = np.fmin.reduce([s.intersect(axis, d) for s in scene.shapes if s.kind != GROUND])
         assert firsts == pytest.approx([3.0] * len(axis))  # nothing before the wall
     assert default_scene(4.0).half_extent > 5.5
+
+
+# ---- the lidar range check ---------------------------------------------------------------------
+def _lidar_spec(rows: int, cols: int, v_half: float = 0.2618) -> LidarSpec:
+    spec = LidarSpec(element=None, source=None)  # type: ignore[arg-type]
+    spec.samples, spec.resolution, spec.min_angle, spec.max_angle = cols, 1.0, -math.pi, math.pi
+    if rows > 1:
+        spec.has_vertical, spec.v_samples, spec.v_resolution = True, rows, 1.0
+        spec.v_min_angle, spec.v_max_angle = -v_half, v_half
+    spec.range_min, spec.range_max = 0.3, 30.0
+    return spec
+
+
+@pytest.mark.parametrize(
+    ("rows", "cols"), [(1, 360), (16, 256), (16, 1800), (128, 2048), (5000, 3), (1, 900_000)]
+)
+def test_range_check_sample_is_bounded_and_keeps_every_row(rows: int, cols: int) -> None:
+    sample = check_sample(rows, cols)
+    assert len(sample) == len(np.unique(sample)) and (np.diff(sample) > 0).all()
+    assert sample.min() >= 0 and sample.max() < rows * cols
+    if rows * cols <= SAMPLE_BEAMS:
+        assert len(sample) == rows * cols  # a small scan is checked whole
+    else:
+        assert len(sample) <= max(SAMPLE_BEAMS, min(rows, SAMPLE_BEAMS))
+    picked_rows = np.unique(sample // cols)
+    if rows <= SAMPLE_BEAMS:
+        assert len(picked_rows) == rows  # every row represented
+        per_row = np.bincount(sample // cols, minlength=rows)
+        assert per_row.max() - per_row.min() == 0
+        # and the columns cover the whole azimuth range, not one slice of it
+        assert np.ptp(sample % cols) >= 0.9 * (cols - 1) or len(sample) == rows
+    np.testing.assert_array_equal(sample, check_sample(rows, cols))  # deterministic
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+@example(1503)  # once off in the last bit
+def test_pruned_first_hits_equal_every_shape_tested(seed: int) -> None:
+    """Skipping the shapes a ray cannot reach never changes its first hit."""
+    rng = np.random.default_rng(seed)
+    shapes = list(default_scene(0.5).shapes)
+    for k in range(6):  # and shapes around and above the origin
+        T = transform(tuple(rng.uniform(-2, 2, 3)), tuple(rng.uniform(-3, 3, 3)))
+        kind = ("box", "sphere", "cylinder")[k % 3]
+        size = {"box": tuple(rng.uniform(0.05, 1.0, 3)), "sphere": (rng.uniform(0.05, 1),)}
+        shapes.append(Shape(f"s{k}", kind, T, size.get(kind, tuple(rng.uniform(0.05, 1, 2)))))
+    origin = rng.uniform(-1, 1, 3) + np.array([0, 0, 1.0])
+    dirs = rng.normal(size=(3000, 3))
+    dirs[:5] = [[0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0], [-1, -1e-17, 0]]
+    dirs /= np.linalg.norm(dirs, axis=1)[:, None]
+    t, i, _ = _first_hits(shapes, origin, dirs, 0.3)
+    starts = origin + 0.3 * dirs
+    every = np.array([s.intersect(starts, dirs) for s in shapes])
+    exact = np.fmin.reduce(every, axis=0)
+    hit = np.isfinite(t)
+    np.testing.assert_array_equal(hit, np.isfinite(exact))
+    # equal up to the last bit: a matrix product rounds differently on fewer rows
+    np.testing.assert_allclose(t[hit], exact[hit], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(every[i[hit], np.flatnonzero(hit)], t[hit], rtol=1e-12)
+
+
+def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, dict]:
+    from sensorkit.render.sim import World
+
+    with World() as world:
+        world.add_default_shapes(scene, scene.half_extent)
+        world.refresh_bounds()
+        scan = cast(world, transform((0.0, 0.0, z)), lidar_beams(spec))
+        return scan, dict(world.shape_of)
+
+
+def _beam_on(scan: LidarScan, shapes_of: dict, name: str, among: np.ndarray) -> int:
+    """The beam of ``among`` nearest the middle of the shape called ``name``."""
+    (key,) = [k for k, shapes in shapes_of.items() if any(s.name == name for s in shapes)]
+    on = among[(scan.hits.body[among] == key[0]) & (scan.hits.link[among] == key[1])]
+    H = scan.beams.shape[1]
+    off = np.abs(scan.beams.elevation[on // H]) + np.abs(scan.beams.azimuth[on % H])
+    return int(on[np.argmin(off)])
+
+
+@pytest.mark.parametrize(("rows", "cols"), [(1, 360), (16, 200), (128, 2048)])
+def test_range_check_fails_a_wrong_range_on_a_sampled_beam(rows: int, cols: int) -> None:
+    scan, shapes_of = _scan_in(default_scene(0.5), _lidar_spec(rows, cols))
+    good = range_check(scan, shapes_of)
+    assert good.status == "ok", good.message
+    assert good.details["rays"] == rows * cols
+    assert good.details["sampled"] == min(rows * cols, len(check_sample(rows, cols)))
+    assert good.details["beams"] > 0.8 * good.details["sampled"]
+    beam = _beam_on(scan, shapes_of, "wall_+x", check_sample(rows, cols))
+    flat = scan.ranges.reshape(-1)
+    right = float(flat[beam])
+    flat[beam] = right + 0.02  # 2 cm long
+    bad = range_check(scan, shapes_of)
+    assert bad.status == "fail" and bad.value == pytest.approx(0.02, abs=1e-3), bad.message
+    flat[beam] = right
+    scan.hits.body[beam] = -1  # pybullet saw nothing where the wall is
+    missed = range_check(scan, shapes_of)
+    assert missed.status == "fail" and missed.details["missed"] == 1, missed.message
+
+
+def test_a_2d_lidar_above_the_crates_passes_the_range_check() -> None:
+    """Level beams over a crate's top face do not hit it (they once did, in the exact
+    geometry, and the check failed 57 beams that pybullet rightly saw hit the wall)."""
+    scan, shapes_of = _scan_in(default_scene(0.5), _lidar_spec(1, 360), z=1.0)
+    check = range_check(scan, shapes_of)
+    assert check.status == "ok" and check.details["wrong_shape"] == 0, check.message
+
+
+def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
+    """A 4 cm bar across the middle row of a 15-row scan (rows 2 degrees apart): the rows
+    above and below miss it, yet its beams are compared, and a wrong range there fails."""
+    bar = Shape("bar", "box", transform((3.0, 0.0, 0.8)), (0.05, 1.0, 0.02), rgba=(1, 0, 0, 1))
+    ground = Shape("ground", GROUND, np.eye(4), (), GROUND)
+    scene = Scene([ground, bar], "bar", 4.0)
+    spec = _lidar_spec(15, 240, v_half=math.radians(14))
+    scan, shapes_of = _scan_in(scene, spec)
+    V, H = scan.beams.shape
+    assert scan.beams.elevation[7] == pytest.approx(0.0, abs=1e-12)
+    (key,) = [k for k, shapes in shapes_of.items() if shapes == [bar]]
+    on_bar = (scan.hits.body == key[0]).reshape(V, H)
+    assert on_bar.any(axis=1).tolist() == [r == 7 for r in range(V)]  # one row sees it
+    good = range_check(scan, shapes_of)
+    assert good.status == "ok", good.message
+    scan.ranges[on_bar] += 0.05
+    bad = range_check(scan, shapes_of)
+    assert bad.status == "fail" and bad.value == pytest.approx(0.05, abs=1e-3), bad.message
+
+
+# ---- rendering in several processes --------------------------------------------------------
+def test_sensors_are_split_over_processes_by_work() -> None:
+    from sensorkit.render.preview import _cost, _groups, _plan
+
+    robot = load_robot(HERE / "gz_bot.urdf").robot
+    assert robot is not None
+    jobs = [j for j in _plan(robot, (), Path("out")) if not isinstance(j, SensorPreview)]
+    names = [j.name for j in jobs]
+    assert names == ["gz_cam", "lens_cam", "velo"]
+    assert _cost(jobs[2]) > _cost(jobs[0]) + _cost(jobs[1])  # 28,800 rays, 2 x 161x121
+    assert [[j.name for j in g] for g in _groups(jobs, 1)] == [names]
+    # the biggest to a forked process: this one has the overview and validate to do after
+    assert [[j.name for j in g] for g in _groups(jobs, 2)] == [["gz_cam", "lens_cam"], ["velo"]]
+    assert [[j.name for j in g] for g in _groups(jobs, 4)] == [["lens_cam"], ["gz_cam"], ["velo"]]
+
+
+def test_a_lidar_cast_in_a_forked_process_gives_the_same_files(tmp_path: Path) -> None:
+    from sensorkit.render import render_preview
+
+    robot, scene = HERE / "gz_bot.urdf", HERE / "wall_scene.urdf"
+    one = render_preview(robot, tmp_path / "one", scene=scene, workers=1)
+    two = render_preview(robot, tmp_path / "two", scene=scene, workers=2)
+    for a, b in zip(one.sensors, two.sensors, strict=True):
+        assert [c.to_dict() for c in a.checks] == [c.to_dict() for c in b.checks]
+        for key, path in a.files.items():
+            assert path.read_bytes() == b.files[key].read_bytes(), (a.name, key)
+    assert (tmp_path / "one" / "overview.png").read_bytes() == (
+        tmp_path / "two" / "overview.png"
+    ).read_bytes()
 
 
 # ---- kinematics ------------------------------------------------------------------------------

@@ -12,10 +12,43 @@ Library API (the CLI in :mod:`sensorkit.cli.new` is a thin layer over it):
 
 from __future__ import annotations
 
-from sensorkit.generate.bridge import bridge_entries, bridge_file_text
-from sensorkit.generate.catalog import MacroInfo, Param, base_templates, sensor_macros
-from sensorkit.generate.package import GeneratedPackage, build_package, new_package
-from sensorkit.generate.spec import Mark, RobotSpec, SensorSpec, load_spec, parse_spec
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from sensorkit.generate.bridge import bridge_entries, bridge_file_text
+    from sensorkit.generate.catalog import MacroInfo, Param, base_templates, sensor_macros
+    from sensorkit.generate.package import GeneratedPackage, build_package, new_package
+    from sensorkit.generate.spec import Mark, RobotSpec, SensorSpec, load_spec, parse_spec
+
+# Loaded on first use: render preview reads only generate.bridge (a gz sensor's topics),
+# and the package writer with its YAML parser costs it some 60 ms to import.
+_HOME = {
+    "bridge_entries": "bridge",
+    "bridge_file_text": "bridge",
+    "MacroInfo": "catalog",
+    "Param": "catalog",
+    "base_templates": "catalog",
+    "sensor_macros": "catalog",
+    "GeneratedPackage": "package",
+    "build_package": "package",
+    "new_package": "package",
+    "Mark": "spec",
+    "RobotSpec": "spec",
+    "SensorSpec": "spec",
+    "load_spec": "spec",
+    "parse_spec": "spec",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _HOME:
+        value = getattr(importlib.import_module(f"sensorkit.generate.{_HOME[name]}"), name)
+        globals()[name] = value
+        return value
+    msg = f"module 'sensorkit.generate' has no attribute {name!r}"
+    raise AttributeError(msg)
+
 
 __all__ = [
     "GeneratedPackage",

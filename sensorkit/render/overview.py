@@ -162,14 +162,15 @@ def draw_scan(
     canvas.line((c, 0), (c, size), (225, 225, 225))
     canvas.line((0, c), (size, c), (225, 225, 225))
     rows = int(elevation_index.max()) + 1 if len(elevation_index) else 1
-    if rows > 1:
-        t = elevation_index / max(1, rows - 1)
-        colours = np.stack([40 + 200 * t, 90 + 60 * (1 - t), 220 - 180 * t], axis=1).astype(
+    if rows > 1:  # one colour a row, looked up for each return
+        t = np.arange(rows) / max(1, rows - 1)
+        palette = np.stack([40 + 200 * t, 90 + 60 * (1 - t), 220 - 180 * t], axis=1).astype(
             np.uint8
         )
+        colours = palette[elevation_index[finite]]
     else:
-        colours = np.tile(np.array([[31, 119, 180]], dtype=np.uint8), (len(points), 1))
-    colours[self_hit] = (220, 30, 30)
-    canvas.points(px(points[finite, :2]), colours[finite], radius=1.0)
+        colours = np.tile(np.array([[31, 119, 180]], dtype=np.uint8), (int(finite.sum()), 1))
+    colours[self_hit[finite]] = (220, 30, 30)
+    canvas.points(px(points[finite, :2]), colours, radius=1.0)
     canvas.polygon(np.array([[c, c - 9], [c - 6, c + 6], [c + 6, c + 6]]), (0, 0, 0))
     return canvas.image

@@ -481,33 +481,95 @@ def _run_job(run: _Run, job: _Job, progress: Progress | None) -> _Result:
     return _camera(run, job, progress) if job.cam is not None else _lidar(run, job, progress)
 
 
+# Costs of a job in units of one camera pixel rendered: a lidar ray costs about 12 of
+# them, and the checks and files of any sensor some 80,000.
+_JOB_OVERHEAD = 80_000
+_RAY_COST = 12
+
+
+def _cost(job: _Job) -> int:
+    """Rough CPU a job takes, in units of one TinyRenderer pixel."""
+    from sensorkit.sensorinfo import SDF_DEFAULTS
+
+    if job.cam is not None:
+        w = job.cam.width if job.cam.width and job.cam.width > 0 else int(SDF_DEFAULTS["width"])
+        h = job.cam.height if job.cam.height and job.cam.height > 0 else int(SDF_DEFAULTS["height"])
+        return _JOB_OVERHEAD + w * h
+    lidar = job.sensor.lidar
+    rays = 1 if lidar is None else max(lidar.samples or 1, 1) * max(lidar.v_samples or 1, 1)
+    return _JOB_OVERHEAD + _RAY_COST * rays
+
+
+def _groups(jobs: list[_Job], workers: int) -> list[list[_Job]]:
+    """Jobs split into at most ``workers`` groups of about equal cost, each in document
+    order: largest first, each to the lightest group, and of equal ones to the last.
+    Group 0 stays in this process, which has the overview and validate to do after."""
+    loads = [0] * max(1, min(workers, len(jobs)))
+    groups: list[list[_Job]] = [[] for _ in loads]
+    for job in sorted(jobs, key=_cost, reverse=True):
+        g = max(range(len(loads)), key=lambda k: (-loads[k], k))
+        groups[g].append(job)
+        loads[g] += _cost(job)
+    order = {id(j): k for k, j in enumerate(jobs)}
+    return [sorted(group, key=lambda j: order[id(j)]) for group in groups]
+
+
+def _preload(jobs: list[_Job], target: str) -> None:
+    """Import here, before forking, what rendering the jobs imports, so that the forked
+    processes inherit it instead of each importing it again."""
+    import importlib
+    import pickle  # noqa: F401 (the children send their results with it)
+
+    from sensorkit.model.targets import is_gz
+
+    names = [
+        "numpy.ma",  # np.percentile and np.median import it on first use
+        "sensorkit.atomic",
+        "sensorkit.exporters",
+        "sensorkit.intrinsics",
+        "sensorkit.model.frames",
+        "sensorkit.render._files",
+        "sensorkit.render.overview",
+        "sensorkit.render.png",
+        "sensorkit.render.raster",
+        "sensorkit.sensorinfo",
+    ]
+    if any(j.cam is not None for j in jobs):
+        names.append("sensorkit.render.camera")
+    if any(j.cam is None for j in jobs):
+        names.append("sensorkit.render.lidar")
+    if is_gz(target):
+        names.append("sensorkit.generate.bridge")  # the topics of a gz sensor
+    for name in names:
+        importlib.import_module(name)
+
+
 def _render_all(
     run: _Run, plan: list[_Job | SensorPreview], progress: Progress | None, workers: int
 ) -> list[_Result]:
-    """Render every job; with ``workers`` > 1 on Linux, split the cameras over forked
-    processes (lidars stay here: rayTestBatch starts threads, which must not exist when
-    forking). A child that fails has its cameras rendered here instead."""
-    cameras = [j for j in plan if isinstance(j, _Job) and j.cam is not None]
-    groups = min(max(1, workers), len(cameras))
-    if groups <= 1 or not sys.platform.startswith("linux") or not hasattr(os, "fork"):
-        groups = 1
+    """Render every job; with ``workers`` > 1 on Linux, split the jobs, cameras and lidars
+    alike, over forked processes of about equal work. Every fork happens before anything
+    is rendered or cast here (rayTestBatch starts threads, which must not exist when
+    forking). A child that fails has its jobs rendered here instead."""
+    jobs = [j for j in plan if isinstance(j, _Job)]
+    if workers <= 1 or not sys.platform.startswith("linux") or not hasattr(os, "fork"):
+        workers = 1
+    groups = _groups(jobs, workers)
     done: dict[int, _Result] = {}
     children: list[tuple[int, int, list[_Job]]] = []
-    for g in range(1, groups):
-        group = cameras[g::groups]
+    if len(groups) > 1:
+        _preload(jobs, run.target)
+    for group in groups[1:]:
         for job in group:
-            _say(progress, f"rendering {job.name} (in a second process)")
+            what = "rendering" if job.cam is not None else "casting"
+            _say(progress, f"{what} {job.name} (in another process)")
         child = _fork(run, group)
         if child is not None:
             children.append((*child, group))
-    forked = {id(j) for _, _, group in children for j in group}
-    jobs = [j for j in plan if isinstance(j, _Job)]
-    for job in jobs:  # this process's cameras, then every lidar
-        if job.cam is not None and id(job) not in forked:
-            done[id(job)] = _run_job(run, job, progress)
-    for job in jobs:
-        if job.cam is None:
-            done[id(job)] = _run_job(run, job, progress)
+        else:
+            groups[0] += group
+    for job in groups[0]:
+        done[id(job)] = _run_job(run, job, progress)
     for pid, fd, group in children:
         results = _collect(pid, fd)
         if results is None or len(results) != len(group):
@@ -718,9 +780,10 @@ def render_preview(
         target: ``auto`` or a simulator target (decides camera_info's convention and the
             published frames).
         progress: called with a short message before each step.
-        workers: processes to render cameras in (Linux; the others are forked from this
-            one after the world is built, so each renders from the same state). 1 renders
-            everything here; results are the same either way.
+        workers: processes to render cameras and cast lidars in (Linux; the others are
+            forked from this one after the world is built, so each renders from the same
+            state, and get sensors of about equal work). 1 renders everything here;
+            results are the same either way.
         max_pixels: the most pixels one camera may have (checked before anything is
             allocated: a 100000 x 100000 camera would need hundreds of GB).
         max_rays: the most rays one lidar may cast per scan.

@@ -14,6 +14,8 @@ import numpy.typing as npt
 __all__ = ["Canvas", "colourise_depth", "convex_hull"]
 
 Colour = tuple[int, int, int]
+# Dots past this count are drawn by pixel rather than one by one (same picture).
+_MANY = 4096
 Points = npt.NDArray[np.float64]
 
 # Near (warm, bright) to far (cool, dark); +inf and -inf get their own greys.
@@ -54,8 +56,17 @@ class Canvas:
             for dx in range(-r, r + 1)
             for dy in range(-r, r + 1)
             if dx * dx + dy * dy <= radius * radius + 0.25
-        ]
-        for dx, dy in offsets or [(0, 0)]:
+        ] or [(0, 0)]
+        if len(ix) > _MANY:  # one colour: mark the centres once, then paint each offset
+            near = (ix >= -r) & (ix < self.width + r) & (iy >= -r) & (iy < self.height + r)
+            centres = np.zeros((self.height + 2 * r, self.width + 2 * r), dtype=bool)
+            centres[iy[near] + r, ix[near] + r] = True
+            paint = np.zeros((self.height, self.width), dtype=bool)
+            for dx, dy in offsets:
+                paint |= centres[r - dy : r - dy + self.height, r - dx : r - dx + self.width]
+            self.image[paint] = colour
+            return
+        for dx, dy in offsets:
             x, y = ix + dx, iy + dy
             ok = (x >= 0) & (x < self.width) & (y >= 0) & (y < self.height)
             self.image[y[ok], x[ok]] = colour
@@ -151,6 +162,14 @@ class Canvas:
             ix = np.rint(pts[:, 0]).astype(np.int64)
             iy = np.rint(pts[:, 1]).astype(np.int64)
             r = max(0, int(np.ceil(radius - 0.5)))
+            if len(ix) > _MANY:  # keep the last dot of each pixel: it is the one that shows
+                near = (ix >= -r) & (ix < self.width + r) & (iy >= -r) & (iy < self.height + r)
+                at = np.flatnonzero(near)
+                key = (iy[at] + r) * (self.width + 2 * r) + (ix[at] + r)
+                last = np.full((self.width + 2 * r) * (self.height + 2 * r), -1, dtype=np.int64)
+                np.maximum.at(last, key, at)
+                keep = last[last >= 0]
+                ix, iy, cols = ix[keep], iy[keep], cols[keep]
             for dx in range(-r, r + 1):
                 for dy in range(-r, r + 1):
                     x, y = ix + dx, iy + dy

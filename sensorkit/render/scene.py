@@ -95,6 +95,17 @@ class Shape:
             return np.full(len(o), np.nan), np.zeros((len(o), 3))
         return t, n @ R.T
 
+    @property
+    def bounding_radius(self) -> float:
+        """Radius of a sphere about ``centre`` holding the whole shape (inf: unbounded)."""
+        if self.kind == "box":
+            return math.sqrt(sum(float(v) * float(v) for v in self.size))
+        if self.kind == "sphere":
+            return float(self.size[0])
+        if self.kind == "cylinder":
+            return math.hypot(float(self.size[0]), float(self.size[1]))
+        return math.inf
+
     def footprint(self) -> Array:
         """Points whose xy convex hull is the shape seen from above."""
         if self.kind == "box":
@@ -125,11 +136,12 @@ def _box(o: Array, d: Array, h: Array) -> tuple[Array, Array]:
         inv = 1.0 / d
         t1 = (-h - o) * inv
         t2 = (h - o) * inv
-    # a ray parallel to a slab: inside it for all t, or never
+    # a ray parallel to a slab: inside it for all t (enters at -inf, leaves at +inf), or
+    # never (enters at +inf)
     parallel = d == 0
     inside_slab = np.abs(o) <= h
     t1 = np.where(parallel, np.where(inside_slab, -np.inf, np.inf), t1)
-    t2 = np.where(parallel, np.where(inside_slab, np.inf, -np.inf), t2)
+    t2 = np.where(parallel, np.inf, t2)
     entry = np.minimum(t1, t2)
     axis = entry.argmax(axis=1)
     t_near = entry.max(axis=1)

@@ -20,6 +20,7 @@ import sys
 import tempfile
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from operator import itemgetter
 from pathlib import Path
 from types import ModuleType
 from typing import IO, Any
@@ -490,8 +491,8 @@ class World:
             if len(results) != hi - lo:
                 msg = f"pybullet returned {len(results)} ray results for {hi - lo} rays"
                 raise RuntimeError(msg)
-            for k, r in enumerate(results):
-                body[lo + k] = r[0]
-                link[lo + k] = r[1]
-                fraction[lo + k] = r[2]
+            # each result is (body, link, fraction, position, normal)
+            body[lo:hi] = np.fromiter(map(itemgetter(0), results), np.int32, hi - lo)
+            link[lo:hi] = np.fromiter(map(itemgetter(1), results), np.int32, hi - lo)
+            fraction[lo:hi] = np.fromiter(map(itemgetter(2), results), np.float64, hi - lo)
         return RayHits(body, link, fraction, calls)

@@ -20,8 +20,16 @@ def _disc(
     y0, y1 = max(0, int(cy - r)), min(size, int(cy + r) + 2)
     if x0 >= x1 or y0 >= y1:
         return
-    yy, xx = np.ogrid[y0:y1, x0:x1]
+    yy = np.arange(y0, y1)[:, None]
+    xx = np.arange(x0, x1)[None, :]
     img[y0:y1, x0:x1][(xx - cx) ** 2 + (yy - cy) ** 2 <= r * r] = colour
+
+
+def _checks(size: int, cell: int) -> npt.NDArray[np.bool_]:
+    """A checkerboard of ``cell``-pixel squares, True on the odd ones."""
+    parity = (np.arange(size) // cell) % 2 == 1
+    out: npt.NDArray[np.bool_] = parity[:, None] ^ parity[None, :]
+    return out
 
 
 def _finish(
@@ -34,12 +42,9 @@ def _finish(
 def feature_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
     """A square RGB texture with many corners of different contrast and scale."""
     rng = np.random.default_rng(seed)
-    cell = size // 8
-    checks = ((np.arange(size)[:, None] // cell + np.arange(size)[None, :] // cell) % 2).astype(
-        np.int16
-    )
+    checks = _checks(size, size // 8)
     base = rng.integers(90, 200, 3).astype(np.int16)
-    img = (base * (75 + 35 * checks[:, :, None]) // 100).astype(np.int16)
+    img = np.where(checks[:, :, None], base * 110 // 100, base * 75 // 100).astype(np.int16)
     for _ in range(40):
         w, h = rng.integers(size // 20, size // 4, 2)
         x0, y0 = rng.integers(0, size - w), rng.integers(0, size - h)
@@ -54,13 +59,9 @@ def feature_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
 def floor_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
     """A tiled floor: light and dark squares with speckles (one texture repeat = 1 m)."""
     rng = np.random.default_rng(seed)
-    cell = size // 4
-    checks = ((np.arange(size)[:, None] // cell + np.arange(size)[None, :] // cell) % 2).astype(
-        np.int16
-    )
-    img = (
-        np.array([150, 140, 120], dtype=np.int16) * (70 + 45 * checks[:, :, None]) // 100
-    ).astype(np.int16)
+    checks = _checks(size, size // 4)
+    tone = np.array([150, 140, 120], dtype=np.int16)
+    img = np.where(checks[:, :, None], tone * 115 // 100, tone * 70 // 100).astype(np.int16)
     for _ in range(60):
         r = rng.uniform(1.5, size / 40)
         cx, cy = rng.uniform(0, size, 2)
