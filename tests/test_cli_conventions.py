@@ -95,3 +95,42 @@ def test_a_file_that_cannot_be_checked_is_never_a_clean_run(tmp_path: Path) -> N
     assert json.loads(res.stdout)["runs"][0]["invocations"][0] == {"executionSuccessful": True}
     res = run_cli("validate", str(good))
     assert "could not be checked" not in res.stdout
+
+
+def test_rules_lists_explains_and_validates_its_format() -> None:
+    res = run_cli("rules", "-f", "json")
+    rows = json.loads(res.stdout)
+    assert res.returncode == 0 and {r["id"] for r in rows} >= {"SK101", "SK502", "SK614"}
+    assert next(r for r in rows if r["id"] == "SK505")["fixable"]
+    res = run_cli("rules", "SK502")
+    assert res.returncode == 0 and "bad:" in res.stdout and "good:" in res.stdout and "why:" in res.stdout
+    res = run_cli("rules", "sk502", "-f", "json")
+    (row,) = json.loads(res.stdout)
+    assert row["id"] == "SK502" and "camera_optical_frame" in row["good"]
+    for bad in (["rules", "-f", "yaml"], ["rules", "SK999"]):
+        res = run_cli(*bad)
+        assert res.returncode == 2 and len(res.stderr.strip().splitlines()) == 1, res.stderr
+
+
+def _plugin_params(fragment: str) -> str:
+    return re.search(r"<plugin[^>]*>\s*(.*?)\s*</plugin>", fragment, re.S).group(1)  # type: ignore[union-attr]
+
+
+@pytest.mark.parametrize("rule", ["SK502", "SK602", "SK505"])
+def test_rule_examples_do_what_they_say(check: object, rule: str) -> None:
+    # The bad example triggers its rule; the good one does not (sensorkit/explain.py).
+    from builders import camera_sensor, robot
+
+    from sensorkit.explain import EXAMPLES
+
+    ex = EXAMPLES[rule]
+    if rule == "SK505":
+        rpy = re.compile(r'rpy="([^"]+)"')
+        bad = robot(optical_rpy=rpy.search(ex.bad).group(1))  # type: ignore[union-attr]
+        good = robot(optical_rpy=rpy.search(ex.good).group(1))  # type: ignore[union-attr]
+    else:
+        bad = robot(camera=camera_sensor(params=_plugin_params(ex.bad)))
+        good = robot(camera=camera_sensor(params=_plugin_params(ex.good)))
+    rules_bad = {f.rule for f in check(bad).findings}  # type: ignore[operator]
+    rules_good = {f.rule for f in check(good).findings}  # type: ignore[operator]
+    assert rule in rules_bad and rule not in rules_good, (rules_bad, rules_good)

@@ -144,17 +144,55 @@ def validate(
 
 @handle_errors
 def rules(
-    fmt: Annotated[str, typer.Option("--format", "-f", help="text or markdown")] = "text",
+    ids: Annotated[
+        list[str] | None,
+        typer.Argument(help="explain these rules (ids such as SK502)", show_default=False),
+    ] = None,
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="text, json or markdown")
+    ] = "text",
 ) -> None:
-    """List every rule: id, severity, what it checks."""
+    """List every rule (id, severity, fixable, what it checks), or explain the ones named."""
+    import json
+
+    from sensorkit.errors import UsageError
+    from sensorkit.fix import fixable
     from sensorkit.report import rule_table
     from sensorkit.rules import RULES
 
-    if fmt == "markdown":
+    if fmt not in ("text", "json", "markdown"):
+        raise UsageError(f"--format {fmt!r}: use text, json or markdown")
+    wanted = [i.upper() for i in ids or []]
+    unknown = [i for i in wanted if i not in RULES]
+    if unknown:
+        raise UsageError(f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)")
+    if fmt == "markdown" and not wanted:
         sys.stdout.write(rule_table())
         return
-    from sensorkit.fix import fixable
+    if fmt == "json":
+        from sensorkit.explain import EXAMPLES
 
+        rows = []
+        for rid in wanted or sorted(RULES):
+            info = RULES[rid]
+            row: dict[str, object] = {
+                "id": rid,
+                "severity": info.severity,
+                "title": info.title,
+                "existing": info.existing,
+                "fixable": fixable(rid),
+            }
+            ex = EXAMPLES.get(rid)
+            if wanted and ex is not None:
+                row.update(why=ex.why, bad=ex.bad, good=ex.good)
+            rows.append(row)
+        sys.stdout.write(json.dumps(rows, indent=2) + "\n")
+        return
+    if wanted:
+        from sensorkit.explain import explain
+
+        sys.stdout.write("\n".join(explain(rid) for rid in wanted))
+        return
     for rid in sorted(RULES):
         info = RULES[rid]
         typer.echo(f"{rid}  {info.severity:<13} {fixable(rid) or '-':<11} {info.title}")
