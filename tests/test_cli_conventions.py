@@ -134,3 +134,22 @@ def test_rule_examples_do_what_they_say(check: object, rule: str) -> None:
     rules_bad = {f.rule for f in check(bad).findings}  # type: ignore[operator]
     rules_good = {f.rule for f in check(good).findings}  # type: ignore[operator]
     assert rule in rules_bad and rule not in rules_good, (rules_bad, rules_good)
+
+
+def test_positional_name_value_is_a_xacro_arg(tmp_path: Path) -> None:
+    # `xacro robot.xacro prefix:=zz_` and `ros2 launch ... prefix:=zz_` habits.
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(
+        '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:arg name="prefix" default="a_"/>\n<link name="$(arg prefix)base"/>\n</robot>\n'
+    )
+    res = run_cli("validate", str(path), "prefix:=zz_", "-f", "json")
+    assert res.returncode in (0, 1), res.stderr
+    assert "zz_base" in res.stdout and "a_base" not in res.stdout
+    res = run_cli("validate", str(path), "-f", "json")  # near miss: the default
+    assert "a_base" in res.stdout
+    from sensorkit.cli import xacro_args_as_options
+
+    assert xacro_args_as_options(["validate", "--arg", "a:=1", "b:=2", "x.urdf"]) == [
+        "validate", "--arg", "a:=1", "--arg", "b:=2", "x.urdf"
+    ]

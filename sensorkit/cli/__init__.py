@@ -6,6 +6,7 @@ function and formats its result. Command groups live in their own modules, each 
 from __future__ import annotations
 
 import os
+import re
 import sys
 
 # sensorkit's numpy work is small (4x4 transforms, one image at a time): OpenBLAS's thread
@@ -57,6 +58,21 @@ def _register() -> None:
 _register()
 
 
+_XACRO_ARG = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*:=")
+
+
+def xacro_args_as_options(argv: list[str]) -> list[str]:
+    """``robot.xacro name:=value`` as ``xacro`` and ``ros2 launch`` take it: each bare
+    ``NAME:=VALUE`` becomes ``--arg NAME:=VALUE`` (a value already after ``--arg`` stays)."""
+    out: list[str] = []
+    for i, token in enumerate(argv):
+        if _XACRO_ARG.match(token) and (i == 0 or argv[i - 1] != "--arg"):
+            out += ["--arg", token]
+        else:
+            out.append(token)
+    return out
+
+
 def main() -> None:
     """Console entry point.
 
@@ -64,6 +80,7 @@ def main() -> None:
     skips the interpreter's teardown (freeing a large model costs a tenth of a second for
     nothing). Output streams are flushed first; nothing else is pending by then.
     """
+    sys.argv[1:] = xacro_args_as_options(sys.argv[1:])
     try:
         app()
     except SystemExit as exc:
