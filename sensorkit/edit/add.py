@@ -314,7 +314,7 @@ def plan_add(req: AddRequest) -> AddResult:
     where = display_path(source)
     data = read_input(source)
     root = _parse(data, where)
-    layout = read_layout(data, where)
+    layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
 
     untrusted = req.validation.untrusted if req.validation is not None else None
