@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import difflib
+import functools
 import os
 import posixpath
 import re
@@ -98,12 +99,19 @@ class AddResult:
     original: bytes
     new: bytes
     writes: list[PlannedWrite]
-    diff: str
+    # (old text, new text, old label, new label) of each file the add writes
+    changes: list[tuple[str, str, str, str]] = field(default_factory=list, repr=False)
     notes: list[str] = field(default_factory=list)
     links: list[str] = field(default_factory=list)
     joints: list[str] = field(default_factory=list)
     sensors: list[str] = field(default_factory=list)
     written: bool = False
+
+    @functools.cached_property
+    def diff(self) -> str:
+        """The unified diff of every write, worked out when first asked for (``--diff``):
+        on a large file comparing the lines costs as much as the rest of the add."""
+        return "".join(unified_diff(*change) for change in self.changes)
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -401,7 +409,7 @@ def plan_add(req: AddRequest) -> AddResult:
     notes += [f"validator internal error: {e}" for e in verdict.internal_errors]
 
     writes: list[PlannedWrite] = []
-    diff_parts: list[str] = []
+    changes: list[tuple[str, str, str, str]] = []
     if choice.copy_to is not None:
         writes.append(PlannedWrite(choice.copy_to, choice.copy_data, "macro"))
         rel_copy = display_path(choice.copy_to)
@@ -409,16 +417,12 @@ def plan_add(req: AddRequest) -> AddResult:
     mode = (target if target.exists() else source).stat().st_mode
     writes.append(PlannedWrite(target, new, "robot", mode))
     new_text = new[len(layout.bom) :].decode(layout.encoding)
-    diff_parts.append(
-        unified_diff(
-            layout.text, new_text, f"a/{display_path(source)}", f"b/{display_path(target)}"
-        )
+    changes.append(
+        (layout.text, new_text, f"a/{display_path(source)}", f"b/{display_path(target)}")
     )
     if choice.copy_to is not None:
         macro_text = choice.copy_data.decode("utf-8", "replace")
-        diff_parts.append(
-            unified_diff("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}")
-        )
+        changes.append(("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}"))
     return AddResult(
         kind=kind,
         name=req.name,
@@ -429,7 +433,7 @@ def plan_add(req: AddRequest) -> AddResult:
         original=data,
         new=new,
         writes=writes,
-        diff="".join(diff_parts),
+        changes=changes,
         notes=notes,
         links=list(frag.links),
         joints=list(frag.joints),
