@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_validate import big_urdf  # noqa: E402
+from bench_validate import big_urdf
 
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 MACROS = f"""<?xml version="1.0"?>

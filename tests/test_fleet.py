@@ -285,13 +285,15 @@ def test_models_are_let_go_file_by_file(
     shutil.copytree(XACRO_ROBOT, tmp_path / "xrover")
     files.append(tmp_path / "xrover" / "robot.urdf.xacro")
     robots: list[weakref.ref[sensorkit.model.Robot]] = []
+    sensors: list[weakref.ref[object]] = []  # a sensor and its plugins refer to each other
     alive_when_next_started: list[int] = []
     real = sensorkit.model.build_robot
 
     def tracked(doc: sensorkit.model.robot.Document) -> sensorkit.model.Robot:
-        alive_when_next_started.append(sum(r() is not None for r in robots))
+        alive_when_next_started.append(sum(r() is not None for r in [*robots, *sensors]))
         robot = real(doc)
         robots.append(weakref.ref(robot))
+        sensors.extend(weakref.ref(s) for s in robot.sensors)
         return robot
 
     monkeypatch.setattr(sensorkit.model, "build_robot", tracked)
@@ -299,4 +301,5 @@ def test_models_are_let_go_file_by_file(
     assert len(robots) == len(files)
     assert alive_when_next_started == [0] * len(files)
     assert not [r for r in robots if r() is not None]
+    assert sensors and not [r for r in sensors if r() is not None]  # nor the XML they hold
     assert [fr.sensor_count for fr in report.files][:2] == [1, 1]  # still said in the text output
