@@ -71,10 +71,10 @@ def main() -> None:
                 cpu[label] += c
     med = statistics.median
     print(f"{a.links} links ({size} bytes), {a.runs} paired runs (median wall / median CPU)")
-    for label in cpu:
-        ratio = med(cpu[label]) / med(cpu["validate"])
+    for label, spent in cpu.items():
+        ratio = med(spent) / med(cpu["validate"])
         print(
-            f"{label:<24} {med(wall[label]) * 1000:8.0f} ms {med(cpu[label]) * 1000:8.0f} ms"
+            f"{label:<24} {med(wall[label]) * 1000:8.0f} ms {med(spent) * 1000:8.0f} ms"
             f"   CPU x{ratio:.2f} of validate"
         )
     print("target: add-camera CPU <= 1.5 x validate CPU")
