@@ -120,7 +120,14 @@ def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a 
             if task is None:
                 break
             index, path = task
-            conn.send((index, validate_one(path, options)))
+            try:
+                answer: FileReport | Exception = validate_one(path, options)
+            except Exception as exc:  # raised by the parent, as --jobs 1 would raise it
+                answer = exc
+            try:
+                conn.send((index, answer))
+            except Exception as exc:  # an exception that does not pickle
+                conn.send((index, RuntimeError(f"{type(answer).__name__}: {answer}: {exc}")))
     except (EOFError, OSError, KeyboardInterrupt):
         pass
     finally:
@@ -175,6 +182,7 @@ def run_pool(
     results: list[FileReport | None] = [None] * len(paths)
     next_task = 0
     busy: dict[Any, tuple[BaseProcess, int]] = {}  # connection -> (its worker, file index)
+    raised: dict[int, Exception] = {}  # file index -> what validating it raised
     workers: list[tuple[BaseProcess, Connection]] = []
 
     def done(index: int, report: FileReport) -> None:
@@ -216,9 +224,18 @@ def run_pool(
                 report: FileReport | None = None
                 try:
                     if conn.poll():
-                        got, report = conn.recv()
+                        got, answer = conn.recv()
                         if got != index:
-                            report = None
+                            answer = None
+                        elif isinstance(answer, Exception):
+                            # validate_file raised (a usage error, a bug): --jobs 1 stops
+                            # at the first such file, so raise the earliest one once the
+                            # files before it are done, and start no new one meanwhile.
+                            raised[index] = answer
+                            next_task = len(paths)
+                            feed(proc, conn)
+                            continue
+                        report = answer
                 except (EOFError, OSError):
                     report = None
                 if report is not None:
@@ -230,6 +247,8 @@ def run_pool(
                 done(index, _crashed(paths[index], proc))
                 if next_task < len(paths):
                     start()
+        if raised:
+            raise raised[min(raised)]
         for proc, _conn in workers:
             proc.join(10)
     finally:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import gc
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -22,6 +23,7 @@ import pytest
 import sensorkit.engine
 import sensorkit.model
 from sensorkit.engine import Options, validate_paths
+from sensorkit.errors import UsageError
 from sensorkit.fleet import find_robots, is_partial
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -111,6 +113,25 @@ def test_a_worker_that_dies_costs_only_its_file(
         else:
             assert got.findings == want.findings and got.error == want.error
     assert report.exit_code(Options().fail_on) == 2
+
+
+def test_what_validating_raises_is_raised_as_with_jobs_1(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A usage error met while validating (a bad --bridge file) stops the run alike."""
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
+    real = sensorkit.engine.validate_file
+
+    def failing(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+        if path in (files[1], files[3]):
+            raise UsageError(f"--bridge: cannot read it for {path}")
+        return real(path, options)
+
+    monkeypatch.setattr(sensorkit.engine, "validate_file", failing)
+    for jobs in (1, 2):
+        with pytest.raises(UsageError, match=re.escape(f"for {files[1]}")):
+            validate_paths(files, Options(), jobs=jobs)
 
 
 def test_ctrl_c_stops_workers_and_xacro_children(tmp_path: Path) -> None:
