@@ -6,9 +6,10 @@ description, checking that referenced meshes exist); rules only read the model.
 
 from __future__ import annotations
 
+import gc
 import os
 import traceback
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,10 +21,10 @@ from sensorkit.loading.untrusted import Untrusted
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import load_robot
 from sensorkit.model.frames import sensor_frames
-from sensorkit.model.robot import Robot
-from sensorkit.model.sdf import convert
+from sensorkit.model.robot import Link, Robot
+from sensorkit.model.sdf import Conversion, convert
 from sensorkit.model.targets import TARGETS, detect_target, is_gz
-from sensorkit.rules import RULES, Context, MissingFile
+from sensorkit.rules import RULES, Context, MissingFile, RuleInfo
 from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
 
@@ -73,10 +74,15 @@ class FileReport:
     error: str | None = None  # the file could not be validated at all
     internal_errors: list[str] = field(default_factory=list)
     suppressed: int = 0
+    sensors_checked: int = 0  # kept when ``robot`` is dropped (validate_paths)
 
     @property
     def display(self) -> str:
         return display_path(self.path)
+
+    @property
+    def sensor_count(self) -> int:
+        return len(self.robot.sensors) if self.robot is not None else self.sensors_checked
 
 
 @dataclass
@@ -100,15 +106,22 @@ class Report:
 
 
 def find_missing_files(
-    robot: Robot, resolver: PackageResolver
+    robot: Robot,
+    resolver: PackageResolver,
+    links: Iterable[Link] | None = None,
+    seen_packages: set[str] | None = None,
 ) -> tuple[list[MissingFile], list[Finding]]:
-    """SK104 data (missing files) and SK103 findings (unknown packages in package:// URIs)."""
+    """SK104 data (missing files) and SK103 findings (unknown packages in package:// URIs).
+
+    ``links`` (default: all) and ``seen_packages`` (packages already reported, updated)
+    let a re-check look at new links only and say each package once, as a full run does.
+    """
     base = robot.document.path.resolve().parent
     missing: list[MissingFile] = []
     findings: list[Finding] = []
-    seen_pkg: set[str] = set()
+    seen_pkg: set[str] = set() if seen_packages is None else seen_packages
     exists: dict[Path, bool] = {}
-    for link in robot.links:
+    for link in robot.links if links is None else links:
         for uri, src in link.meshes:
             target = resolve_uri(uri, base, resolver)
             path, pkg = target.path, target.missing_package
@@ -155,49 +168,101 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
     return out
 
 
+@dataclass
+class RuleRun:
+    """What ``check_robot`` worked out for one robot, kept so that a re-check after a small
+    addition (``sensorkit.edit.check``) can reuse it instead of starting over."""
+
+    ctx: Context
+    reason: str  # why this target
+    resolver: PackageResolver | None  # None when SK103/SK104 are not selected
+    seen_packages: set[str]  # packages SK103 has reported
+    package_findings: list[Finding]  # SK103 from mesh URIs
+    by_rule: dict[str, list[Finding]]  # each selected rule's findings, in rule order
+    internal_errors: list[str]
+
+    def findings(self) -> list[Finding]:
+        return [*self.package_findings, *(f for fs in self.by_rule.values() for f in fs)]
+
+
+def make_context(
+    robot: Robot,
+    options: Options,
+    bridge: Bridge | bool | None = True,
+    conversion: Conversion | None = None,
+) -> tuple[Context, str]:
+    """The rules' context for ``robot`` (target, conversion, frames) and why that target.
+
+    ``bridge=True`` loads the bridge files a gz target reads; pass a Bridge (or None) to
+    reuse what was loaded for the same file. ``conversion``: ``convert(robot)`` when the
+    caller has it already.
+    """
+    if options.target == "auto":
+        target, reason = detect_target(robot)
+    else:
+        target, reason = options.target, f"chosen with {options.target_origin}"
+    conv = conversion if conversion is not None else convert(robot)
+    known: Bridge | None = None
+    if is_gz(target):
+        known = load_bridges(robot, options) if bridge is True else bridge or None
+    ctx = Context(
+        robot=robot,
+        target=target,
+        conversion=conv,
+        auto=options.target == "auto",
+        bridge=known,
+    )
+    for s in robot.sensors:
+        ctx.frames[id(s)] = sensor_frames(robot, s, target, conv)
+    return ctx, reason
+
+
+def run_rule(ctx: Context, info: RuleInfo, errors: list[str]) -> list[Finding]:
+    """One rule's findings; a rule that fails adds to ``errors`` instead."""
+    if info.func is None:
+        return []
+    try:
+        return list(info.func(ctx))
+    except Exception as exc:  # a bug of ours must not hide the other findings
+        detail = (
+            "".join(traceback.format_exception(exc))
+            if os.environ.get("SENSORKIT_DEBUG")
+            else repr(exc)
+        )
+        errors.append(f"rule {info.id} failed on {ctx.robot.document.display}: {detail}")
+        return []
+
+
+def run_rules(robot: Robot, options: Options, resolver: PackageResolver | None = None) -> RuleRun:
+    """Every selected rule on a loaded robot (``check_robot``, keeping what it computed)."""
+    ctx, reason = make_context(robot, options)
+    run = RuleRun(ctx, reason, None, set(), [], {}, [])
+    if options.wants("SK104") or options.wants("SK103"):
+        run.resolver = resolver or PackageResolver.from_options(
+            list(options.package_paths), near=robot.document.path
+        )
+        ctx.missing_files, run.package_findings = find_missing_files(
+            robot, run.resolver, seen_packages=run.seen_packages
+        )
+    for info in RULES.values():
+        if info.func is not None and options.wants(info.id):
+            run.by_rule[info.id] = run_rule(ctx, info, run.internal_errors)
+    return run
+
+
 def check_robot(
     robot: Robot, options: Options, resolver: PackageResolver | None = None
 ) -> FileReport:
     """Run every selected rule on an already loaded robot."""
-    report = FileReport(path=robot.document.path, robot=robot)
-    if options.target == "auto":
-        report.target, report.target_reason = detect_target(robot)
-    else:
-        report.target, report.target_reason = options.target, f"chosen with {options.target_origin}"
-    conv = convert(robot)
-    bridge = load_bridges(robot, options) if is_gz(report.target) else None
-    ctx = Context(
+    run = run_rules(robot, options, resolver)
+    return FileReport(
+        path=robot.document.path,
         robot=robot,
-        target=report.target,
-        conversion=conv,
-        auto=options.target == "auto",
-        bridge=bridge,
+        target=run.ctx.target,
+        target_reason=run.reason,
+        findings=run.findings(),
+        internal_errors=run.internal_errors,
     )
-    for s in robot.sensors:
-        ctx.frames[id(s)] = sensor_frames(robot, s, report.target, conv)
-    findings: list[Finding] = []
-    if options.wants("SK104") or options.wants("SK103"):
-        resolver = resolver or PackageResolver.from_options(
-            list(options.package_paths), near=robot.document.path
-        )
-        ctx.missing_files, pkg_findings = find_missing_files(robot, resolver)
-        findings.extend(pkg_findings)
-    for info in RULES.values():
-        if info.func is None or not options.wants(info.id):
-            continue
-        try:
-            findings.extend(info.func(ctx))
-        except Exception as exc:  # a bug of ours must not hide the other findings
-            detail = (
-                "".join(traceback.format_exception(exc))
-                if os.environ.get("SENSORKIT_DEBUG")
-                else repr(exc)
-            )
-            report.internal_errors.append(
-                f"rule {info.id} failed on {robot.document.display}: {detail}"
-            )
-    report.findings = findings
-    return report
 
 
 def validate_file(path: Path, options: Options | None = None) -> FileReport:
@@ -241,10 +306,48 @@ def _suppress(report: FileReport) -> None:
     report.findings = kept
 
 
-def validate_paths(paths: Sequence[Path], options: Options | None = None) -> Report:
-    """Validate several files in one call."""
+def validate_one(path: Path, options: Options) -> FileReport:
+    """``validate_file`` keeping only plain data: the model and XML tree are let go.
+
+    ``sensorkit validate`` runs with the garbage collector disabled, so whatever reference
+    cycles the model holds would stay until exit: a young-generation collection after each
+    file frees them (it only looks at what this file allocated, a fraction of a
+    millisecond on a small robot).
+    """
+    report = validate_file(path, options)
+    if report.robot is not None:
+        report.sensors_checked = len(report.robot.sensors)
+        report.robot = None
+    if not gc.isenabled():
+        gc.collect(0)
+    return report
+
+
+def validate_paths(
+    paths: Sequence[Path], options: Options | None = None, *, jobs: int = 1
+) -> Report:
+    """Validate several files; reports in input order, each holding findings only.
+
+    ``jobs`` > 1 validates one file per task in that many worker processes
+    (``sensorkit.fleet.run_pool``); the result is the same as with ``jobs=1``.
+    """
     options = options or Options()
-    return Report([validate_file(p, options) for p in paths])
+    if jobs > 1 and len(paths) > 1:
+        from sensorkit.fleet import run_pool
+
+        return Report(run_pool(paths, options, jobs))
+    return Report([validate_one(p, options) for p in paths])
 
 
-__all__ = ["FileReport", "Options", "Report", "check_robot", "validate_file", "validate_paths"]
+__all__ = [
+    "FileReport",
+    "Options",
+    "Report",
+    "RuleRun",
+    "check_robot",
+    "make_context",
+    "run_rules",
+    "validate_file",
+    "validate_one",
+    "validate_paths",
+]

@@ -56,8 +56,7 @@ def format_text(report: Report, *, color: bool = False) -> str:
                 if f.fix:
                     lines.append(f"      fix: {f.fix}")
         if not fr.findings:
-            sensors = len(fr.robot.sensors) if fr.robot else 0
-            lines.append(f"  ok: no findings ({sensors} sensors checked)")
+            lines.append(f"  ok: no findings ({fr.sensor_count} sensors checked)")
         for err in fr.internal_errors:
             lines.append(f"  internal error: {err}")
     s = report.summary()

@@ -193,3 +193,48 @@ def test_splice_lands_before_the_closing_tag(text: str, bom: bool) -> None:
     assert root.nsmap.get("xacro") == "http://www.ros.org/wiki/xacro"
     it = iter(new)
     assert all(any(c == d for d in it) for c in data)  # every original byte, in order
+
+
+TAIL_ITEMS = st.sampled_from(["", "\n", "<!-- </robot> -->", "<?pi </robot> ?>", "<?pi x?>\n", " "])
+
+
+@st.composite
+def styled_robot(draw: st.DrawFn) -> str:
+    """Files whose indentation varies per element, with comments and PIs in between."""
+    nl = draw(NEWLINES)
+    ws = st.sampled_from(["", " ", "  ", "    ", "\t", " \t"])
+    parts = [draw(st.sampled_from(["", '<?xml version="1.0"?>' + nl, "<!-- head -->" + nl]))]
+    parts.append('<robot name="r"' + draw(st.sampled_from(["", nl + "  x='1'"])) + ">")
+    for i in range(draw(st.integers(0, 6))):
+        lead = draw(st.sampled_from([nl, "", nl + nl, " "])) + draw(ws)
+        kind = draw(st.sampled_from(["leaf", "nested", "comment", "pi", "text"]))
+        if kind == "leaf":
+            parts.append(f'{lead}<link name="l{i}"/>')
+        elif kind == "nested":
+            inner = "".join(
+                draw(st.sampled_from([nl, "", " "])) + draw(ws) + f"<c{j}/>"
+                for j in range(draw(st.integers(0, 3)))
+            )
+            parts.append(f'{lead}<link name="n{i}">{inner}{draw(st.sampled_from([nl, ""]))}</link>')
+        elif kind == "comment":
+            parts.append(f"{lead}<!-- c{i} -->")
+        elif kind == "pi":
+            parts.append(f"{lead}<?p {i}?>")
+        else:
+            parts.append(f"{lead}&amp;")
+    parts.append(
+        draw(st.sampled_from([nl, "", "  "])) + "</robot" + draw(st.sampled_from(["", " "])) + ">"
+    )
+    parts.extend(draw(TAIL_ITEMS) for _ in range(draw(st.integers(0, 3))))
+    return "".join(parts)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.one_of(robot_text(), styled_robot()), st.booleans())
+def test_layout_from_the_tree_is_the_full_scan(text: str, bom: bool) -> None:
+    """``read_layout`` given the parsed root reads the tree, not every tag: same answer."""
+    from sensorkit.loading.document import strict_parser
+
+    data = (codecs.BOM_UTF8 if bom else b"") + text.encode()
+    root = etree.fromstring(data, strict_parser())
+    assert read_layout(data, "x", root) == read_layout(data, "x")

@@ -390,7 +390,18 @@ def _run(
         package_paths=package_paths,
         validation=validation,
     )
-    result = add_sensor(req, dry_run=diff)
+    import gc
+
+    from sensorkit.cli import leave_quickly
+
+    was_enabled = gc.isenabled()
+    gc.disable()  # as validate: the model is tens of thousands of small objects, built once
+    try:
+        result = add_sensor(req, dry_run=diff)
+    finally:
+        if was_enabled:
+            gc.enable()
+    leave_quickly()  # every write is done (add_sensor returned): skip freeing the model
     for note in result.notes:
         typer.echo(f"sensorkit: note: {note}", err=True)
     if diff:

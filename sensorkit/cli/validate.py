@@ -12,7 +12,6 @@ from sensorkit.cli.common import (
     ArgOpt,
     ConfigOpt,
     EnvOpt,
-    FilesArg,
     PackagePathOpt,
     UntrustedOpt,
     handle_errors,
@@ -27,9 +26,18 @@ def register(app: typer.Typer) -> None:
     app.command("rules")(rules)
 
 
+PathsArg = Annotated[
+    list[Path],
+    typer.Argument(
+        help="URDF or xacro files, or folders to search for top-level robot descriptions",
+        show_default=False,
+    ),
+]
+
+
 @handle_errors
 def validate(
-    files: FilesArg,
+    files: PathsArg,
     target: Annotated[
         str | None,
         typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
@@ -78,8 +86,21 @@ def validate(
             help="with --fix or --diff: also fixes that change behaviour beyond the finding",
         ),
     ] = False,
+    jobs: Annotated[
+        int,
+        typer.Option(
+            "--jobs",
+            "-j",
+            help="files validated at once, each in a worker process (0: one per CPU core)",
+            min=0,
+        ),
+    ] = 1,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
+
+    A folder stands for the robot descriptions below it: *.urdf, *.urdf.xacro and
+    *.xacro files that are more than macros, skipping build/, install/, log/, hidden
+    folders and folders holding COLCON_IGNORE, in sorted order.
 
     Exit status: 0 nothing at or above --fail-on, 1 findings, 2 could not run.
     """
@@ -125,11 +146,14 @@ def validate(
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
     )
+    inputs = _expand_folders(files)
     if fix or diff or unsafe_fixes:
         from sensorkit.cli.fixing import run_fix
 
-        run_fix(files, options, fmt, threshold, diff=diff, fix=fix, unsafe=unsafe_fixes)
-    report = validate_paths(files, options)
+        run_fix(inputs, options, fmt, threshold, diff=diff, fix=fix, unsafe=unsafe_fixes)
+    from sensorkit.fleet import cpu_count
+
+    report = validate_paths(inputs, options, jobs=jobs or cpu_count())
     from sensorkit.cli import leave_quickly
 
     leave_quickly()  # only reading was done: nothing to clean up
@@ -140,6 +164,36 @@ def validate(
         for err in fr.internal_errors:
             typer.echo(f"sensorkit: internal error: {err}", err=True)
     raise typer.Exit(report.exit_code(threshold))
+
+
+def _expand_folders(items: list[Path]) -> list[Path]:
+    """Files as given; each folder replaced by the robot descriptions found below it."""
+    from sensorkit.cli.common import die
+    from sensorkit.fleet import find_robots
+    from sensorkit.loading.document import display_path
+
+    out: list[Path] = []
+    for item in items:
+        if not item.is_dir():
+            out.append(item)
+            continue
+        found = find_robots(item)
+        where = display_path(item)
+        skipped = (
+            f" (skipped {len(found.partials)} macro-only xacro file"
+            f"{'' if len(found.partials) == 1 else 's'})"
+            if found.partials
+            else ""
+        )
+        if not found.files:
+            die(f"{where}: no robot description (*.urdf, *.urdf.xacro, *.xacro) below it{skipped}")
+        n = len(found.files)
+        typer.echo(
+            f"sensorkit: {where}: found {n} robot description{'' if n == 1 else 's'}{skipped}",
+            err=True,
+        )
+        out.extend(found.files)
+    return out
 
 
 @handle_errors

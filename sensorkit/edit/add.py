@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import difflib
+import functools
 import os
 import posixpath
 import re
@@ -24,7 +25,14 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from sensorkit.atomic import check_editable, editing, write_bytes
-from sensorkit.edit.check import Verdict, check_names, check_parent, compare, describe
+from sensorkit.edit.check import (
+    Verdict,
+    check_names,
+    check_parent,
+    compare_added,
+    describe,
+    names_in_use,
+)
 from sensorkit.edit.fragment import Fragment, expand_fragment
 from sensorkit.edit.kinds import KINDS, XACRO_NS, MacroInfo, SensorKind, read_macro, shipped_macro
 from sensorkit.edit.layout import Layout, read_layout
@@ -36,6 +44,7 @@ from sensorkit.loading.document import (
     display_path,
     drop_default_namespace,
     looks_like_xacro,
+    plain_document,
     read_input,
     strict_parser,
 )
@@ -90,12 +99,19 @@ class AddResult:
     original: bytes
     new: bytes
     writes: list[PlannedWrite]
-    diff: str
+    # (old text, new text, old label, new label) of each file the add writes
+    changes: list[tuple[str, str, str, str]] = field(default_factory=list, repr=False)
     notes: list[str] = field(default_factory=list)
     links: list[str] = field(default_factory=list)
     joints: list[str] = field(default_factory=list)
     sensors: list[str] = field(default_factory=list)
     written: bool = False
+
+    @functools.cached_property
+    def diff(self) -> str:
+        """The unified diff of every write, worked out when first asked for (``--diff``):
+        on a large file comparing the lines costs as much as the rest of the add."""
+        return "".join(unified_diff(*change) for change in self.changes)
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -279,7 +295,7 @@ ROS_NAMESPACE_RE = re.compile(r"^/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]
 
 def plan_add(req: AddRequest) -> AddResult:
     """Work out an add without writing anything (see the module doc)."""
-    from sensorkit.model import load_robot
+    from sensorkit.model import Loaded, build_robot, load_robot
 
     kind = _resolve_kind(req.kind)
     if not NAME_RE.match(req.name):
@@ -314,13 +330,16 @@ def plan_add(req: AddRequest) -> AddResult:
     where = display_path(source)
     data = read_input(source)
     root = _parse(data, where)
-    layout = read_layout(data, where)
+    layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
 
-    untrusted = req.validation.untrusted if req.validation is not None else None
-    loaded = load_robot(
-        source, args=dict(req.args), package_paths=req.package_paths, untrusted=untrusted
-    )
+    if xacro_style:
+        untrusted = req.validation.untrusted if req.validation is not None else None
+        loaded = load_robot(
+            source, args=dict(req.args), package_paths=req.package_paths, untrusted=untrusted
+        )
+    else:  # plain URDF: the model reads the tree parsed above (as load_robot would)
+        loaded = Loaded(build_robot(plain_document(source, root)))
     robot = loaded.robot
     if robot is None:
         first = loaded.findings[0] if loaded.findings else None
@@ -328,14 +347,15 @@ def plan_add(req: AddRequest) -> AddResult:
         msg = f"{where} does not load, so sensorkit cannot add to it: {why}"
         raise EditRefused(msg)
 
-    check_names(robot, req.name, (), where)
+    used = names_in_use(robot)
+    check_names(robot, req.name, (), where, used)
     check_parent(robot, req.parent, where)
 
     choice = _choose_macro(kind, xacro_style, target)
     attrs = _call_attributes(req, choice.info)
     call = macro_call_lines(kind.macro_name, attrs, req.xyz, req.rpy, include=None)
     frag = expand_fragment(choice.path, kind.macro_name, call)
-    check_names(robot, req.name, frag.created(), where)
+    check_names(robot, req.name, frag.created(), where, used)
 
     notes = list(choice.notes)
     ns_decl: str | None = None
@@ -369,13 +389,13 @@ def plan_add(req: AddRequest) -> AddResult:
         blank_before=line_start is not None and not layout.previous_line_blank(line_start),
     )
     new = _splice(data, layout, block, at, ns_decl)
-    _self_check(root, new, inserted_keys, xacro_style, where)
+    tail = _check_splice(layout, new, at, ns_decl, inserted_keys, xacro_style, where)
 
     verdict = _validate(
         req,
         robot=robot,
         load_findings=list(loaded.findings),
-        new=new,
+        tail=tail,
         frag=frag,
         xacro_style=xacro_style,
     )
@@ -389,7 +409,7 @@ def plan_add(req: AddRequest) -> AddResult:
     notes += [f"validator internal error: {e}" for e in verdict.internal_errors]
 
     writes: list[PlannedWrite] = []
-    diff_parts: list[str] = []
+    changes: list[tuple[str, str, str, str]] = []
     if choice.copy_to is not None:
         writes.append(PlannedWrite(choice.copy_to, choice.copy_data, "macro"))
         rel_copy = display_path(choice.copy_to)
@@ -397,16 +417,12 @@ def plan_add(req: AddRequest) -> AddResult:
     mode = (target if target.exists() else source).stat().st_mode
     writes.append(PlannedWrite(target, new, "robot", mode))
     new_text = new[len(layout.bom) :].decode(layout.encoding)
-    diff_parts.append(
-        unified_diff(
-            layout.text, new_text, f"a/{display_path(source)}", f"b/{display_path(target)}"
-        )
+    changes.append(
+        (layout.text, new_text, f"a/{display_path(source)}", f"b/{display_path(target)}")
     )
     if choice.copy_to is not None:
         macro_text = choice.copy_data.decode("utf-8", "replace")
-        diff_parts.append(
-            unified_diff("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}")
-        )
+        changes.append(("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}"))
     return AddResult(
         kind=kind,
         name=req.name,
@@ -417,7 +433,7 @@ def plan_add(req: AddRequest) -> AddResult:
         original=data,
         new=new,
         writes=writes,
-        diff="".join(diff_parts),
+        changes=changes,
         notes=notes,
         links=list(frag.links),
         joints=list(frag.joints),
@@ -425,28 +441,47 @@ def plan_add(req: AddRequest) -> AddResult:
     )
 
 
-def _self_check(
-    old_root: etree._Element, new: bytes, inserted: list[str], xacro_style: bool, where: str
-) -> None:
-    """The spliced file parses and ends with exactly the inserted nodes (a guard)."""
+def _check_splice(
+    layout: Layout,
+    new: bytes,
+    at: int,
+    ns_decl: str | None,
+    inserted: list[str],
+    xacro_style: bool,
+    where: str,
+) -> etree._Element:
+    """A guard: the new file, from the new text on, parses under its root start tag and
+    holds exactly the inserted nodes before the closing tag.
+
+    The original parsed and the splice point is at its closing root tag, so this proves
+    the whole new file parses, reading only the end of it. The lines before are kept as
+    newlines, so the returned root's elements carry the lines they have in the new file.
+    """
+    text = new[len(layout.bom) :].decode(layout.encoding)
+    shift = len(ns_decl) if ns_decl is not None else 0
+    start_tag = text[layout.root_start_at : layout.root_start_end + shift]
+    at_new = at + shift
+
+    def breaks(t: str) -> int:
+        return t.count("\n") + t.count("\r") - t.count("\r\n")
+
+    pad = breaks(text[:at_new]) - breaks(start_tag)
     try:
-        new_root = etree.fromstring(new, strict_parser())
+        tail = etree.fromstring("\n" * pad + start_tag + text[at_new:], strict_parser())
     except etree.XMLSyntaxError as exc:
         msg = f"{where}: internal error, the edit would not parse ({exc.msg}); nothing was written"
         raise EditRefused(msg) from None
-    old_nodes = [n for n in old_root if isinstance(n.tag, str) or isinstance(n, etree._Comment)]
-    new_nodes = [n for n in new_root if isinstance(n.tag, str) or isinstance(n, etree._Comment)]
-    added = new_nodes[len(old_nodes) :]
-    ok = len(new_nodes) == len(old_nodes) + len(inserted)
-    if ok and xacro_style:
+    added = [n for n in tail if isinstance(n.tag, str) or isinstance(n, etree._Comment)]
+    if xacro_style:
         ok = [
             etree.QName(n).localname if isinstance(n.tag, str) else "#comment" for n in added
-        ] == ["include" if k == "include" else k for k in inserted]
-    elif ok:
+        ] == inserted
+    else:
         ok = [_node_key(n) for n in added] == inserted
     if not ok:
         msg = f"{where}: internal error, the new text missed the closing tag; nothing was written"
         raise EditRefused(msg)
+    return tail
 
 
 def _validate(
@@ -454,32 +489,34 @@ def _validate(
     *,
     robot: Robot,
     load_findings: list[Finding],
-    new: bytes,
+    tail: etree._Element,
     frag: Fragment,
     xacro_style: bool,
 ) -> Verdict:
-    """Validator findings before and after, with the "after" robot built in memory."""
+    """What the add changes in the validator's findings (``check.compare_added``).
+
+    The new elements sit at the end of the robot: for xacro, the call is the last thing
+    in the file and the macro is self-contained, so the expansion gains the macro's
+    output at its end; for URDF they are the inserted text, parsed with its lines.
+    """
     from sensorkit.engine import Options
 
     options = req.validation or Options(args=dict(req.args), package_paths=req.package_paths)
     doc = robot.document
     if xacro_style:
-        # The result expands to the original's expansion followed by the macro's output:
-        # the call is the last thing in the file and the macro is self-contained.
-        root = copy.deepcopy(doc.root)
+        root = etree.Element(doc.root.tag, dict(doc.root.attrib), nsmap=doc.root.nsmap)
         for node in frag.nodes:
             root.append(copy.deepcopy(node))
-        after = Document(
-            path=doc.path,
-            root=root,
-            files=list(doc.files),
-            expanded=True,
-            includes=list(doc.includes),
-        )
     else:
-        root = drop_default_namespace(etree.fromstring(new, strict_parser()))
-        after = Document(path=doc.path, root=root)
-    return compare(robot, load_findings, after, options)
+        root = drop_default_namespace(tail)
+    part = Document(
+        path=doc.path,
+        root=root,
+        files=list(doc.files),
+        expanded=doc.expanded,
+        includes=list(doc.includes),
+    )
+    return compare_added(robot, load_findings, part, options)
 
 
 # ----------------------------------------------------------------------------- publishing

@@ -15,7 +15,9 @@ from __future__ import annotations
 import codecs
 import re
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+
+from lxml import etree
 
 from sensorkit.errors import EditRefused, InputError
 
@@ -182,25 +184,77 @@ def _leading_ws(text: str, at: int) -> str | None:
     return None
 
 
-def read_layout(data: bytes, where: str) -> Layout:
-    """Scan the original bytes of a well-formed XML file (see the module doc)."""
-    encoding, bom = detect_encoding(data, where)
-    try:
-        text = data[len(bom) :].decode(encoding)
-    except UnicodeDecodeError as exc:
-        msg = f"{where}: not valid {encoding} at byte {exc.start + len(bom)}"
-        raise InputError(msg) from None
-    # Offsets are computed by re-encoding prefixes: that only works when the codec
-    # round-trips this file exactly (true for UTF-8/16 and single-byte codecs).
-    if text.encode(encoding) != data[len(bom) :]:
-        msg = f"{where}: its {encoding} bytes do not round-trip, so they cannot be kept exactly"
-        raise InputError(msg)
+_TAIL_RE = re.compile(r"\s*>(?:\s+|<!--.*?-->|<\?.*?\?>)*\Z", re.S)
+_TAIL_ITEM_RE = re.compile(r"<!--.*?-->|<\?.*?\?>", re.S)
 
-    root_start: tuple[int, int, str, bool] | None = None
-    last_end: tuple[int, str] | None = None
-    depth = 0
+
+def _line_ws(before: str | None) -> str | None:
+    """The spaces/tabs that start a tag's line, from the text between it and the node
+    before it (None when something else stands before the tag on its line)."""
+    if not before:
+        return None
+    cut = max(before.rfind("\n"), before.rfind("\r"))
+    if cut < 0:
+        return None
+    ws = before[cut + 1 :]
+    return ws if not ws.strip(" \t") else None
+
+
+def _from_tree(
+    text: str, root: etree._Element
+) -> tuple[tuple[int, int, str], int, Counter[str], list[str]] | None:
+    """What the full scan finds, from the parsed tree and two short scans, or None when
+    only the full scan can tell (character references, CDATA, a lookalike closing tag).
+
+    Indentation comes from the whitespace text the parser kept between nodes; the root
+    start tag from a scan of the prolog; the closing tag is the last one in the file,
+    checked to be followed by nothing but comments, processing instructions and space.
+    """
+    if "&#" in text or "<![CDATA[" in text:
+        return None
+    head = _scan(text, stop_at_root=True)
+    if head.root_start is None or head.root_start[3]:
+        return None
+    start_at, start_end, name, _ = head.root_start
+    end_at = text.rfind("</" + name)
+    if end_at < start_end:
+        return None
+    after = text[end_at + 2 + len(name) :]
+    if not _TAIL_RE.match(after):
+        return None
+    if len(_TAIL_ITEM_RE.findall(after)) != sum(1 for _ in root.itersiblings()):
+        return None
     depth1: Counter[str] = Counter()
     depth2: list[str] = []
+    before = root.text
+    for node in root:
+        if isinstance(node.tag, str):
+            ws = _line_ws(before)
+            if ws is not None:
+                depth1[ws] += 1
+            inner = node.text
+            for sub in node:
+                if isinstance(sub.tag, str):
+                    ws = _line_ws(inner)
+                    if ws is not None:
+                        depth2.append(ws)
+                inner = sub.tail
+        before = node.tail
+    return (start_at, start_end, name), end_at, depth1, depth2
+
+
+@dataclass
+class _Scan:
+    root_start: tuple[int, int, str, bool] | None = None
+    last_end: tuple[int, str] | None = None
+    depth1: Counter[str] = field(default_factory=Counter)
+    depth2: list[str] = field(default_factory=list)
+
+
+def _scan(text: str, *, stop_at_root: bool = False) -> _Scan:
+    """The lexical scan of the whole text (or of the prolog up to the root start tag)."""
+    out = _Scan()
+    depth = 0
     i = 0
     n = len(text)
     while True:
@@ -217,7 +271,7 @@ def read_layout(data: bytes, where: str) -> Layout:
             i = _doctype_end(text, j)
         elif text.startswith("</", j):
             k = _tag_end(text, j)
-            last_end = (j, text[j + 2 : k - 1].strip())
+            out.last_end = (j, text[j + 2 : k - 1].strip())
             depth -= 1
             i = k
         else:
@@ -225,27 +279,58 @@ def read_layout(data: bytes, where: str) -> Layout:
             m = _NAME_RE.match(text, j + 1)
             name = m.group(0) if m else ""
             self_closing = text[k - 2] == "/"
-            if root_start is None:
-                root_start = (j, k, name, self_closing)
+            if out.root_start is None:
+                out.root_start = (j, k, name, self_closing)
+                if stop_at_root:
+                    return out
             ws = _leading_ws(text, j)
             if ws is not None:
                 if depth == 1:
-                    depth1[ws] += 1
+                    out.depth1[ws] += 1
                 elif depth == 2:
-                    depth2.append(ws)
+                    out.depth2.append(ws)
             if not self_closing:
                 depth += 1
             i = k
         if i >= n:
             break
+    return out
 
-    if root_start is None:
-        msg = f"{where}: no root element"
-        raise EditRefused(msg)
-    start_at, start_end, root_name, self_closing = root_start
-    if self_closing or last_end is None or last_end[1] != root_name:
-        msg = f"{where}: <{root_name}/> has no closing tag to insert before (the robot is empty)"
-        raise EditRefused(msg)
+
+def read_layout(data: bytes, where: str, root: etree._Element | None = None) -> Layout:
+    """Scan the original bytes of a well-formed XML file (see the module doc).
+
+    ``root``, the file parsed, saves scanning every tag of a large file: the indentation
+    is read from the tree instead (same result; the full scan runs when it could differ).
+    """
+    encoding, bom = detect_encoding(data, where)
+    try:
+        text = data[len(bom) :].decode(encoding)
+    except UnicodeDecodeError as exc:
+        msg = f"{where}: not valid {encoding} at byte {exc.start + len(bom)}"
+        raise InputError(msg) from None
+    # Offsets are computed by re-encoding prefixes: that only works when the codec
+    # round-trips this file exactly (true for UTF-8/16 and single-byte codecs).
+    if text.encode(encoding) != data[len(bom) :]:
+        msg = f"{where}: its {encoding} bytes do not round-trip, so they cannot be kept exactly"
+        raise InputError(msg)
+
+    quick = _from_tree(text, root) if root is not None else None
+    if quick is not None:
+        (start_at, start_end, root_name), root_end_at, depth1, depth2 = quick
+    else:
+        scan = _scan(text)
+        if scan.root_start is None:
+            msg = f"{where}: no root element"
+            raise EditRefused(msg)
+        start_at, start_end, root_name, self_closing = scan.root_start
+        last_end = scan.last_end
+        if self_closing or last_end is None or last_end[1] != root_name:
+            msg = (
+                f"{where}: <{root_name}/> has no closing tag to insert before (the robot is empty)"
+            )
+            raise EditRefused(msg)
+        root_end_at, depth1, depth2 = last_end[0], scan.depth1, scan.depth2
 
     indent = depth1.most_common(1)[0][0] if depth1 else "  "
     deeper = Counter(
@@ -267,5 +352,5 @@ def read_layout(data: bytes, where: str) -> Layout:
         root_name=root_name,
         root_start_at=start_at,
         root_start_end=start_end,
-        root_end_at=last_end[0],
+        root_end_at=root_end_at,
     )

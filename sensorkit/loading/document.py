@@ -190,6 +190,12 @@ def parse_plain(path: Path, data: bytes) -> LoadResult:
     return LoadResult(Document(path=path, root=drop_default_namespace(root)))
 
 
+def plain_document(path: Path, root: etree._Element) -> Document:
+    """The Document ``parse_plain`` makes, from a tree already parsed with strict_parser."""
+    _check_root(root, display_path(path))
+    return Document(path=path, root=drop_default_namespace(root))
+
+
 def load_description(
     path: Path,
     *,
