@@ -64,7 +64,8 @@ def load_config(start: Path | None = None) -> Config:
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         msg = f"{path}: cannot read: {exc}"
         raise UsageError(msg) from None
-    table = data.get("tool", {}).get("sensorkit")
+    tool = data.get("tool", {})
+    table = tool.get("sensorkit") if isinstance(tool, dict) else None  # `tool = 1`: not ours
     if table is None:
         return Config(path=path)
     if not isinstance(table, dict):
