@@ -325,7 +325,7 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 beams = samples * res
                 if res <= 0:
                     yield err(f"{label} resolution {res:g} must be > 0", "use 1")
-                elif abs(beams - round(beams)) > 1e-6:
+                elif math.isfinite(beams) and abs(beams - round(beams)) > 1e-6:
                     yield ctx.finding(
                         "SK406",
                         Severity.WARNING,
