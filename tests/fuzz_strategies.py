@@ -25,6 +25,7 @@ import base64
 import json
 import random
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
@@ -197,6 +198,12 @@ def attr(value: str) -> str:
 # --------------------------------------------------------------------------- generator
 
 
+def _rng(draw: st.DrawFn) -> random.Random:
+    """A plain ``random.Random`` seeded by Hypothesis: reproducible from Hypothesis' seed,
+    uniform, and fast (Hypothesis' own Random costs ~10 us a call)."""
+    return random.Random(draw(st.randoms(use_true_random=True)).getrandbits(64))
+
+
 class Gen:
     """Choices from one seeded ``random.Random``: ``rate`` per mille of them stray.
 
@@ -250,10 +257,12 @@ class Gen:
     def rpy(self) -> str:
         return self.vec(3, -3.2, 3.2)
 
-    def name(self, base: str, used: set[str] | None = None) -> str:
+    def name(self, base: str, used: dict[str, None] | set[str] | None = None) -> str:
+        """``base`` made unique in ``used`` (a dict keeps the order deterministic), or odd."""
         if self.odd():
             if used and self.chance(500):
-                return str(self.pick(sorted(used)))  # a duplicate
+                taken = list(used) if isinstance(used, dict) else sorted(used)
+                return str(taken[self.rnd.randrange(len(taken))])  # a duplicate
             return str(self.pick(ODD_NAMES))
         name = base
         i = 1
@@ -614,29 +623,32 @@ class _Body:
 def _body(g: Gen, max_links: int) -> _Body:
     """Links, joints, gazebo blocks and extras of one robot, as XML text pieces."""
     n = g.int_(0 if g.odd() else 1, max_links)
+    if max_links >= 10 and g.chance(8):
+        n = g.pick([200, 1000, 3000])  # big: slow paths, deep chains
+    shape = g.pick(["tree", "tree", "chain", "star"])
     links: list[str] = []
-    used: set[str] = set()
+    used: dict[str, None] = {}
     for i in range(n):
         base = g.pick(LINK_POOL) if i else g.pick(["base_footprint", "base_link", "world", "root"])
         name = g.name(base, used)
-        used.add(name)
+        used[name] = None
         links.append(name)
     parts: list[str] = []
     joints: list[str] = []
-    jused: set[str] = set()
+    jused: dict[str, None] = {}
     for i, name in enumerate(links):
         parts.append(_link(g, name))
         if i == 0:
             continue
-        parent = links[g.int_(0, i - 1)]
+        parent = links[{"tree": g.int_(0, i - 1), "chain": i - 1, "star": 0}[shape]]
         if g.odd():
             parent = g.pick([*links, "nonexistent_link", ""])
         jname = g.name(f"{name}_joint", jused)
-        jused.add(jname)
+        jused[jname] = None
         joints.append(jname)
         parts.append(_joint(g, jname, parent, name))
     sensors: list[str] = []
-    sused: set[str] = set()
+    sused: dict[str, None] = {}
     for _ in range(g.int_(0, 4)):
         if not links:
             break
@@ -644,12 +656,12 @@ def _body(g: Gen, max_links: int) -> _Body:
         sname = g.name(
             g.pick(["front_camera", "laser", "imu", "depth", "stereo", "lidar", "cam"]), sused
         )
-        sused.add(sname)
+        sused[sname] = None
         sensors.append(sname)
         frames = [host]
         if g.chance(600):
             optical = g.name(f"{sname}_optical_frame", used)
-            used.add(optical)
+            used[optical] = None
             links.append(optical)
             frames.append(optical)
             rpy = OPTICAL_RPY if not g.odd(3) else g.rpy()
@@ -821,6 +833,74 @@ def _xacro_wrap(
     return "\n".join(head), "\n".join(tail)
 
 
+SUPPRESSIONS = (
+    "<!-- sensorkit: ignore SK501 -->", "<!-- sensorkit: ignore -->", "<!-- sensorkit:ignore SK9999 -->",
+    "<!-- sensorkit: ignore-file SK104 SK105 -->", "<!-- sensorkit: ignore-file -->",
+    "<!--sensorkit: IGNORE sk501-->", "<!-- sensorkit: ignore SK2 -->", "<!-- sensorkit: -->",
+)  # fmt: skip
+
+
+def _suppressions(g: Gen, parts: list[str]) -> None:
+    """Inline suppression comments between the parts (rarely thousands of them)."""
+    if not g.chance(100):
+        return
+    count = g.pick([20000]) if g.chance(20) else g.int_(1, 4)
+    for _ in range(count):
+        parts.insert(g.int_(0, len(parts)), g.pick(SUPPRESSIONS))
+
+
+def _layout(g: Gen, decl: str, comment: str, attrs: str, indent: str, inner: str) -> bytes:
+    """The file's bytes, written as people (and editors) write them: newlines, encodings,
+    the root's tags spelled oddly, a ``</robot>`` in a comment before the real one."""
+    root = "robot"
+    if g.chance(10):
+        root = "r:robot"
+        attrs += ' xmlns:r="urn:robot"'
+    start = f"<{root}{attrs}>"
+    if g.chance(50):
+        start = f"<{root}" + attrs.replace(" ", "\n    ") + "\n>"  # one attribute per line
+    end = f"</{root}>"
+    if g.chance(50):
+        end = g.pick([f"</{root} >", f"</{root}\n>", f"</{root}\t>"])
+    before_end = ""
+    if g.chance(50):
+        before_end = g.pick(
+            [
+                "<!-- </robot> -->",
+                "<![CDATA[</robot>]]>",
+                "<?pi </robot>?>",
+                "<!-- a\n</robot>\n-->",
+            ]
+        )
+    after = ""
+    if g.chance(50):
+        after = g.pick(
+            ["<!-- trailing -->\n", "<?pi after?>\n", "\n\n\n", "   ", "<!-- </robot> -->"]
+        )
+    newline = "\n" if not g.chance(100) else g.pick(["\r\n", "\r\n", "\r"])
+    last = "\n" if not g.chance(100) else ""
+    if g.chance(20) and not inner.strip():
+        text = f"{decl}{comment}<{root}{attrs}/>{last}"  # an empty, self-closed root
+    else:
+        text = f"{decl}{comment}{start}{indent}{inner}{indent}{before_end}\n{end}{last}{after}"
+    text = text.replace("\n", newline) if newline != "\n" else text
+    enc = "utf-8"
+    if g.chance(40):
+        enc = g.pick(["utf-16", "utf-16-le", "utf-16-be", "latin-1", "utf-8-sig"])
+        if enc in ("latin-1",) or g.chance(500):
+            name = {"utf-8-sig": "utf-8", "latin-1": "ISO-8859-1"}.get(enc, enc)
+            text = (
+                f'<?xml version="1.0" encoding="{name}"?>'
+                + newline
+                + text.removeprefix(decl.replace("\n", newline))
+            )
+            if enc == "latin-1":
+                text = text.replace("rover", "r\u00f6ver", 1)
+    if enc == "utf-16":  # a BOM, as editors write it
+        return text.encode("utf-16", "surrogatepass")
+    return text.encode(enc, "replace" if enc == "latin-1" else "surrogatepass")
+
+
 def _damage(g: Gen, data: bytes) -> bytes:
     """Text-level damage: the file no longer is what it was (often not XML at all)."""
     for _ in range(g.int_(1, 3)):
@@ -878,6 +958,7 @@ def robots(
     max_links: int = 10,
     damage: bool = True,
     package: bool = True,
+    rates: tuple[int, ...] = (0, 0, 0, 5, 20, 60, 200, 500),
 ) -> Case:
     """A robot as files: valid (rate 0), nearly valid, broken or hostile.
 
@@ -885,8 +966,8 @@ def robots(
     callers that pass a short timeout. ``tiny`` keeps cameras and lidars small enough to
     render in milliseconds.
     """
-    rnd = draw(st.randoms(use_true_random=True))
-    rate = rnd.choice([0, 0, 0, 5, 20, 60, 200, 500])
+    rnd = _rng(draw)
+    rate = rnd.choice(rates)
     is_xacro = rnd.random() < 0.5 if xacro is None else xacro
     g = Gen(rnd, rate, xacro=is_xacro, tiny=tiny)
     if is_xacro and g.chance(500):
@@ -915,9 +996,10 @@ def robots(
     comment = "<!-- generated by sensorkit's fuzz strategies -->\n" if g.chance(300) else ""
     nattr = f" name={g.q(name)}" if not g.odd() else ""
     indent = g.pick(["\n  ", "\n", "\n\t", ""]) if g.chance(500) else "\n  "
-    inner = indent.join(x for x in [head, *body.parts, tail] if x)
-    text = f"{decl}{comment}<robot{nattr}{ns}>{indent}{inner}\n</robot>\n"
-    data = text.encode("utf-8", "surrogatepass")
+    parts = [head, *body.parts, tail]
+    _suppressions(g, parts)
+    inner = indent.join(x for x in parts if x)
+    data = _layout(g, decl, comment, nattr + ns, indent, inner)
     label = "valid" if rate == 0 else "near"
     if damage and rate >= 60 and g.chance(400):
         data = _damage(g, data)
@@ -1016,7 +1098,9 @@ def _add_value(g: Gen, param: str) -> str:
     if param == "gz_version":
         return str(g.pick(["fortress", "harmonic", "jetty"]))
     if param == "namespace":
-        return str(g.pick(["", "robot1", "/robot1/sensors", "a//b", "1x", "my robot"]))
+        return str(
+            g.pick(["", "robot1", "/robot1/sensors", "r2/", "_ns", "a//b", "1x", "my robot"])
+        )
     if param == "format":
         return str(g.pick(FORMATS))
     if param == "size":
@@ -1031,7 +1115,7 @@ def add_knobs(draw: st.DrawFn, case: Case) -> dict[str, Any]:
     """An add-* request for ``case``: kind, name, parent, mount, macro parameters."""
     from sensorkit.edit.kinds import read_macro, shipped_macro
 
-    rnd = draw(st.randoms(use_true_random=True))
+    rnd = _rng(draw)
     g = Gen(rnd, rnd.choice([0, 0, 30, 200]))
     kind = g.pick(sorted(KINDS))
     taken = [*case.links, *case.sensors]
@@ -1040,7 +1124,9 @@ def add_knobs(draw: st.DrawFn, case: Case) -> dict[str, Any]:
     elif g.odd():
         name = g.pick([*ODD_NAMES, "base", "a" * 200, "Cam", "x1"])
     else:
-        name = g.pick(["cam", "front_cam", "lidar", "imu0", "depth", "stereo", "new_sensor"])
+        name = g.pick(
+            ["fuzz_cam", "front_cam2", "new_lidar", "imu0", "rgbd1", "pair", "new_sensor"]
+        )
     if case.links and not g.odd(3):
         parent = g.pick(case.links)
     else:
@@ -1093,7 +1179,12 @@ def intrinsics_knobs(draw: st.DrawFn, case: Case) -> dict[str, Any]:
 
 @st.composite
 def export_knobs(draw: st.DrawFn) -> dict[str, Any]:
-    return {"target": draw(st.sampled_from(TARGETS)), "force": draw(st.booleans())}
+    rnd = _rng(draw)
+    return {
+        "target": rnd.choice(TARGETS),
+        "force": rnd.random() < 0.5,
+        "existing": rnd.random() < 0.2,  # --out already holds a file
+    }
 
 
 @st.composite
@@ -1102,7 +1193,7 @@ def pyprojects(draw: st.DrawFn) -> str | None:
 
     Text with undecodable bytes kept as surrogates (``surrogateescape``), so it is JSON-able.
     """
-    rnd = draw(st.randoms(use_true_random=True))
+    rnd = _rng(draw)
     if rnd.random() < 0.6:
         return None
     data: bytes = rnd.choice([
@@ -1126,6 +1217,29 @@ def pyprojects(draw: st.DrawFn) -> str | None:
     return data.decode("utf-8", "surrogateescape")
 
 
+def _macro_beside(rnd: random.Random, case: Case, kind: str) -> None:
+    """Something already at ``sensors/<macro file>`` beside the robot: sensorkit's own
+    copy, a user's modified copy, a file that defines no such macro, or a folder."""
+    from sensorkit.edit.kinds import shipped_macro
+
+    folder = str(Path(case.main).parent)
+    rel = ("" if folder == "." else folder + "/") + "sensors/" + KINDS[kind].macro_file
+    shipped = shipped_macro(KINDS[kind]).read_bytes()
+    how = rnd.randrange(6)
+    if how == 0:
+        case.files[rel] = shipped
+    elif how == 1:
+        case.files[rel] = shipped.replace(b"update_rate:=", b"update_rate:=1", 1)  # modified copy
+    elif how == 2:
+        case.files[rel] = b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>'
+    elif how == 3:
+        case.files[rel] = b"not xml <<<"
+    elif how == 4:
+        case.files[rel + "/inside"] = b"a folder where the macro file would go"
+    else:
+        case.files[rel] = shipped.replace(b'params="', b'params="extra_required ', 1)
+
+
 CLI_SHARE = 200  # per mille of intrinsics/export/render inputs also run through the CLI
 
 
@@ -1135,28 +1249,38 @@ def fuzz_inputs(draw: st.DrawFn, target: str) -> FuzzInput:
     if target in ("validate", "validate_paths", "cli_validate"):
         case = draw(robots(bombs=True))
         knobs = draw(validate_knobs())
+        rnd = _rng(draw)
+        if rnd.random() < 0.05:  # --bridge FILE (a bad one is a usage error, exit 2)
+            knobs["bridge"] = _bridge_yaml(Gen(rnd, 100)).decode("utf-8", "surrogateescape")
         if target == "cli_validate":
             knobs["pyproject"] = draw(pyprojects())
         return FuzzInput(target, case, knobs)
     if target in ("add", "cli_add"):
-        case = draw(robots())
-        return FuzzInput(target, case, draw(add_knobs(case)))
+        case = draw(robots(rates=(0, 0, 0, 0, 5, 20, 60, 200)))
+        knobs = draw(add_knobs(case))
+        rnd = _rng(draw)
+        if rnd.random() < 0.08:
+            _macro_beside(rnd, case, knobs["kind"])
+        return FuzzInput(target, case, knobs)
     if target == "intrinsics":
         case = draw(robots())
         knobs = draw(intrinsics_knobs(case))
-        knobs["cli"] = draw(st.randoms(use_true_random=True)).randrange(1000) < CLI_SHARE
+        knobs["cli"] = _rng(draw).randrange(1000) < CLI_SHARE
         return FuzzInput(target, case, knobs)
     if target == "export":
         case = draw(robots())
         knobs = draw(export_knobs())
-        knobs["cli"] = draw(st.randoms(use_true_random=True)).randrange(1000) < CLI_SHARE
+        knobs["cli"] = _rng(draw).randrange(1000) < CLI_SHARE
         return FuzzInput(target, case, knobs)
     if target == "render":
-        case = draw(robots(tiny=True, max_links=6))
-        knobs = {
-            "target": draw(st.sampled_from(TARGETS)),
-            "cli": draw(st.randoms(use_true_random=True)).randrange(1000) < 300,
-        }
+        case = draw(robots(tiny=True, max_links=6, rates=(0, 0, 0, 0, 5, 20, 60)))
+        rnd = _rng(draw)
+        knobs: dict[str, Any] = {"target": rnd.choice(TARGETS), "cli": rnd.random() < 0.3}
+        if case.sensors and rnd.random() < 0.2:
+            knobs["sensors"] = rnd.sample([*case.sensors, "nope"], 1)
+        if case.links and rnd.random() < 0.2:
+            value = rnd.choice(["0.5", "-1", "nan", "inf", "1e308", "x", ""])
+            knobs["joints"] = {rnd.choice([*case.links, "nope"]) + "_joint": value}
         return FuzzInput(target, case, knobs)
     if target == "cli_subprocess":
         case = draw(robots(tiny=True))

@@ -42,6 +42,10 @@ RENDER_MAX_PIXELS = 64 * 64
 RENDER_MAX_RAYS = 2000
 
 
+class Hang(Exception):
+    """Raised by ``run_bounded``'s alarm; targets let it through."""
+
+
 @dataclass
 class Outcome:
     """``problem`` is empty when sensorkit behaved; else one line saying what went wrong."""
@@ -157,6 +161,8 @@ def _check_cli(target: str, res: Any, argv: list[str]) -> Outcome:
     exc = res.exception
     out = (res.stdout or "") + (res.stderr or "")
     shown = " ".join(argv[:2] if argv[0] == "render" else argv[:1])  # no paths: problems group
+    if isinstance(exc, Hang):
+        raise exc
     if exc is not None and not isinstance(exc, SystemExit):
         o = _crash(target, exc)
         o.problem = f"CLI `{shown}`: {o.problem}"
@@ -174,12 +180,17 @@ def _check_cli(target: str, res: Any, argv: list[str]) -> Outcome:
 # ------------------------------------------------------------------------------ targets
 
 
-def _options(inp: FuzzInput) -> Any:
+def _options(inp: FuzzInput, work: Path | None = None) -> Any:
     from sensorkit.engine import Options
     from sensorkit.findings import Severity
 
     k = inp.knobs
+    bridges: tuple[str, ...] = ()
+    if k.get("bridge") is not None and work is not None:
+        (work / "given_bridge.yaml").write_bytes(k["bridge"].encode("utf-8", "surrogateescape"))
+        bridges = (str(work / "given_bridge.yaml"),)
     return Options(
+        bridges=bridges,
         target=k.get("target", "auto"),
         select=tuple(k.get("select", ())),
         ignore=tuple(k.get("ignore", ())),
@@ -196,14 +207,16 @@ def t_validate(inp: FuzzInput, work: Path) -> Outcome:
 
     path = inp.case.write(work)
     try:
-        options = _options(inp)
+        options = _options(inp, work)
         report = validate_file(path, options)
         text = render(Report([report]), inp.knobs.get("format", "text"), color=False)
         assert isinstance(text, str)
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
-        return _crash(inp.target, exc)
+        if not _clean_error(exc):  # a bad --bridge file is a usage error (exit 2)
+            return _crash(inp.target, exc)
+        return Outcome(inp.target, note="refused")
     if report.internal_errors:
         return Outcome(
             inp.target,
@@ -224,7 +237,7 @@ def t_validate_paths(inp: FuzzInput, work: Path) -> Outcome:
         report.exit_code(_options(inp).fail_on)
         report.summary()
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         return _crash(inp.target, exc)
     for fr in report.files:
@@ -246,6 +259,9 @@ def t_cli_validate(inp: FuzzInput, work: Path) -> Outcome:
         argv += ["--ignore", s]
     for name, value in inp.case.args.items():
         argv += ["--arg", f"{name}:={value}"]
+    if k.get("bridge") is not None:
+        (work / "given_bridge.yaml").write_bytes(k["bridge"].encode("utf-8", "surrogateescape"))
+        argv += ["--bridge", str(work / "given_bridge.yaml")]
     if k.get("pyproject") is not None:
         (work / "pyproject.toml").write_bytes(k["pyproject"].encode("utf-8", "surrogateescape"))
     return _check_cli(inp.target, _invoke(argv, work), argv)
@@ -266,7 +282,7 @@ def check_add(
             how = "refused" if refused else "a dry run"
             return Outcome(inp.target, f"{how} add changed files: {changed[:5]}")
         return Outcome(inp.target, note="refused" if refused else "dry run")
-    out_rel = str(Path(main).parent / "out_robot.urdf.xacro") if k.get("output") else main
+    out_rel = str(_output(Path(main))) if k.get("output") else main
     if k.get("output") and after.get(main) != before.get(main):
         return Outcome(inp.target, "add -o changed the source file")
     new = after.get(out_rel)
@@ -303,6 +319,11 @@ def check_add(
     return Outcome(inp.target, note="added")
 
 
+def _output(main: Path) -> Path:
+    """Where ``-o`` writes: beside the robot, same suffixes (so it loads the same way)."""
+    return main.parent / f"out_{main.name}"
+
+
 def _request(inp: FuzzInput, path: Path) -> Any:
     from sensorkit.edit import AddRequest
 
@@ -315,7 +336,7 @@ def _request(inp: FuzzInput, path: Path) -> Any:
         xyz=tuple(k["xyz"]),
         rpy=tuple(k["rpy"]),
         params=dict(k["params"]),
-        output=path.parent / "out_robot.urdf.xacro" if k.get("output") else None,
+        output=_output(path) if k.get("output") else None,
         args=dict(inp.case.args),
     )
 
@@ -332,7 +353,7 @@ def t_add(inp: FuzzInput, work: Path) -> Outcome:
         result = add_sensor(_request(inp, path), dry_run=bool(inp.knobs.get("dry_run")))
         notes = result.notes
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         if not _clean_error(exc):
             return _crash(inp.target, exc)
@@ -390,7 +411,7 @@ def add_argv(inp: FuzzInput, path: Path) -> list[str]:
         else:
             argv += ["--param", f"{key}={value}"]
     if k.get("output"):
-        argv += ["-o", str(path.parent / "out_robot.urdf.xacro")]
+        argv += ["-o", str(_output(path))]
     if k.get("dry_run"):
         argv.append("--diff")
     for name, value in inp.case.args.items():
@@ -431,7 +452,7 @@ def t_intrinsics(inp: FuzzInput, work: Path) -> Outcome:
         assert isinstance(text, str)
         note = "ok"
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         if not _clean_error(exc):
             return _crash(inp.target, exc)
@@ -463,6 +484,9 @@ def t_export(inp: FuzzInput, work: Path) -> Outcome:
     path = inp.case.write(work)
     k = inp.knobs
     out = work / "export_out"
+    if k.get("existing"):  # --out already holds something: refused, or replaced with --force
+        out.mkdir()
+        (out / "old.txt").write_text("an earlier export")
     try:
         robot = load(path, args=inp.case.args)
         info = describe(robot, k.get("target", "auto"))
@@ -470,26 +494,26 @@ def t_export(inp: FuzzInput, work: Path) -> Outcome:
         publish_export(plan.files, out, force=bool(k.get("force")), inputs=[path])
         note = "ok"
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         if not _clean_error(exc):
             return _crash(inp.target, exc)
         note = "refused"
     if k.get("cli"):
-        argv = [
-            "export",
-            str(path),
-            "--out",
-            str(work / "export_cli"),
-            "--target",
-            k.get("target", "auto"),
-        ]
+        argv = ["export", str(path), "--out", str(out), "--target", k.get("target", "auto")]
         if k.get("force"):
             argv.append("--force")
         for name, value in inp.case.args.items():
             argv += ["--arg", f"{name}:={value}"]
         return _check_cli(inp.target, _invoke(argv, work), argv)
     return Outcome(inp.target, note=note)
+
+
+def _float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return float("nan")
 
 
 def t_render(inp: FuzzInput, work: Path) -> Outcome:
@@ -500,6 +524,10 @@ def t_render(inp: FuzzInput, work: Path) -> Outcome:
         argv = ["render", "preview", str(path), "--out", str(work / "preview_cli"),
                 "--max-pixels", str(RENDER_MAX_PIXELS), "--max-rays", str(RENDER_MAX_RAYS),
                 "--target", k.get("target", "auto")]  # fmt: skip
+        for name in k.get("sensors", ()):
+            argv.append(f"--sensor={name}")
+        for name, value in k.get("joints", {}).items():
+            argv.append(f"--joint={name}={value}")
         return _check_cli(inp.target, _invoke(argv, work), argv)
     from sensorkit.render import render_preview
 
@@ -509,12 +537,14 @@ def t_render(inp: FuzzInput, work: Path) -> Outcome:
             work / "preview",
             args=inp.case.args,
             target=k.get("target", "auto"),
+            sensors=tuple(k.get("sensors", ())),
+            joints={n: _float(v) for n, v in k.get("joints", {}).items()},
             workers=1,
             max_pixels=RENDER_MAX_PIXELS,
             max_rays=RENDER_MAX_RAYS,
         )
     except BaseException as exc:
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         if not _clean_error(exc):
             return _crash(inp.target, exc)
@@ -598,10 +628,6 @@ TARGETS: dict[str, Callable[[FuzzInput, Path], Outcome]] = {
 # ------------------------------------------------------------------------------ running
 
 
-class Hang(Exception):
-    pass
-
-
 def run(inp: FuzzInput, scratch: Path | None = None) -> Outcome:
     """Run one input in a fresh folder (removed afterwards); never raises."""
     import tempfile
@@ -612,7 +638,7 @@ def run(inp: FuzzInput, scratch: Path | None = None) -> Outcome:
     except Hang:
         raise
     except BaseException as exc:  # the oracle itself must not stop a run
-        if isinstance(exc, KeyboardInterrupt):
+        if isinstance(exc, (KeyboardInterrupt, Hang)):
             raise
         return _crash(inp.target, exc)
     finally:
