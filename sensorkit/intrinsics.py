@@ -507,7 +507,11 @@ def laser_scan(
     if hi < lo:
         msg = f"max_angle must be >= min_angle, got min_angle={lo!r}, max_angle={hi!r}"
         raise InvalidValue(msg)
-    n = math.floor(n_samples * res)
+    beams = n_samples * res
+    if not math.isfinite(beams):
+        msg = f"samples * resolution is not a finite beam count, got samples={samples!r}, resolution={resolution!r}"
+        raise InvalidValue(msg)
+    n = math.floor(beams)
     if n < 1:
         msg = (
             f"samples * resolution must give at least one beam, got samples={samples!r}, "
