@@ -263,8 +263,9 @@ class Intrinsics:
 
 
 def _focal_from_hfov(width: int, hfov: float) -> float:
-    """``W / (2 tan(hfov/2))`` in double precision."""
-    return width / (2.0 * math.tan(hfov / 2.0))
+    """``W / (2 tan(hfov/2))`` in double precision (inf when the tangent underflows to 0)."""
+    tangent = math.tan(hfov / 2.0)
+    return width / (2.0 * tangent) if tangent > 0.0 else math.inf
 
 
 def _gz_focal(width: int, height: int, hfov: float) -> tuple[float, float]:
@@ -288,8 +289,9 @@ def _gz_focal(width: int, height: int, hfov: float) -> tuple[float, float]:
     half_w = f32(tan_x * near)
     half_h = f32(tan_y * near)
     two_near = f32(f32(2.0) * near)
-    a = f32(two_near / f32(half_w + half_w))
-    b = f32(two_near / f32(half_h + half_h))
+    with np.errstate(divide="ignore", over="ignore"):  # a vanishing hfov: inf, refused later
+        a = f32(two_near / f32(half_w + half_w))
+        b = f32(two_near / f32(half_h + half_h))
     return float(a) * width / 2.0, float(b) * height / 2.0
 
 
@@ -404,6 +406,9 @@ def camera_intrinsics(
         px = (w - 1.0) / 2.0
         py = (h - 1.0) / 2.0
 
+    if not (math.isfinite(fx) and math.isfinite(fy)):
+        msg = f"hfov {hfov!r} is too small for a {w} px image: the focal length is not finite"
+        raise InvalidValue(msg)
     proj = dict(projection or {})
     unknown = set(proj) - {"fx", "fy", "cx", "cy", "tx", "ty"}
     if unknown:
@@ -502,7 +507,11 @@ def laser_scan(
     if hi < lo:
         msg = f"max_angle must be >= min_angle, got min_angle={lo!r}, max_angle={hi!r}"
         raise InvalidValue(msg)
-    n = math.floor(n_samples * res)
+    beams = n_samples * res
+    if not math.isfinite(beams):
+        msg = f"samples * resolution is not a finite beam count, got samples={samples!r}, resolution={resolution!r}"
+        raise InvalidValue(msg)
+    n = math.floor(beams)
     if n < 1:
         msg = (
             f"samples * resolution must give at least one beam, got samples={samples!r}, "

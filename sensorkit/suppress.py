@@ -27,6 +27,7 @@ class Suppressions:
     by_file: dict[str, set[str]] = field(default_factory=dict)
 
     def add_text(self, file: str, text: str) -> None:
+        pos, pos_line = 0, 1  # count lines from the previous comment on: linear in the file
         for m in _COMMENT.finditer(text):
             d = _DIRECTIVE.search(m.group(1))
             if not d:
@@ -35,8 +36,9 @@ class Suppressions:
             if d.group(1).lower() == "ignore-file":
                 self.by_file.setdefault(file, set()).update(ids)
                 continue
-            start = text.count("\n", 0, m.start()) + 1
-            end = text.count("\n", 0, m.end()) + 1
+            start = pos_line + text.count("\n", pos, m.start())
+            end = start + text.count("\n", m.start(), m.end())
+            pos, pos_line = m.end(), end
             for line in (start, end, end + 1):
                 self.by_line.setdefault((file, line), set()).update(ids)
 

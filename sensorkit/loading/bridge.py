@@ -52,6 +52,8 @@ def read_bridge(path: Path, display: str | None = None) -> list[BridgeTopic]:
         raise BridgeError(f"{name}: cannot read: {exc}") from exc
     except yaml.YAMLError as exc:
         raise BridgeError(f"{name}: not YAML: {str(exc).splitlines()[0]}") from exc
+    except RecursionError:  # PyYAML composes nested collections recursively: [[[[...
+        raise BridgeError(f"{name}: nests too deeply to be a bridge configuration") from None
     if not isinstance(node, yaml.SequenceNode):
         raise BridgeError(f"{name}: not a ros_gz_bridge list of topics")
     out: list[BridgeTopic] = []

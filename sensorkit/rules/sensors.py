@@ -358,7 +358,7 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 beams = samples * res
                 if res <= 0:
                     yield err(f"{label} resolution {res:g} must be > 0", "use 1")
-                elif abs(beams - round(beams)) > 1e-6:
+                elif math.isfinite(beams) and abs(beams - round(beams)) > 1e-6:
                     yield ctx.finding(
                         "SK406",
                         Severity.WARNING,
@@ -370,7 +370,8 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                     )
         rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
         if rays > PLAUSIBLE_LIDAR_RAYS:
-            per_s = f", {rays * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz" if s.update_rate else ""
+            rays_f = float(rays) if rays < 2**1000 else math.inf  # a huge int overflows a float
+            per_s = f", {rays_f * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz" if s.update_rate else ""
             yield ctx.finding(
                 "SK406",
                 Severity.WARNING,
