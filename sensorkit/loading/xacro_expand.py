@@ -364,7 +364,7 @@ def expand(
     import multiprocessing as mp
     import pickle
 
-    _warm()
+    warm()
     ctx = mp.get_context("fork")
     recv, send = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=_child, args=(path, args, resolver, send, untrusted), daemon=True)
@@ -397,7 +397,7 @@ def expand(
     return outcome
 
 
-def _warm() -> None:
+def warm() -> None:
     """Import xacro and what it imports on first use here, before forking, once.
 
     Each child starts from this process: imported here, xacro, its substitution_args and
