@@ -167,6 +167,18 @@ def _crashed(path: Path, proc: BaseProcess) -> FileReport:
     )
 
 
+def _preload(paths: Sequence[Path]) -> None:
+    """Import here what validating imports on first use (numpy, and xacro when a file may
+    need it), so that every forked worker starts with it instead of importing it again:
+    0.17 s of CPU a worker, against 12 ms to validate a small robot once warm."""
+    import numpy  # noqa: F401
+
+    from sensorkit.loading.xacro_expand import warm
+
+    if any(not p.name.endswith(".urdf") for p in paths):  # .xacro, or anything else
+        warm()
+
+
 def run_pool(
     paths: Sequence[Path],
     options: Options,
@@ -179,6 +191,8 @@ def run_pool(
 
     method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
     ctx = mp.get_context(method)
+    if method == "fork":
+        _preload(paths)
     results: list[FileReport | None] = [None] * len(paths)
     next_task = 0
     busy: dict[Any, tuple[BaseProcess, int]] = {}  # connection -> (its worker, file index)

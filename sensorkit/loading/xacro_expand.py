@@ -374,7 +374,7 @@ def expand(
     import multiprocessing as mp
     import pickle
 
-    _warm()
+    warm()
     ctx = mp.get_context("fork")
     recv, send = ctx.Pipe(duplex=False)
     proc = ctx.Process(
@@ -409,7 +409,7 @@ def expand(
     return outcome
 
 
-def _warm() -> None:
+def warm() -> None:
     """Import xacro and what it imports on first use here, before forking, once.
 
     Each child starts from this process: imported here, xacro, its substitution_args and
