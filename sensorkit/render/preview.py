@@ -688,7 +688,8 @@ def render_preview(
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
-        UsageError: an unknown sensor or joint, a bad joint value or target.
+        UsageError: an unknown sensor or joint, a bad joint value or target; a sensor or a
+            link too far from the root (or too large) to render.
     """
     from sensorkit.loading import PackageResolver
     from sensorkit.model.targets import TARGETS, detect_target
@@ -718,6 +719,14 @@ def render_preview(
     positions = joint_positions(robot, dict(joints or {}))
     poses = link_poses(robot, positions)
     robot_shapes = _robot_shapes(robot, poses)
+    reach = _reach(robot_shapes, poses)
+    if not reach <= MAX_POSE_M:  # also nan: 1e308 origins or sizes overflow the scene
+        msg = (
+            f"{robot.document.display}: the robot reaches {reach:g} m from its root: not a finite "
+            f"size within {MAX_POSE_M:g} m, so it cannot be rendered (check its joint origins and "
+            "geometry sizes)"
+        )
+        raise UsageError(msg)
 
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     prepared = prepare_urdf(robot, resolver)
