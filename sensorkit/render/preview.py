@@ -594,6 +594,14 @@ MAX_LIDAR_RAYS = 1_000_000
 MAX_POSE_M = 1e4
 
 
+def _beams(samples: int | None, resolution: float | None) -> float:
+    """Rays one scan line casts: samples x resolution (SDF multiplies them), at least 1."""
+    n = float(max(samples or 1, 1))
+    if resolution is not None and resolution > 0:
+        n *= resolution  # 90 samples at resolution 1e5 are 9 million rays (inf past 1e308)
+    return max(n, 1.0)
+
+
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
@@ -613,11 +621,16 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                 )
                 raise UsageError(msg)
         if s.lidar is not None:
-            rays = max(s.lidar.samples or 1, 1) * max(s.lidar.v_samples or 1, 1)
+            rays = _beams(s.lidar.samples, s.lidar.resolution) * _beams(
+                s.lidar.v_samples, s.lidar.v_resolution
+            )
             if rays > max_rays:
+                raise_it = (
+                    f"; pass --max-rays {rays:.0f} to cast it anyway" if rays < math.inf else ""
+                )
                 msg = (
-                    f"sensor {s.name!r}: a lidar of {rays:,} rays per scan is over the render "
-                    f"budget of {max_rays:,}; pass --max-rays {rays} to cast it anyway"
+                    f"sensor {s.name!r}: a lidar of {rays:,.0f} rays per scan (samples x "
+                    f"resolution) is over the render budget of {max_rays:,}{raise_it}"
                 )
                 raise UsageError(msg)
         T = render_pose(robot, s)
