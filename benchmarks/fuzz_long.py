@@ -95,6 +95,8 @@ def problem_key(target: str, problem: str) -> str:
 
 def _worker(conn: Any, chunk: Chunk, scratch: str, log: str) -> None:
     os.setsid()  # its own process group: the watchdog kills xacro and render children too
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     fd = os.open(log, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
     os.dup2(fd, 1)
     os.dup2(fd, 2)  # pybullet and xacro print; keep the console for the summary
@@ -207,6 +209,12 @@ def main() -> int:
     import fuzz_targets
     import hypothesis  # noqa: F401
 
+    def stop(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt  # then the summary of what ran
+
+    # A run started in the background ignores SIGINT unless told: both stop it cleanly.
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGTERM, stop)
     for var in ("SENSORKIT_DEBUG", "AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
         os.environ.pop(var, None)
     os.environ["OPENBLAS_NUM_THREADS"] = "1"
@@ -318,7 +326,7 @@ def main() -> int:
                     flush=True,
                 )
     except KeyboardInterrupt:
-        print("interrupted: summary of what ran", flush=True)
+        print("interrupted: the summary is of what ran", flush=True)
         for w in workers:
             _kill(w)
     wall = time.monotonic() - start

@@ -660,6 +660,14 @@ MAX_LIDAR_RAYS = PLAUSIBLE_LIDAR_RAYS
 MAX_POSE_M = 1e4
 
 
+def _beams(samples: int | None, resolution: float | None) -> float:
+    """Rays one scan line casts: samples x resolution (SDF multiplies them), at least 1."""
+    n = float(max(samples or 1, 1))
+    if resolution is not None and resolution > 0:
+        n *= resolution  # 90 samples at resolution 1e5 are 9 million rays (inf past 1e308)
+    return max(n, 1.0)
+
+
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
@@ -679,11 +687,16 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                 )
                 raise UsageError(msg)
         if s.lidar is not None:
-            rays = max(s.lidar.samples or 1, 1) * max(s.lidar.v_samples or 1, 1)
+            rays = _beams(s.lidar.samples, s.lidar.resolution) * _beams(
+                s.lidar.v_samples, s.lidar.v_resolution
+            )
             if rays > max_rays:
+                raise_it = (
+                    f"; pass --max-rays {rays:.0f} to cast it anyway" if rays < math.inf else ""
+                )
                 msg = (
-                    f"sensor {s.name!r}: a lidar of {rays:,} rays per scan is over the render "
-                    f"budget of {max_rays:,}; pass --max-rays {rays} to cast it anyway"
+                    f"sensor {s.name!r}: a lidar of {rays:,.0f} rays per scan (samples x "
+                    f"resolution) is over the render budget of {max_rays:,}{raise_it}"
                 )
                 raise UsageError(msg)
         T = render_pose(robot, s)
@@ -792,8 +805,9 @@ def render_preview(
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
-        UsageError: an unknown sensor or joint, a bad joint value or target; an
-            ``out_dir`` that may not be replaced.
+        UsageError: an unknown sensor or joint, a bad joint value or target; a sensor or a
+            link too far from the root (or too large) to render; an ``out_dir`` that may
+            not be replaced.
     """
     from sensorkit.loading import PackageResolver
     from sensorkit.model.targets import TARGETS, detect_target
@@ -823,6 +837,14 @@ def render_preview(
     positions = joint_positions(robot, dict(joints or {}))
     poses = link_poses(robot, positions)
     robot_shapes = _robot_shapes(robot, poses)
+    reach = _reach(robot_shapes, poses)
+    if not reach <= MAX_POSE_M:  # also nan: 1e308 origins or sizes overflow the scene
+        msg = (
+            f"{robot.document.display}: the robot reaches {reach:g} m from its root: not a finite "
+            f"size within {MAX_POSE_M:g} m, so it cannot be rendered (check its joint origins and "
+            "geometry sizes)"
+        )
+        raise UsageError(msg)
 
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     prepared = prepare_urdf(robot, resolver)
