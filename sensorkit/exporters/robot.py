@@ -17,7 +17,7 @@ from sensorkit.intrinsics import InvalidValue
 from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
 
 if TYPE_CHECKING:
-    from sensorkit.model.transforms import Mat
+    from sensorkit.model.transforms_np import Mat
 
 DEFAULT_FPS = 30
 """Frame rate written for ORB-SLAM3 when a camera's ``<update_rate>`` is 0 or missing."""
@@ -116,13 +116,12 @@ def _T_cam_imu(view: CameraView, info: RobotInfo, notes: list[str]) -> Mat | Non
     """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
     import numpy as np
 
-    from sensorkit.model.frames import render_pose
-    from sensorkit.model.transforms import R_BODY_OPTICAL, invert
+    from sensorkit.model.transforms_np import R_BODY_OPTICAL, invert, render_pose_np
 
     imus = info.imus
     if not imus:
         return None
-    T_world_render = render_pose(info.robot, view.sensor)
+    T_world_render = render_pose_np(info.robot, view.sensor)
     T_world_imu = imus[0].T_world_render
     if T_world_render is None or T_world_imu is None:
         return None

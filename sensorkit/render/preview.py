@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sensorkit.errors import InputError, UsageError
-from sensorkit.model.transforms import Mat, matrix_to_rpy
+from sensorkit.model.transforms_np import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
 
 if TYPE_CHECKING:
@@ -597,7 +597,7 @@ MAX_POSE_M = 1e4
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
-    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms_np import render_pose_np
     from sensorkit.sensorinfo import SDF_DEFAULTS
 
     for s in robot.sensors:
@@ -620,7 +620,7 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                     f"budget of {max_rays:,}; pass --max-rays {rays} to cast it anyway"
                 )
                 raise UsageError(msg)
-        T = render_pose(robot, s)
+        T = render_pose_np(robot, s)
         if T is not None:
             import numpy as np
 

@@ -22,11 +22,40 @@ def principal_moments(inertia: dict[str, float]) -> tuple[float, float, float]:
     ixy, ixz, iyz = inertia["ixy"], inertia["ixz"], inertia["iyz"]
     if ixy == 0.0 and ixz == 0.0 and iyz == 0.0:
         return tuple(sorted((ixx, iyy, izz)))  # type: ignore[return-value]
-    import numpy as np
-
-    m = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
-    ev = sorted(float(v) for v in np.linalg.eigvalsh(m))
+    ev = sorted(_eigvalsh3(((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))))
     return (ev[0], ev[1], ev[2])
+
+
+def _eigvalsh3(m: tuple[tuple[float, float, float], ...]) -> list[float]:
+    """Eigenvalues of a symmetric 3x3 matrix: cyclic Jacobi rotations, in pure Python.
+
+    Jacobi is as accurate as LAPACK's eigvalsh for a matrix this small (each eigenvalue
+    within a few ulps of the largest), without importing numpy on the validate path.
+    """
+    big = max(abs(v) for row in m for v in row)
+    if big == 0.0 or big - big != 0.0:
+        return [m[0][0], m[1][1], m[2][2]]
+    shift = -math.frexp(big)[1]  # scale by a power of two (exact) to keep squares finite
+    a = [[math.ldexp(v, shift) for v in row] for row in m]
+    for _ in range(64):
+        off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
+        if off <= 1e-40 * (a[0][0] ** 2 + a[1][1] ** 2 + a[2][2] ** 2) or off == 0.0:
+            break
+        for p, q, r in ((0, 1, 2), (0, 2, 1), (1, 2, 0)):
+            apq = a[p][q]
+            if apq == 0.0:
+                continue
+            theta = (a[q][q] - a[p][p]) / (2.0 * apq)
+            t = math.copysign(1.0, theta) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            c = 1.0 / math.sqrt(t * t + 1.0)
+            s = t * c
+            a[p][p] -= t * apq
+            a[q][q] += t * apq
+            a[p][q] = a[q][p] = 0.0
+            arp, arq = a[r][p], a[r][q]
+            a[r][p] = a[p][r] = c * arp - s * arq
+            a[r][q] = a[q][r] = s * arp + c * arq
+    return [math.ldexp(a[i][i], -shift) for i in range(3)]
 
 
 def inertia_problem(inertial: Inertial) -> str | None:
