@@ -98,12 +98,12 @@ def _links_near(robot: Robot, tol_m: float) -> tuple[dict[tuple[int, int, int], 
     size = 2.0 * tol_m
     floor = math.floor
     pj = robot.parent_joint
-    world_pose = robot.world_pose
+    poses = robot.world_poses()
     lim = _GRID_LIMIT
     for i, lk in enumerate(robot.links):
         if lk.name not in pj:
             continue
-        P = world_pose(lk.name)
+        P = poses[lk.name]
         if P is None:
             continue
         x, y, z = P[9], P[10], P[11]

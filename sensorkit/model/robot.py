@@ -332,6 +332,7 @@ class Robot:
     # (tree top, number of ancestors) of links whose way up has no cycle
     _up: dict[str, tuple[str, int]] = field(default_factory=dict, repr=False)
     _roots: list[str] | None = field(default=None, repr=False)
+    _all_posed: bool = field(default=False, repr=False)
     cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
 
     # ---- tree -------------------------------------------------------------------------
@@ -504,6 +505,28 @@ class Robot:
             T = None if T is None else compose(T, pj[name].origin.pose())
             cache[name] = T
         return cache[link]
+
+    def world_poses(self) -> dict[str, Pose | None]:
+        """:meth:`world_pose` of every link (by name; more names may be present)."""
+        cache = self._T_world
+        if not self._all_posed:
+            from sensorkit.model.transforms import compose
+
+            pj = self.parent_joint
+            links = self.link_map
+            for lk in self.links:
+                name = lk.name
+                if name in cache:
+                    continue
+                joint = pj.get(name)
+                parent = joint.parent if joint is not None else None
+                if joint is not None and parent in cache and parent in links:
+                    base = cache[parent]  # the usual case: parents come first
+                    cache[name] = None if base is None else compose(base, joint.origin.pose())
+                else:
+                    self.world_pose(name)
+            self._all_posed = True
+        return cache
 
     def T_world_link(self, link: str) -> Mat | None:
         """:meth:`world_pose` as a 4x4 matrix."""

@@ -68,12 +68,13 @@ def inertia_problem(inertial: Inertial) -> str | None:
     if mass < 0:
         return f"mass {mass:g} is negative"
     values = inertial.inertia
-    if any(values[k] is None for k in values):
+    if None in values.values():
         missing = [k for k, v in values.items() if v is None]
         return "<inertia> lacks " + ", ".join(missing)
-    full = {k: float(v) for k, v in values.items() if v is not None}
+    full: dict[str, float] = values  # type: ignore[assignment]  # no None left
     moments = principal_moments(full)
-    scale = max(1.0, *(abs(m) for m in moments))
+    lo, mid, hi = moments
+    scale = max(1.0, abs(lo), abs(mid), abs(hi))
     if moments[0] < -_EPS * scale:
         return (
             f"inertia is not positive definite (principal moments {moments[0]:.3g}, "
@@ -97,12 +98,16 @@ def inertia_problem(inertial: Inertial) -> str | None:
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
     robot, conv = ctx.robot, ctx.conversion
+    lost_by: dict[str, list[str]] = {}  # cause -> the links it drops, in conv.dropped's order
+    for n, c in conv.dropped.items():
+        lost_by.setdefault(c, []).append(n)
     for name, cause in conv.dropped.items():
         if name != cause:
             continue
         link = robot.link_map[name]
-        lost = [n for n, c in conv.dropped.items() if c == name]
-        sensors = [s.name for s in robot.sensors if s.reference in lost]
+        lost = lost_by[name]
+        lost_set = set(lost)
+        sensors = [s.name for s in robot.sensors if s.reference in lost_set]
         joint = robot.parent_joint.get(name)
         what = "has no <inertial>" if link.inertial is None else "has zero mass"
         if joint is None:
