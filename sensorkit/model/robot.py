@@ -14,7 +14,7 @@ from lxml import etree
 
 from sensorkit.findings import SourceRef
 from sensorkit.loading.document import Document
-from sensorkit.loading.xacro_expand import LOC_ATTR
+from sensorkit.loading.marks import LOC_ATTR
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor
