@@ -720,7 +720,8 @@ def _build_robot(doc: Document) -> Robot:
     root = doc.root
     robot = Robot(name=root.get("name", ""), document=doc)
     for el in root:
-        name = local(el)
+        tag = el.tag
+        name = tag if tag in {"link", "joint"} else local(el)
         if name == "link":
             robot.links.append(_read_link(el, doc, robot.strays))
         elif name == "joint":
