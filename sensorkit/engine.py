@@ -12,12 +12,12 @@ import traceback
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from sensorkit.errors import InputError, UsageError
 from sensorkit.findings import Finding, Severity
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.loading.untrusted import Untrusted
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import load_robot
 from sensorkit.model.frames import sensor_frames
@@ -27,6 +27,9 @@ from sensorkit.model.targets import TARGETS, detect_target, is_gz
 from sensorkit.rules import RULES, Context, MissingFile, RuleInfo
 from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
+
+if TYPE_CHECKING:
+    from sensorkit.loading.untrusted import Untrusted
 
 
 @dataclass

@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
-    from sensorkit.model.transforms import Mat
+    from sensorkit.model.transforms_np import Mat
     from sensorkit.stereo import StereoPair
 
 __all__ = [
@@ -472,20 +472,18 @@ def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) 
     """
     import numpy as np
 
-    from sensorkit.model.frames import render_pose
-    from sensorkit.model.transforms import angle_between
+    from sensorkit.model.transforms_np import T_world_link_np, angle_between, render_pose_np
 
-    T_render = render_pose(robot, sensor)
+    T_render = render_pose_np(robot, sensor)
     if T_render is None or sensor.reference is None:
         return None
-    ancestors = robot.ancestors(sensor.reference)
-    root = ancestors[-1] if ancestors else sensor.reference
+    root = robot.tree_of(sensor.reference)
     seen: set[str] = set()
     for name in [*prefer, sensor.reference, *robot.subtree(root)]:
         if name is None or name in seen or name not in robot.link_map:
             continue
         seen.add(name)
-        T = robot.T_world_link(name)
+        T = T_world_link_np(robot, name)
         if T is None:
             continue
         if float(np.linalg.norm(T[:3, 3] - T_render[:3, 3])) > _POSE_TOL_M:
@@ -657,6 +655,7 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
     from sensorkit.model.frames import sensor_frames
     from sensorkit.model.sdf import convert
     from sensorkit.model.targets import is_gz
+    from sensorkit.model.transforms_np import render_pose_np
 
     chosen, why = resolve_target(robot, target)
     if convention is not None and convention not in get_args(Convention):
@@ -675,7 +674,7 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
             frame_how=frames.how,
             frame_is_default=frames.is_default,
             body_frame=body_frame(robot, sensor, prefer=(frames.published,)),
-            T_world_render=frames.T_world_render,
+            T_world_render=None if frames.T_world_render is None else render_pose_np(robot, sensor),
             topics=topics,
             # Gazebo Sim's depth_camera renders depth only; every other camera has colour
             has_colour=sensor.is_camera and not (is_gz(chosen) and sensor.kind == "depth"),

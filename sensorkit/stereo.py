@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, invert
+from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
@@ -116,9 +116,9 @@ def _snap(T: Mat) -> Mat:
 def T_world_optical(robot: Robot, view: CameraView) -> Mat | None:
     """Where ``view``'s images are rendered from, as an optical frame (z forward, x right,
     y down) in the root link's frame; ``None`` when the sensor is not on a known link."""
-    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms_np import render_pose_np
 
-    T = render_pose(robot, view.sensor)
+    T = render_pose_np(robot, view.sensor)
     if T is None:
         return None
     if view.spec.pose is not None:  # a multicamera's camera has its own <pose>

@@ -12,6 +12,7 @@ from __future__ import annotations
 import difflib
 import re
 from collections.abc import Iterable
+from functools import lru_cache
 
 # Words nearly every frame name carries: sharing one says little.
 GENERIC = frozenset({"link", "frame", "joint", "optical", "sensor", "base"})
@@ -38,14 +39,43 @@ def score(name: str, candidate: str) -> float:
     return 3.0 * distinctive + 0.5 * generic + 0.25 * tail + ratio
 
 
+@lru_cache(maxsize=1 << 18)
+def _profile(name: str) -> tuple[frozenset[str], str, dict[str, int]]:
+    """A name's words, lower-case spelling and letter counts (for :func:`closest`)."""
+    low = name.lower()
+    counts: dict[str, int] = {}
+    for ch in low:
+        counts[ch] = counts.get(ch, 0) + 1
+    return frozenset(words(name)), low, counts
+
+
 def closest(name: str, candidates: Iterable[str], n: int = 1) -> list[str]:
-    """Up to ``n`` candidates that plausibly are what ``name`` meant, best first."""
+    """Up to ``n`` candidates that plausibly are what ``name`` meant, best first.
+
+    A candidate qualifies by a shared distinctive word or a spelling ratio of 0.7; the
+    ratio is computed only where its upper bounds reach 0.7 (difflib's real_quick_ratio
+    and quick_ratio: lengths, then letters in common), so a robot of 100,000 links answers
+    in a fraction of the time, with the same answer.
+    """
     pool = [c for c in dict.fromkeys(candidates) if c and c != name]
     scored = []
+    mine, low, counts = _profile(name)
+    la = len(low)
     for c in pool:
-        shared = (set(words(name)) & set(words(c))) - GENERIC
-        ratio = difflib.SequenceMatcher(None, name.lower(), c.lower()).ratio()
-        if shared or ratio >= 0.7:
-            scored.append((score(name, c), c))
+        theirs, clow, ccounts = _profile(c)
+        if not (mine & theirs) - GENERIC:
+            total = la + len(clow)
+            if 2.0 * min(la, len(clow)) / total < 0.7:
+                continue
+            common = 0
+            for ch, k in counts.items():
+                m = ccounts.get(ch)
+                if m:
+                    common += k if k < m else m
+            if 2.0 * common / total < 0.7:
+                continue
+            if difflib.SequenceMatcher(None, low, clow).ratio() < 0.7:
+                continue
+        scored.append((score(name, c), c))
     scored.sort(key=lambda t: (-t[0], t[1]))
     return [c for _, c in scored[:n]]

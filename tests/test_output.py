@@ -7,7 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from builders import camera_sensor, robot
+from builders import camera_sensor, gz_robot, lidar_sensor, robot
 from conftest import ROOT
 from conftest import run_cli as cli
 
@@ -124,6 +124,34 @@ def test_validate_does_not_import_pybullet_or_trimesh() -> None:
     imported = {line.rsplit("|", 1)[-1].strip() for line in res.stderr.splitlines() if "|" in line}
     assert "sensorkit.engine" in imported  # the log is real
     assert not {m for m in imported if m.split(".")[0] in ("pybullet", "trimesh", "yourdfpy")}
+
+
+def test_validate_of_sensors_does_not_import_numpy_pybullet_or_rich(tmp_path: Path) -> None:
+    # Cameras and lidars with wrong frames (SK502, SK504: frame arithmetic and the search
+    # for an optical frame nearby), a tilted inertia (principal moments), classic and gz.
+    tilted = '<inertial><mass value="1"/><inertia ixx="0.1" ixy="0.01" ixz="0.02" iyy="0.2" iyz="0.01" izz="0.3"/></inertial>'
+    classic = tmp_path / "classic.urdf"
+    classic.write_text(
+        robot(
+            camera=camera_sensor(params="<frame_name>camera_link</frame_name>"),
+            lidar=lidar_sensor(params="<frame_name>camera_optical_frame</frame_name>"),
+            camera_body=tilted,
+        )
+    )
+    gz = tmp_path / "gz.urdf"
+    gz.write_text(gz_robot(camera_tags="<topic>cam</topic><gz_frame_id>camera_link</gz_frame_id>"))
+    res = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", str(classic), str(gz)],
+        check=False,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert res.returncode == 1, res.stdout + res.stderr
+    assert "SK502" in res.stdout and "SK504" in res.stdout
+    imported = {line.rsplit("|", 1)[-1].strip() for line in res.stderr.splitlines() if "|" in line}
+    assert "sensorkit.rules.frames" in imported  # the log is real
+    assert not {m for m in imported if m.split(".")[0] in ("numpy", "pybullet", "rich")}
 
 
 def test_pre_commit_hook_file() -> None:

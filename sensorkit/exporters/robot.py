@@ -18,7 +18,7 @@ from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
 
 if TYPE_CHECKING:
     from sensorkit.exporters.orbslam3 import OrbImuSettings
-    from sensorkit.model.transforms import Mat
+    from sensorkit.model.transforms_np import Mat
     from sensorkit.stereo import StereoPair
 
 DEFAULT_FPS = 30
@@ -175,7 +175,7 @@ def _rgb(view: CameraView, notes: list[str]) -> bool:
 
 def _T_cam_imu(view: CameraView, info: RobotInfo, imu: SensorInfo | None) -> Mat | None:
     """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
-    from sensorkit.model.transforms import invert
+    from sensorkit.model.transforms_np import invert
     from sensorkit.stereo import T_world_optical
 
     if imu is None or imu.T_world_render is None:
@@ -300,7 +300,7 @@ def _imu_settings(
 ) -> OrbImuSettings:
     from sensorkit.exporters.orbslam3 import OrbImuSettings
     from sensorkit.imu_noise import imu_noise
-    from sensorkit.model.transforms import invert
+    from sensorkit.model.transforms_np import invert
 
     T_cam_imu = _T_cam_imu(pair.left, info, imu)
     if T_cam_imu is None:

@@ -142,7 +142,7 @@ def _body_frame_at(fx: FixContext, fr: SensorFrames) -> str | None:
         return None
     import numpy as np
 
-    from sensorkit.model.transforms import rotation_angle
+    from sensorkit.model.transforms_np import rotation_angle
 
     robot = fx.robot
     names = ([fr.link] if fr.link else []) + [lk.name for lk in robot.links]
@@ -614,7 +614,7 @@ def _add_optical_frame(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) 
         raise NotFixable(f"<link> at {wl.where} has no name as written")
     import numpy as np
 
-    from sensorkit.model.transforms import R_BODY_OPTICAL, matrix_to_rpy
+    from sensorkit.model.transforms_np import R_BODY_OPTICAL, matrix_to_rpy
 
     pose = s.pose
     if pose.rpy == (0.0, 0.0, 0.0):

@@ -12,14 +12,17 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from sensorkit.errors import InputError
 from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.loading.untrusted import Untrusted
-from sensorkit.loading.xacro_expand import LOC_ATTR, expand, forbid_entities
+
+if TYPE_CHECKING:
+    from sensorkit.loading.untrusted import Untrusted
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
 _XACRO_MARKERS = re.compile(rb"xmlns:xacro\s*=|<xacro:|\$\{|\$\(")
@@ -223,6 +226,8 @@ def load_description(
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
+    from sensorkit.loading.xacro_expand import expand
+
     outcome = expand(
         path, dict(args or {}), resolver, timeout=timeout, untrusted=untrusted, overlay=overlay
     )

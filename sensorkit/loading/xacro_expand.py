@@ -24,15 +24,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.untrusted import Confinement, Untrusted
 
-LOC_ATTR = "sk_loc_"
+LOC_ATTR = marks.LOC_ATTR  # defined in marks (plain URDFs never import this module)
+forbid_entities = marks.forbid_entities
+
 MAX_INCLUDE_DEPTH = 64
 DEFAULT_TIMEOUT = 60.0
 MEMORY_LIMIT = 6 * 1024**3
-
-_ENTITY_RE = re.compile(rb"<!ENTITY", re.IGNORECASE)
 
 
 class PackageMissing(Exception):
@@ -61,19 +62,6 @@ class ExpandOutcome:
     macro_line: int | None = None
     package: str | None = None
     searched: list[str] = field(default_factory=list)
-
-
-def forbid_entities(data: bytes) -> str | None:
-    """A reason to refuse the bytes, or None. URDF never needs a DTD with entities.
-
-    The whole file is searched: a DOCTYPE may follow any amount of comment.
-    """
-    if b"<!DOCTYPE" in data and _ENTITY_RE.search(data):
-        return (
-            "DTD entity declarations are not allowed (entity expansion and external "
-            "entities are refused for safety); remove the <!DOCTYPE ...> block"
-        )
-    return None
 
 
 def _loc_parser(

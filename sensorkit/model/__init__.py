@@ -4,11 +4,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding
 from sensorkit.loading import PackageResolver, load_description
-from sensorkit.loading.untrusted import Untrusted
 from sensorkit.model.robot import Robot, build_robot
+
+if TYPE_CHECKING:
+    from sensorkit.loading.untrusted import Untrusted
 
 
 @dataclass

@@ -9,6 +9,7 @@ name (which matches no URDF link).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -74,30 +75,97 @@ class SensorFrames:
         T_world_frame = robot.T_world_link(frame)
         if T_world_frame is None:
             return None
-        from sensorkit.model.transforms import invert
+        from sensorkit.model.transforms import relative
 
-        out: Mat = invert(self.T_world_render) @ T_world_frame
-        return out
+        return relative(self.T_world_render, T_world_frame)
+
+
+# Links farther than this from the origin (or not finite) are outside the grid of
+# _links_near and always offered as candidates.
+_GRID_LIMIT = 1e9
+
+
+def _links_near(robot: Robot, tol_m: float) -> tuple[dict[tuple[int, int, int], list[int]], list[int]]:
+    """A grid of cells 2 * tol_m wide holding the index (in ``robot.links``) of each link
+    that a joint places, by its position; and the links outside any cell. Memoised.
+    """
+    key = ("links_near", tol_m)
+    known: tuple[dict[tuple[int, int, int], list[int]], list[int]] | None = robot.cache.get(key)
+    if known is not None:
+        return known
+    cells: dict[tuple[int, int, int], list[int]] = {}
+    outside: list[int] = []
+    size = 2.0 * tol_m
+    floor = math.floor
+    pj = robot.parent_joint
+    poses = robot.world_poses()
+    lim = _GRID_LIMIT
+    for i, lk in enumerate(robot.links):
+        if lk.name not in pj:
+            continue
+        P = poses[lk.name]
+        if P is None:
+            continue
+        x, y, z = P[9], P[10], P[11]
+        if -lim < x < lim and -lim < y < lim and -lim < z < lim:
+            cell = (floor(x / size), floor(y / size), floor(z / size))
+            bucket = cells.get(cell)
+            if bucket is None:
+                cells[cell] = [i]
+            else:
+                bucket.append(i)
+        else:
+            outside.append(i)
+    robot.cache[key] = cells, outside
+    return cells, outside
 
 
 def optical_frame_at(
     robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087
 ) -> str | None:
-    """A link already placed as the optical frame of a camera rendering from T_world_render."""
+    """A link already placed as the optical frame of a camera rendering from T_world_render.
+
+    The first such link in document order. Only links near the camera are looked at: the
+    grid of :func:`_links_near` offers every link within ``tol_m`` (and more), and each
+    candidate is tested as a scan of all links would test it, so the answer is the scan's.
+    """
     if T_world_render is None:
         return None
-    import numpy as np
+    from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between, rotation
 
-    from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between
-
-    for lk in robot.links:
-        if lk.name not in robot.parent_joint:
+    px, py, pz = T_world_render[0][3], T_world_render[1][3], T_world_render[2][3]
+    links = robot.links
+    lim = _GRID_LIMIT
+    if -lim < px < lim and -lim < py < lim and -lim < pz < lim and 1e-9 < tol_m < lim:
+        cells, outside = _links_near(robot, tol_m)
+        size = 2.0 * tol_m
+        cx, cy, cz = math.floor(px / size), math.floor(py / size), math.floor(pz / size)
+        found = list(outside)
+        for i in (cx - 1, cx, cx + 1):
+            for j in (cy - 1, cy, cy + 1):
+                for k in (cz - 1, cz, cz + 1):
+                    bucket = cells.get((i, j, k))
+                    if bucket is not None:
+                        found.extend(bucket)
+        found.sort()
+        candidates = [links[i].name for i in found]
+    else:  # a camera off the grid: every link
+        candidates = [lk.name for lk in links if lk.name in robot.parent_joint]
+    if not candidates:
+        return None
+    # angle_between(R_render.T @ R_link, R_BODY_OPTICAL) is the angle of
+    # R_link.T @ (R_render @ R_BODY_OPTICAL)
+    R_want = rotation(T_world_render) @ R_BODY_OPTICAL
+    for name in candidates:
+        P = robot.world_pose(name)
+        if P is None:
             continue
-        T = robot.T_world_link(lk.name)
-        if T is None or float(np.linalg.norm(T[:3, 3] - T_world_render[:3, 3])) > tol_m:
+        dx, dy, dz = P[9] - px, P[10] - py, P[11] - pz
+        if math.sqrt(dx * dx + dy * dy + dz * dz) > tol_m:
             continue
-        if angle_between(T_world_render[:3, :3].T @ T[:3, :3], R_BODY_OPTICAL) <= tol_rad:
-            return lk.name
+        R = ((P[0], P[1], P[2]), (P[3], P[4], P[5]), (P[6], P[7], P[8]))
+        if angle_between(R, R_want) <= tol_rad:
+            return name
     return None
 
 
@@ -129,11 +197,12 @@ def render_pose(robot: Robot, sensor: Sensor) -> Mat | None:
     """T_world_render: the reference link's pose composed with the sensor's ``<pose>``."""
     if sensor.reference is None or sensor.reference not in robot.link_map:
         return None
-    T = robot.T_world_link(sensor.reference)
-    if T is None:
+    P = robot.world_pose(sensor.reference)
+    if P is None:
         return None
-    out: Mat = T @ sensor.pose.matrix()
-    return out
+    from sensorkit.model.transforms import compose, pose_matrix
+
+    return pose_matrix(compose(P, sensor.pose.pose()))
 
 
 def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -> SensorFrames:

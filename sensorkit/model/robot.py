@@ -8,17 +8,18 @@ model never raises on bad input.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
 from sensorkit.findings import SourceRef
 from sensorkit.loading.document import Document
-from sensorkit.loading.xacro_expand import LOC_ATTR
+from sensorkit.loading.marks import LOC_ATTR
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor
-    from sensorkit.model.transforms import Mat
+    from sensorkit.model.transforms import Mat, Pose
+    from sensorkit.model.transforms_np import Mat as NpMat
 
 Vec3 = tuple[float, float, float]
 JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
@@ -167,6 +168,7 @@ class Origin:
     problems: list[str] = field(default_factory=list)
     rpy_text: str | None = None
     source: SourceRef | None = None
+    _pose: Pose | None = field(default=None, init=False, repr=False, compare=False)
 
     @classmethod
     def read(cls, el: etree._Element | None, source: SourceRef | None = None) -> Origin:
@@ -186,8 +188,24 @@ class Origin:
                 problems.append(f"rpy {why}")
         return cls(xyz or _ZERO, rpy or _ZERO, problems, rpy_text, source)
 
-    def matrix(self) -> Mat:
-        from sensorkit.model.transforms import transform
+    def pose(self) -> Pose:
+        """The origin as a flat pose (see :mod:`sensorkit.model.transforms`), memoised."""
+        p = self._pose
+        if p is None:
+            from sensorkit.model.transforms import pose
+
+            p = self._pose = pose(self.xyz, self.rpy)
+        return p
+
+    def transform(self) -> Mat:
+        """The origin as a pure-Python 4x4 matrix."""
+        from sensorkit.model.transforms import pose_matrix
+
+        return pose_matrix(self.pose())
+
+    def matrix(self) -> NpMat:
+        """The origin as a 4x4 numpy array (for rendering and export)."""
+        from sensorkit.model.transforms_np import transform
 
         return transform(self.xyz, self.rpy)
 
@@ -310,12 +328,19 @@ class Robot:
     joint_map: dict[str, Joint] = field(default_factory=dict)
     parent_joint: dict[str, Joint] = field(default_factory=dict)
     child_joints: dict[str, list[Joint]] = field(default_factory=dict)
-    _T_world: dict[str, Mat | None] = field(default_factory=dict, repr=False)
+    _T_world: dict[str, Pose | None] = field(default_factory=dict, repr=False)
+    # (tree top, number of ancestors) of links whose way up has no cycle
+    _up: dict[str, tuple[str, int]] = field(default_factory=dict, repr=False)
+    _roots: list[str] | None = field(default=None, repr=False)
+    _all_posed: bool = field(default=False, repr=False)
+    cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
 
     # ---- tree -------------------------------------------------------------------------
     def roots(self) -> list[str]:
         """Links that no joint names as child, in document order."""
-        return [lk.name for lk in self.links if lk.name not in self.parent_joint]
+        if self._roots is None:
+            self._roots = [lk.name for lk in self.links if lk.name not in self.parent_joint]
+        return list(self._roots)
 
     def root(self) -> str | None:
         r = self.roots()
@@ -335,10 +360,72 @@ class Robot:
             cur = parent
         return out
 
+    def _top(self, link: str) -> tuple[str, int] | None:
+        """``(tree_of(link), len(ancestors(link)))``, memoised; None on a way up with a cycle.
+
+        One walk up to the first link already known, so all calls together cost O(links).
+        """
+        up = self._up
+        hit = up.get(link)
+        if hit is not None:
+            return hit
+        pj = self.parent_joint
+        path = [link]
+        seen = {link}
+        cur = link
+        while True:
+            joint = pj.get(cur)
+            parent = joint.parent if joint is not None else None
+            if parent is None:
+                top, depth = cur, 0
+                break
+            if parent in seen:  # a cycle: ancestors() answers differently per start
+                return None
+            hit = up.get(parent)
+            if hit is not None:
+                top, depth = hit[0], hit[1] + 1
+                break
+            path.append(parent)
+            seen.add(parent)
+            cur = parent
+        # path ends with cur, at ``depth``; each link below it is one deeper
+        n = len(path)
+        for i, name in enumerate(path):
+            up[name] = (top, depth + n - 1 - i)
+        return up[link]
+
     def tree_of(self, link: str) -> str:
         """The top of the tree ``link`` hangs in (a root link, or the missing parent of a cut)."""
+        known = self._top(link)
+        if known is not None:
+            return known[0]
         up = self.ancestors(link)
         return up[-1] if up else link
+
+    def depth(self, link: str) -> int:
+        """``len(ancestors(link))``: how many links are above ``link``."""
+        known = self._top(link)
+        return known[1] if known is not None else len(self.ancestors(link))
+
+    def path_up(self, link: str, top: str) -> list[str] | None:
+        """``link`` and its ancestors below ``top`` (None unless ``top`` is an ancestor).
+
+        Walks only the ``depth(link) - depth(top)`` steps between them.
+        """
+        a, b = self._top(link), self._top(top)
+        if a is None or b is None:  # a cycle on the way: the plain walk
+            chain = [link, *self.ancestors(link)]
+            return chain[: chain.index(top)] if top in chain[1:] else None
+        steps = a[1] - b[1]
+        if steps <= 0 or a[0] != b[0]:
+            return None
+        out = []
+        cur: str | None = link
+        for _ in range(steps):
+            assert cur is not None
+            out.append(cur)
+            cur = self.parent_joint[cur].parent
+        return out if cur == top else None
 
     def cut_off(self) -> list[str]:
         """Links whose parent joint names a parent link that does not exist (SK202)."""
@@ -367,69 +454,97 @@ class Robot:
         return out
 
     # ---- kinematics -------------------------------------------------------------------
-    def T_world_link(self, link: str) -> Mat | None:
+    def world_pose(self, link: str) -> Pose | None:
         """Pose of ``link`` in its root's frame at zero joint positions (None if unknown).
 
         "World" is the root link of the tree ``link`` belongs to. Memoised; iterative, so
         a 10,000-link chain costs no recursion.
         """
-        if link in self._T_world:
-            return self._T_world[link]
+        cache = self._T_world
+        if link in cache:
+            return cache[link]
         if link not in self.link_map:
             return None
-        import numpy as np
+        from sensorkit.model.transforms import IDENTITY, compose
 
         chain: list[str] = []
         cur: str | None = link
         seen: set[str] = set()
-        base: Mat | None = None
+        base: Pose | None = None
         while cur is not None:
-            if cur in self._T_world:
-                base = self._T_world[cur]
+            if cur in cache:
+                base = cache[cur]
                 break
             if cur in seen:  # cycle: no defined pose
                 for c in chain:
-                    self._T_world[c] = None
+                    cache[c] = None
                 return None
             seen.add(cur)
             chain.append(cur)
             joint = self.parent_joint.get(cur)
             if joint is None:
-                base = np.eye(4)
-                self._T_world[cur] = base
+                base = IDENTITY
+                cache[cur] = base
                 chain.pop()
                 break
             cur = joint.parent
             if cur is None:
                 for c in chain:
-                    self._T_world[c] = None
+                    cache[c] = None
                 return None
             if cur not in self.link_map:
                 # A joint to a missing parent (SK202) cuts this subtree off: it is a tree of
                 # its own, rooted where the cut is, so its sensors can still be checked.
-                base = np.eye(4)
-                self._T_world[chain[-1]] = base
+                base = IDENTITY
+                cache[chain[-1]] = base
                 chain.pop()
                 break
         T = base
+        pj = self.parent_joint
         for name in reversed(chain):
-            joint = self.parent_joint[name]
-            T = None if T is None else T @ joint.origin.matrix()
-            self._T_world[name] = T
-        return self._T_world[link]
+            T = None if T is None else compose(T, pj[name].origin.pose())
+            cache[name] = T
+        return cache[link]
+
+    def world_poses(self) -> dict[str, Pose | None]:
+        """:meth:`world_pose` of every link (by name; more names may be present)."""
+        cache = self._T_world
+        if not self._all_posed:
+            from sensorkit.model.transforms import compose
+
+            pj = self.parent_joint
+            links = self.link_map
+            for lk in self.links:
+                name = lk.name
+                if name in cache:
+                    continue
+                joint = pj.get(name)
+                parent = joint.parent if joint is not None else None
+                if joint is not None and parent in cache and parent in links:
+                    base = cache[parent]  # the usual case: parents come first
+                    cache[name] = None if base is None else compose(base, joint.origin.pose())
+                else:
+                    self.world_pose(name)
+            self._all_posed = True
+        return cache
+
+    def T_world_link(self, link: str) -> Mat | None:
+        """:meth:`world_pose` as a 4x4 matrix."""
+        from sensorkit.model.transforms import pose_matrix
+
+        p = self.world_pose(link)
+        return None if p is None else pose_matrix(p)
 
     def T_link_link(self, a: str, b: str) -> Mat | None:
         """Pose of link ``b`` in link ``a`` (None unless both are in one tree)."""
-        from sensorkit.model.transforms import invert
+        from sensorkit.model.transforms import relative
 
         Ta, Tb = self.T_world_link(a), self.T_world_link(b)
         if Ta is None or Tb is None:
             return None
-        ra = [a, *self.ancestors(a)][-1]
-        rb = [b, *self.ancestors(b)][-1]
-        if ra != rb:
+        if self.tree_of(a) != self.tree_of(b):
             return None
-        return invert(Ta) @ Tb
+        return relative(Ta, Tb)
 
 
 _INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
@@ -605,7 +720,8 @@ def _build_robot(doc: Document) -> Robot:
     root = doc.root
     robot = Robot(name=root.get("name", ""), document=doc)
     for el in root:
-        name = local(el)
+        tag = el.tag
+        name = tag if tag in {"link", "joint"} else local(el)
         if name == "link":
             robot.links.append(_read_link(el, doc, robot.strays))
         elif name == "joint":

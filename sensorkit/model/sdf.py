@@ -54,6 +54,9 @@ def preserved_fixed_joints(robot: Robot) -> set[str]:
 def convert(robot: Robot) -> Conversion:
     """Compute lumping and dropping for ``robot`` (cycle-safe)."""
     conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
+    preserved = conv.preserved_joints
+    target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
+    parent_joint, child_joints, link_map = robot.parent_joint, robot.child_joints, robot.link_map
     order: list[str] = []
     seen: set[str] = set()
     for root in robot.roots():
@@ -64,45 +67,51 @@ def convert(robot: Robot) -> Conversion:
                 continue
             seen.add(cur)
             order.append(cur)
-            for j in reversed(robot.child_joints.get(cur, [])):
-                if (
-                    j.child is not None
-                    and j.child in robot.link_map  # a joint to a missing link (SK202) adds none
-                    and robot.parent_joint.get(j.child) is j
-                ):
-                    stack.append(j.child)
+            kids = child_joints.get(cur)
+            if kids:
+                for j in reversed(kids):
+                    c = j.child
+                    # a joint to a missing link (SK202) adds none
+                    if c is not None and c in link_map and parent_joint.get(c) is j:
+                        stack.append(c)
     for name in order:
-        joint = robot.parent_joint.get(name)
+        joint = parent_joint.get(name)
         lumped = (
             joint is not None
             and joint.type == "fixed"
-            and joint.name not in conv.preserved_joints
+            and joint.name not in preserved
             and joint.parent is not None
-            and joint.parent in conv.target_of
-            and conv.target_of[joint.parent] != "world"
+            and joint.parent in target_of
+            and target_of[joint.parent] != "world"
         )
-        conv.target_of[name] = conv.target_of[joint.parent] if lumped else name  # type: ignore[union-attr,index]
-    for name in robot.link_map:
-        conv.target_of.setdefault(name, name)
-    for name, target in conv.target_of.items():
-        link = robot.link_map.get(name)
-        conv.mass_of[target] = conv.mass_of.get(target, 0.0) + (link.mass if link else 0.0)
+        target_of[name] = target_of[joint.parent] if lumped else name  # type: ignore[union-attr,index]
+    for name in link_map:
+        if name not in target_of:
+            target_of[name] = name
+    for name, target in target_of.items():
+        link = link_map.get(name)
+        mass = 0.0
+        if link is not None:
+            inertial = link.inertial
+            if inertial is not None and inertial.mass is not None:
+                mass = inertial.mass
+        mass_of[target] = mass_of.get(target, 0.0) + mass
     # CreateSDF: walk surviving links from each root; a massless one drops its subtree.
     for name in order:
-        if conv.target_of[name] != name or name in conv.dropped:
+        if target_of[name] != name or name in dropped:
             continue
-        joint = robot.parent_joint.get(name)
+        joint = parent_joint.get(name)
         if joint is not None and joint.parent is not None:
-            parent_target = conv.target_of.get(joint.parent, joint.parent)
-            if parent_target in conv.dropped:
-                conv.dropped[name] = conv.dropped[parent_target]
+            parent_target = target_of.get(joint.parent, joint.parent)
+            if parent_target in dropped:
+                dropped[name] = dropped[parent_target]
                 continue
         if name == "world" and joint is None:
             continue
-        if abs(conv.mass_of.get(name, 0.0)) <= MASS_EPSILON:
-            conv.dropped[name] = name
+        if abs(mass_of.get(name, 0.0)) <= MASS_EPSILON:
+            dropped[name] = name
     for name in order:  # lumped links follow their survivor
-        target = conv.target_of[name]
-        if target != name and target in conv.dropped:
-            conv.dropped[name] = conv.dropped[target]
+        target = target_of[name]
+        if target != name and target in dropped:
+            dropped[name] = dropped[target]
     return conv

@@ -40,7 +40,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sensorkit.intrinsics import Intrinsics
-from sensorkit.model.transforms import R_BODY_OPTICAL, Mat, invert
+from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
 from sensorkit.render.checks import Check
 
 if TYPE_CHECKING:

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.model.transforms import Mat, angle_between
+from sensorkit.model.transforms_np import Mat, angle_between
 
 __all__ = [
     "STATUS_ORDER",

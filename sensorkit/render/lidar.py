@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sensorkit.intrinsics import LaserScanParams
-from sensorkit.model.transforms import Mat
+from sensorkit.model.transforms_np import Mat
 from sensorkit.render.checks import Check
 
 if TYPE_CHECKING:

@@ -13,7 +13,7 @@ import numpy as np
 
 from sensorkit.errors import UsageError
 from sensorkit.model.robot import Joint, Robot, child, parse_float
-from sensorkit.model.transforms import Mat
+from sensorkit.model.transforms_np import Mat
 
 __all__ = ["MOVABLE", "joint_positions", "link_poses"]
 

@@ -28,7 +28,7 @@ import numpy as np
 
 from sensorkit.errors import InputError, UsageError
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
-from sensorkit.model.transforms import Mat, matrix_to_rpy
+from sensorkit.model.transforms_np import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
 
 if TYPE_CHECKING:
@@ -671,7 +671,7 @@ def _beams(samples: int | None, resolution: float | None) -> float:
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
-    from sensorkit.model.frames import render_pose
+    from sensorkit.model.transforms_np import render_pose_np
     from sensorkit.sensorinfo import SDF_DEFAULTS
 
     for s in robot.sensors:
@@ -699,7 +699,7 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                     f"resolution) is over the render budget of {max_rays:,}{raise_it}"
                 )
                 raise UsageError(msg)
-        T = render_pose(robot, s)
+        T = render_pose_np(robot, s)
         if T is not None:
             import numpy as np
 

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.model.transforms import Mat, transform
+from sensorkit.model.transforms_np import Mat, transform
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -325,10 +325,11 @@ def _geometry_shape(
 def scene_shapes_from_robot(scene: Robot, poses: dict[str, Mat] | None = None) -> list[Shape]:
     """Every visual and collision primitive of a URDF at ``poses`` (default: zero joints)."""
     from sensorkit.model.robot import children
+    from sensorkit.model.transforms_np import T_world_link_np
 
     shapes: list[Shape] = []
     for link in scene.links:
-        T = poses.get(link.name) if poses is not None else scene.T_world_link(link.name)
+        T = poses.get(link.name) if poses is not None else T_world_link_np(scene, link.name)
         if T is None:
             continue
         for kind in ("visual", "collision"):

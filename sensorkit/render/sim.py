@@ -29,7 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sensorkit.errors import InputError
-from sensorkit.model.transforms import Mat
+from sensorkit.model.transforms_np import Mat
 from sensorkit.render.scene import GROUND, Scene, Shape, box_mesh
 from sensorkit.render.urdf_out import UrdfPart
 
@@ -429,7 +429,7 @@ class World:
             T_link_inertial = np.eye(4)
             T_link_inertial[:3, :3] = _quat_to_matrix(local_orn)
             T_link_inertial[:3, 3] = local_pos
-            from sensorkit.model.transforms import invert
+            from sensorkit.model.transforms_np import invert
 
             return T_world_inertial @ invert(T_link_inertial)
         try:

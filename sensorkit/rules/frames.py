@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from types import ModuleType
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity, SourceRef
 from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
 from sensorkit.model.targets import is_gz
@@ -24,19 +24,7 @@ POSITION_TOL = 1e-3
 OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
 
 
-def _np() -> ModuleType:
-    import numpy as np
-
-    return np
-
-
-def _tf() -> ModuleType:
-    from sensorkit.model import transforms
-
-    return transforms
-
-
-def _describe_axis(v: Mat) -> str:
+def _describe_axis(v: tuple[float, float, float]) -> str:
     names = {
         (1, 0, 0): "forward",
         (-1, 0, 0): "backwards",
@@ -45,8 +33,7 @@ def _describe_axis(v: Mat) -> str:
         (0, 0, 1): "up",
         (0, 0, -1): "down",
     }
-    np = _np()
-    i = int(np.argmax(np.abs(v)))
+    i = max(range(3), key=lambda k: abs(v[k]))  # the first largest, as numpy's argmax
     key = [0, 0, 0]
     key[i] = 1 if v[i] > 0 else -1
     return names[(key[0], key[1], key[2])]
@@ -54,9 +41,9 @@ def _describe_axis(v: Mat) -> str:
 
 def optical_consequence(R_render_frame: Mat, gz: bool = False) -> str:
     """What consumers will see when optical data is stamped with this frame."""
-    np, tf = _np(), _tf()
-    forward = R_render_frame @ np.array([0.0, 0.0, 1.0])
-    right = R_render_frame @ np.array([1.0, 0.0, 0.0])
+    R = R_render_frame
+    forward = (R[0][2], R[1][2], R[2][2])  # R @ (0, 0, 1)
+    right = (R[0][0], R[1][0], R[2][0])  # R @ (1, 0, 0)
     fwd = _describe_axis(forward)
     if tf.rotation_angle(R_render_frame) < ANGLE_TOL:
         if gz:
@@ -83,13 +70,10 @@ def optical_consequence(R_render_frame: Mat, gz: bool = False) -> str:
 
 def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
     """Joints from ``top`` down to ``frame`` (empty unless ``top`` is an ancestor)."""
-    chain = [frame, *robot.ancestors(frame)]
-    if top not in chain:
+    below = robot.path_up(frame, top)
+    if not below:
         return []
-    out = []
-    for link in chain[: chain.index(top)]:
-        out.append(robot.parent_joint[link])
-    return list(reversed(out))
+    return [robot.parent_joint[link] for link in reversed(below)]
 
 
 def _exists(robot: Robot, name: str) -> bool:
@@ -215,8 +199,7 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         T = fr.T_render_frame(robot, frame)
         if T is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
             continue
-        tf = _tf()
-        R = T[:3, :3]
+        R = tf.rotation(T)
         err = tf.angle_between(R, tf.R_BODY_OPTICAL)
         if err <= ANGLE_TOL:
             continue
@@ -260,8 +243,8 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
         T = fr.T_render_frame(robot, frame)
         if T is None:
             continue
-        off = T[:3, 3]  # in the sensor's own frame
-        dist = float(_np().linalg.norm(off))
+        off = tf.translation(T)  # in the sensor's own frame
+        dist = tf.norm(off)
         if dist <= POSITION_TOL or _stereo_right_eye(s, fr, off):
             continue
         yield ctx.finding(
@@ -281,7 +264,7 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
         )
 
 
-def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: Mat) -> bool:
+def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, float]) -> bool:
     """The ROS stereo convention: the right eye publishes in the left eye's optical frame.
 
     Its camera_info carries the baseline instead, P[0][3] = Tx = -fx * baseline
@@ -301,8 +284,7 @@ def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: Mat) -> bool:
         return False
     if not baseline > 0:
         return False
-    np = _np()
-    return float(np.linalg.norm(off - np.array([0.0, baseline, 0.0]))) <= POSITION_TOL
+    return tf.norm((off[0], off[1] - baseline, off[2])) <= POSITION_TOL
 
 
 @rule(
@@ -319,8 +301,7 @@ def body_frame(ctx: Context) -> Iterator[Finding]:
         T = fr.T_render_frame(robot, fr.published)
         if T is None:
             continue
-        tf = _tf()
-        R = T[:3, :3]
+        R = tf.rotation(T)
         err = tf.rotation_angle(R)
         if err <= ANGLE_TOL:
             continue
@@ -363,8 +344,7 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
             if len(rotated) != 1:
                 continue
             joint = rotated[0]
-        tf = _tf()
-        R = joint.origin.matrix()[:3, :3]
+        R = tf.rpy_to_matrix(joint.origin.rpy)
         err = tf.angle_between(R, tf.R_BODY_OPTICAL)
         if EXACT_TOL < err <= ANGLE_TOL and joint.name not in seen:
             seen.add(joint.name)
@@ -403,8 +383,7 @@ def optical_naming(ctx: Context) -> Iterator[Finding]:
         T = fr.T_render_frame(robot, frame)
         if T is None or frame is None or frame in seen or "optical" in frame:
             continue
-        tf = _tf()
-        if tf.angle_between(T[:3, :3], tf.R_BODY_OPTICAL) <= ANGLE_TOL:
+        if tf.angle_between(tf.rotation(T), tf.R_BODY_OPTICAL) <= ANGLE_TOL:
             seen.add(frame)
             yield ctx.finding(
                 "SK506",

@@ -22,11 +22,40 @@ def principal_moments(inertia: dict[str, float]) -> tuple[float, float, float]:
     ixy, ixz, iyz = inertia["ixy"], inertia["ixz"], inertia["iyz"]
     if ixy == 0.0 and ixz == 0.0 and iyz == 0.0:
         return tuple(sorted((ixx, iyy, izz)))  # type: ignore[return-value]
-    import numpy as np
-
-    m = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
-    ev = sorted(float(v) for v in np.linalg.eigvalsh(m))
+    ev = sorted(_eigvalsh3(((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))))
     return (ev[0], ev[1], ev[2])
+
+
+def _eigvalsh3(m: tuple[tuple[float, float, float], ...]) -> list[float]:
+    """Eigenvalues of a symmetric 3x3 matrix: cyclic Jacobi rotations, in pure Python.
+
+    Jacobi is as accurate as LAPACK's eigvalsh for a matrix this small (each eigenvalue
+    within a few ulps of the largest), without importing numpy on the validate path.
+    """
+    big = max(abs(v) for row in m for v in row)
+    if big == 0.0 or big - big != 0.0:
+        return [m[0][0], m[1][1], m[2][2]]
+    shift = -math.frexp(big)[1]  # scale by a power of two (exact) to keep squares finite
+    a = [[math.ldexp(v, shift) for v in row] for row in m]
+    for _ in range(64):
+        off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
+        if off <= 1e-40 * (a[0][0] ** 2 + a[1][1] ** 2 + a[2][2] ** 2) or off == 0.0:
+            break
+        for p, q, r in ((0, 1, 2), (0, 2, 1), (1, 2, 0)):
+            apq = a[p][q]
+            if apq == 0.0:
+                continue
+            theta = (a[q][q] - a[p][p]) / (2.0 * apq)
+            t = math.copysign(1.0, theta) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            c = 1.0 / math.sqrt(t * t + 1.0)
+            s = t * c
+            a[p][p] -= t * apq
+            a[q][q] += t * apq
+            a[p][q] = a[q][p] = 0.0
+            arp, arq = a[r][p], a[r][q]
+            a[r][p] = a[p][r] = c * arp - s * arq
+            a[r][q] = a[q][r] = s * arp + c * arq
+    return [math.ldexp(a[i][i], -shift) for i in range(3)]
 
 
 def inertia_problem(inertial: Inertial) -> str | None:
@@ -39,12 +68,13 @@ def inertia_problem(inertial: Inertial) -> str | None:
     if mass < 0:
         return f"mass {mass:g} is negative"
     values = inertial.inertia
-    if any(values[k] is None for k in values):
+    if None in values.values():
         missing = [k for k, v in values.items() if v is None]
         return "<inertia> lacks " + ", ".join(missing)
-    full = {k: float(v) for k, v in values.items() if v is not None}
+    full: dict[str, float] = values  # type: ignore[assignment]  # no None left
     moments = principal_moments(full)
-    scale = max(1.0, *(abs(m) for m in moments))
+    lo, mid, hi = moments
+    scale = max(1.0, abs(lo), abs(mid), abs(hi))
     if moments[0] < -_EPS * scale:
         return (
             f"inertia is not positive definite (principal moments {moments[0]:.3g}, "
@@ -68,12 +98,16 @@ def inertia_problem(inertial: Inertial) -> str | None:
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
     robot, conv = ctx.robot, ctx.conversion
+    lost_by: dict[str, list[str]] = {}  # cause -> the links it drops, in conv.dropped's order
+    for n, c in conv.dropped.items():
+        lost_by.setdefault(c, []).append(n)
     for name, cause in conv.dropped.items():
         if name != cause:
             continue
         link = robot.link_map[name]
-        lost = [n for n, c in conv.dropped.items() if c == name]
-        sensors = [s.name for s in robot.sensors if s.reference in lost]
+        lost = lost_by[name]
+        lost_set = set(lost)
+        sensors = [s.name for s in robot.sensors if s.reference in lost_set]
         joint = robot.parent_joint.get(name)
         what = "has no <inertial>" if link.inertial is None else "has zero mass"
         if joint is None:

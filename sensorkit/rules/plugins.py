@@ -842,9 +842,9 @@ def xforward_cloud(ctx: Context) -> Iterator[Finding]:
         frame = fr.camera_frame
         T = fr.T_render_frame(ctx.robot, frame)
         if T is not None:
-            from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between
+            from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between, rotation
 
-            if angle_between(T[:3, :3], R_BODY_OPTICAL) > 0.0087:
+            if angle_between(rotation(T), R_BODY_OPTICAL) > 0.0087:
                 continue  # stamped with an x-forward frame: the cloud lands right (SK502 covers images)
         yield ctx.finding(
             "SK614",

@@ -1,0 +1,23 @@
+"""What loading leaves on, and refuses in, every document: kept apart from
+``xacro_expand`` so that reading a plain URDF does not import the xacro machinery."""
+
+from __future__ import annotations
+
+import re
+
+LOC_ATTR = "sk_loc_"  # "FILE_INDEX:LINE" on elements xacro expanded, for their source line
+
+_ENTITY_RE = re.compile(rb"<!ENTITY", re.IGNORECASE)
+
+
+def forbid_entities(data: bytes) -> str | None:
+    """A reason to refuse the bytes, or None. URDF never needs a DTD with entities.
+
+    The whole file is searched: a DOCTYPE may follow any amount of comment.
+    """
+    if b"<!DOCTYPE" in data and _ENTITY_RE.search(data):
+        return (
+            "DTD entity declarations are not allowed (entity expansion and external "
+            "entities are refused for safety); remove the <!DOCTYPE ...> block"
+        )
+    return None

@@ -1,0 +1,152 @@
+"""Numpy twins of :mod:`sensorkit.model.transforms`: 4x4 numpy arrays, ``T_a_b``.
+
+For rendering and export, which compute in numpy anyway and whose printed numbers keep
+every digit: :func:`T_world_link_np` and :func:`render_pose_np` compose the same chain of
+joint origins in numpy, so those numbers stay what numpy makes of them. ``sensorkit
+validate`` never imports this module.
+
+URDF's ``rpy`` is fixed-axis roll, pitch, yaw: R = Rz(yaw) @ Ry(pitch) @ Rx(roll).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from sensorkit.model.robot import Robot
+    from sensorkit.model.sensors import Sensor
+
+Mat = npt.NDArray[np.float64]
+Vec3 = tuple[float, float, float]
+
+# REP 103: optical frame (z forward, x right, y down) in the body frame (x forward, z up).
+R_BODY_OPTICAL: Mat = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
+def rot_x(a: float) -> Mat:
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(a: float) -> Mat:
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(a: float) -> Mat:
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rpy_to_matrix(rpy: Sequence[float]) -> Mat:
+    """Rotation matrix of URDF ``rpy``."""
+    r, p, y = rpy
+    return rot_z(y) @ rot_y(p) @ rot_x(r)
+
+
+def matrix_to_rpy(R: Mat) -> Vec3:
+    """URDF ``rpy`` of a rotation matrix (pitch in [-pi/2, pi/2])."""
+    sy = -float(R[2, 0])
+    sy = max(-1.0, min(1.0, sy))
+    pitch = math.asin(sy)
+    if abs(sy) < 1.0 - 1e-12:
+        roll = math.atan2(float(R[2, 1]), float(R[2, 2]))
+        yaw = math.atan2(float(R[1, 0]), float(R[0, 0]))
+    else:  # gimbal lock: put everything into yaw
+        roll = 0.0
+        yaw = math.atan2(-float(R[0, 1]), float(R[1, 1]))
+    return (roll, pitch, yaw)
+
+
+def transform(
+    xyz: Sequence[float] = (0.0, 0.0, 0.0), rpy: Sequence[float] = (0.0, 0.0, 0.0)
+) -> Mat:
+    """4x4 homogeneous transform from a URDF origin."""
+    T = np.eye(4)
+    T[:3, :3] = rpy_to_matrix(rpy)
+    T[:3, 3] = xyz
+    return T
+
+
+def invert(T: Mat) -> Mat:
+    """Inverse of a rigid transform."""
+    R = T[:3, :3]
+    out = np.eye(4)
+    out[:3, :3] = R.T
+    out[:3, 3] = -R.T @ T[:3, 3]
+    return out
+
+
+def rotation_angle(R: Mat) -> float:
+    """Angle (rad) of a rotation matrix, robust near 0 and pi."""
+    c = (float(np.trace(R)) - 1.0) / 2.0
+    return math.acos(max(-1.0, min(1.0, c)))
+
+
+def angle_between(Ra: Mat, Rb: Mat) -> float:
+    """Angle (rad) of the rotation taking Ra to Rb."""
+    return rotation_angle(Ra.T @ Rb)
+
+
+def T_world_link_np(robot: Robot, link: str) -> Mat | None:
+    """:meth:`Robot.T_world_link <sensorkit.model.robot.Robot.T_world_link>` in numpy.
+
+    Memoised on the robot; iterative (a 10,000-link chain costs no recursion).
+    """
+    cache: dict[str, Mat | None] = robot.cache.setdefault("T_world_np", {})
+    if link in cache:
+        return cache[link]
+    if link not in robot.link_map:
+        return None
+    chain: list[str] = []
+    cur: str | None = link
+    seen: set[str] = set()
+    base: Mat | None = None
+    while cur is not None:
+        if cur in cache:
+            base = cache[cur]
+            break
+        if cur in seen:  # cycle: no defined pose
+            for c in chain:
+                cache[c] = None
+            return None
+        seen.add(cur)
+        chain.append(cur)
+        joint = robot.parent_joint.get(cur)
+        if joint is None:
+            base = np.eye(4)
+            cache[cur] = base
+            chain.pop()
+            break
+        cur = joint.parent
+        if cur is None:
+            for c in chain:
+                cache[c] = None
+            return None
+        if cur not in robot.link_map:  # cut off by a joint to a missing parent (SK202)
+            base = np.eye(4)
+            cache[chain[-1]] = base
+            chain.pop()
+            break
+    T = base
+    for name in reversed(chain):
+        joint = robot.parent_joint[name]
+        T = None if T is None else T @ joint.origin.matrix()
+        cache[name] = T
+    return cache[link]
+
+
+def render_pose_np(robot: Robot, sensor: Sensor) -> Mat | None:
+    """:func:`sensorkit.model.frames.render_pose` in numpy."""
+    if sensor.reference is None or sensor.reference not in robot.link_map:
+        return None
+    T = T_world_link_np(robot, sensor.reference)
+    if T is None:
+        return None
+    out: Mat = T @ sensor.pose.matrix()
+    return out
