@@ -176,6 +176,10 @@ _ROBOT_FIELDS = frozenset(
         "parent_joint",
         "child_joints",
         "_T_world",
+        "_up",
+        "_roots",
+        "_all_posed",
+        "cache",
     }
 )
 
@@ -236,6 +240,7 @@ def extend_robot(before: Robot, part: Robot) -> Robot | None:
         parent_joint=dict(before.parent_joint),
         child_joints=dict(before.child_joints),
         _T_world=dict(before._T_world),  # old links keep their poses
+        _up=dict(before._up),  # and their tree tops and depths (the part is a leaf subtree)
     )
     for lk in part.links:
         after.link_map.setdefault(lk.name, lk)
