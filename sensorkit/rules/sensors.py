@@ -168,6 +168,11 @@ def camera_image(ctx: Context) -> Iterator[Finding]:
                 )
 
 
+def _as_float(n: int) -> float:
+    """``float(n)``, infinite for an int too large for a float (``float`` raises there)."""
+    return float(n) if n < 2**1000 else math.inf
+
+
 def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Finding]:
     """A warning for a frame beyond any real camera (``knowledge.limits``)."""
     assert cam.width is not None and cam.height is not None
@@ -175,10 +180,11 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
     if pixels <= PLAUSIBLE_CAMERA_PIXELS:
         return
     size = frame_bytes(cam.width, cam.height, cam.format, s.is_depth)
-    rate = f" ({size * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)" if s.update_rate else ""
+    size_f = _as_float(size)
+    rate = f" ({size_f * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)" if s.update_rate else ""
     msg = (
-        f"sensor {s.name!r}: {cam.width}x{cam.height} = {pixels / 1e6:.3g} MP per frame is beyond "
-        f"any real camera (4K is 8.3 MP): {size / 1e6:.3g} MB per image{rate}"
+        f"sensor {s.name!r}: {cam.width}x{cam.height} = {_as_float(pixels) / 1e6:.3g} MP per frame "
+        f"is beyond any real camera (4K is 8.3 MP): {size_f / 1e6:.3g} MB per image{rate}"
     )
     if size > PROTOBUF_MAX_BYTES and is_gz(ctx.target):
         msg += "; Gazebo Sim cannot publish it at all (a frame over 2 GB exceeds protobuf's message limit)"
@@ -370,7 +376,7 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                     )
         rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
         if rays > PLAUSIBLE_LIDAR_RAYS:
-            rays_f = float(rays) if rays < 2**1000 else math.inf  # a huge int overflows a float
+            rays_f = _as_float(rays)
             per_s = f", {rays_f * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz" if s.update_rate else ""
             yield ctx.finding(
                 "SK406",
