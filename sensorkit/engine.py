@@ -46,6 +46,8 @@ class Options:
     bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
     untrusted: Untrusted | None = None  # --untrusted: see sensorkit.loading.untrusted
     target_origin: str = "--target"  # where a target other than auto came from
+    # absolute path -> bytes read instead of that file (``-``: the robot read from stdin)
+    overlay: dict[str, bytes] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -78,6 +80,7 @@ class FileReport:
     internal_errors: list[str] = field(default_factory=list)
     suppressed: int = 0
     sensors_checked: int = 0  # kept when ``robot`` is dropped (validate_paths)
+    macro_only: bool = False  # a xacro that only defines macros/properties: nothing to check
 
     @property
     def display(self) -> str:
@@ -95,6 +98,13 @@ class Report:
     @property
     def findings(self) -> list[Finding]:
         return [f for fr in self.files for f in fr.findings]
+
+    @property
+    def skipped(self) -> list[FileReport]:
+        """Macro-only xacro files given explicitly: nothing in them to check or say."""
+        return [
+            fr for fr in self.files if fr.macro_only and not fr.findings and not fr.internal_errors
+        ]
 
     def summary(self) -> dict[str, int]:
         out = {"error": 0, "warning": 0, "info": 0}
@@ -265,6 +275,7 @@ def check_robot(
         target_reason=run.reason,
         findings=run.findings(),
         internal_errors=run.internal_errors,
+        macro_only=robot.macros_only,
     )
 
 
@@ -278,6 +289,7 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
             package_paths=options.package_paths,
             timeout=options.timeout,
             untrusted=options.untrusted,
+            overlay=options.overlay or None,
         )
     except InputError as exc:
         return FileReport(path=path, error=str(exc))
@@ -291,19 +303,19 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
         report = check_robot(loaded.robot, options)
         report.findings = loaded.findings + report.findings
     report.findings = [f for f in report.findings if options.wants(f.rule)]
-    _suppress(report)
+    _suppress(report, options.overlay)
     report.findings.sort(key=Finding.sort_key)
     return report
 
 
-def _suppress(report: FileReport) -> None:
+def _suppress(report: FileReport, overlay: dict[str, bytes] | None = None) -> None:
     files: list[tuple[str, Path]] = []
     if report.robot is not None:
         for f in report.robot.document.source_files():
             files.append((display_path(f), Path(f)))
     else:
         files.append((report.display, report.path))
-    sup = collect(files)
+    sup = collect(files, overlay)
     kept = [f for f in report.findings if not sup.suppressed(f)]
     report.suppressed = len(report.findings) - len(kept)
     report.findings = kept

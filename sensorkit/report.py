@@ -27,8 +27,11 @@ def _loc(f: Finding) -> str:
     return out
 
 
-def format_text(report: Report, *, color: bool = False) -> str:
-    """Findings grouped per file, then per sensor (robot-wide findings last), each with its fix."""
+def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> str:
+    """Findings grouped per file, then per sensor (robot-wide findings last), each with its fix.
+
+    ``quiet`` (``-q``): only files with findings, and no summary line.
+    """
     styles = {Severity.ERROR: "31", Severity.WARNING: "33", Severity.INFO: "36"}
 
     def sev(s: Severity) -> str:
@@ -41,6 +44,8 @@ def format_text(report: Report, *, color: bool = False) -> str:
     for fr in report.files:
         if fr.error:
             continue  # said once, on stderr, by the CLI
+        if (quiet or fr.macro_only) and not fr.findings and not fr.internal_errors:
+            continue  # -q: only files with findings; a macro-only file: counted below
         head = fr.display
         if fr.target:
             head += f" (target {fr.target}; {fr.target_reason})"
@@ -59,12 +64,19 @@ def format_text(report: Report, *, color: bool = False) -> str:
             lines.append(f"  ok: no findings ({fr.sensor_count} sensors checked)")
         for err in fr.internal_errors:
             lines.append(f"  internal error: {err}")
+    if quiet:
+        return "".join(f"{line}\n" for line in lines)
     s = report.summary()
     failed = sum(1 for fr in report.files if fr.error)
-    checked = len(report.files) - failed
+    skipped = len(report.skipped)
+    checked = len(report.files) - failed - skipped
     summary = f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {checked} files"
+    if skipped:
+        summary += f"; {skipped} macro-only {'file' if skipped == 1 else 'files'} skipped"
     if failed:  # never a clean-looking summary when a file could not be checked at all
-        summary += f"; {failed} {'file' if failed == 1 else 'files'} could not be checked (see above)"
+        summary += (
+            f"; {failed} {'file' if failed == 1 else 'files'} could not be checked (see above)"
+        )
     lines.append(summary)
     return "\n".join(lines) + "\n"
 
@@ -79,6 +91,7 @@ def to_json(report: Report) -> dict[str, Any]:
         "targets": {fr.display: fr.target for fr in report.files},
         "findings": [f.to_dict() for f in report.findings],
         "errors": [{"file": fr.display, "message": fr.error} for fr in report.files if fr.error],
+        "macro_only": [fr.display for fr in report.skipped],
         "summary": report.summary(),
     }
 
@@ -206,14 +219,14 @@ def format_github(report: Report) -> str:
     return "\n".join(lines) + ("\n" if lines else "")
 
 
-def render(report: Report, fmt: str, *, color: bool = False) -> str:
+def render(report: Report, fmt: str, *, color: bool = False, quiet: bool = False) -> str:
     if fmt == "json":
         return format_json(report)
     if fmt == "sarif":
         return format_sarif(report)
     if fmt == "github":
         return format_github(report)
-    return format_text(report, color=color)
+    return format_text(report, color=color, quiet=quiet)
 
 
 def rule_table() -> str:

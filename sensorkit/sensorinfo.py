@@ -569,8 +569,9 @@ def load(
     args: Mapping[str, str] | None = None,
     package_paths: Sequence[str] = (),
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> Robot:
-    """Load and model a URDF/xacro file.
+    """Load and model a URDF/xacro file (``overlay``: absolute path -> bytes read instead).
 
     Raises:
         InputError: the file cannot be read, expanded or parsed as a robot.
@@ -578,7 +579,11 @@ def load(
     from sensorkit.model import load_robot
 
     loaded = load_robot(
-        path, args=dict(args or {}), package_paths=tuple(package_paths), untrusted=untrusted
+        path,
+        args=dict(args or {}),
+        package_paths=tuple(package_paths),
+        untrusted=untrusted,
+        overlay=overlay,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None

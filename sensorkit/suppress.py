@@ -8,8 +8,9 @@ suppresses those rules for every finding in that file.
 
 from __future__ import annotations
 
+import os
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -54,12 +55,20 @@ class Suppressions:
         return ALL in ids or f.rule in ids
 
 
-def collect(files: Iterable[tuple[str, Path]]) -> Suppressions:
-    """Read suppression comments from (display name, path) pairs."""
+def collect(
+    files: Iterable[tuple[str, Path]], overlay: Mapping[str, bytes] | None = None
+) -> Suppressions:
+    """Read suppression comments from (display name, path) pairs; ``overlay`` maps
+    absolute paths to the text to read instead (a robot read from stdin)."""
     sup = Suppressions()
     for display, path in files:
+        data = overlay.get(os.path.abspath(path)) if overlay else None
         try:
-            text = path.read_text("utf-8", "replace")
+            text = (
+                data.decode("utf-8", "replace")
+                if data is not None
+                else path.read_text("utf-8", "replace")
+            )
         except OSError:
             continue
         if "sensorkit" in text:

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -153,3 +156,283 @@ def test_positional_name_value_is_a_xacro_arg(tmp_path: Path) -> None:
     assert xacro_args_as_options(["validate", "--arg", "a:=1", "b:=2", "x.urdf"]) == [
         "validate", "--arg", "a:=1", "--arg", "b:=2", "x.urdf"
     ]
+
+
+# --- colour, -q, --exit-zero, macro-only partials, stdin -----------------------------------
+
+ANSI = re.compile(r"\x1b\[[0-9;]*m")
+BAD = ROOT / "tests" / "robots" / "acceptance" / "sk502_bad.urdf"  # one SK502 error
+
+
+def _sk(
+    *args: str,
+    env: dict[str, str] | None = None,
+    stdin: bytes | None = None,
+    cwd: Path | None = None,
+) -> subprocess.CompletedProcess[str]:
+    """``python -m sensorkit ARGS`` with colour variables cleared, then ``env`` set."""
+    full = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "FORCE_COLOR")}
+    full.update(env or {})
+    res = subprocess.run(
+        [sys.executable, "-m", "sensorkit", *args],
+        check=False,
+        capture_output=True,
+        input=stdin if stdin is not None else b"",
+        timeout=120,
+        cwd=cwd,
+        env=full,
+    )
+    return subprocess.CompletedProcess(
+        res.args, res.returncode, res.stdout.decode("utf-8", "replace"), res.stderr.decode("utf-8", "replace")
+    )
+
+
+def _on_a_terminal(*args: str, env: dict[str, str]) -> str:
+    """What ``sensorkit ARGS`` writes to stdout when stdout is a terminal (a pty)."""
+    import pty
+
+    full = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "FORCE_COLOR", "TERM")}
+    full.update(env)
+    main, child = pty.openpty()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sensorkit", *args], stdout=child, stderr=subprocess.DEVNULL, env=full
+    )
+    os.close(child)
+    chunks = []
+    while True:
+        try:
+            data = os.read(main, 65536)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not data:
+            break
+        chunks.append(data)
+    os.close(main)
+    proc.wait(60)
+    return b"".join(chunks).decode("utf-8", "replace")
+
+
+def test_color_always_never_and_no_color() -> None:
+    res = _sk("validate", "--color", "always", str(BAD))
+    assert res.returncode == 1 and ANSI.search(res.stdout), res.stdout
+    # always wins over NO_COLOR (as ruff's --color does)
+    assert ANSI.search(_sk("validate", "--color", "always", str(BAD), env={"NO_COLOR": "1"}).stdout)
+    for argv, env in (
+        (["--color", "never"], {}),
+        (["--color", "never"], {"FORCE_COLOR": "1"}),
+        ([], {}),  # auto, into a pipe
+        ([], {"NO_COLOR": "1"}),
+    ):
+        res = _sk("validate", *argv, str(BAD), env=env)
+        assert res.returncode == 1 and "SK502" in res.stdout and not ANSI.search(res.stdout), (argv, env)
+    # auto: FORCE_COLOR colours a pipe; an empty NO_COLOR does not count (no-color.org)
+    assert ANSI.search(_sk("validate", str(BAD), env={"FORCE_COLOR": "1"}).stdout)
+    assert ANSI.search(_sk("rules", "--color", "always").stdout)
+    assert not ANSI.search(_sk("rules").stdout)
+    res = _sk("validate", "--color", "sometimes", str(BAD))
+    assert res.returncode == 2 and res.stderr.strip() == "sensorkit: --color 'sometimes': use auto, always or never"
+
+
+def test_color_auto_on_a_terminal_unless_no_color() -> None:
+    assert ANSI.search(_on_a_terminal("validate", str(BAD), env={}))
+    assert ANSI.search(_on_a_terminal("validate", str(BAD), env={"NO_COLOR": ""}))  # empty: unset
+    out = _on_a_terminal("validate", str(BAD), env={"NO_COLOR": "1"})
+    assert "SK502" in out and not ANSI.search(out)
+    out = _on_a_terminal("validate", "--color", "never", str(BAD), env={})
+    assert "SK502" in out and not ANSI.search(out)
+
+
+def test_every_printing_command_takes_color_and_quiet() -> None:
+    for cmd in (
+        ["validate"], ["rules"], ["intrinsics"], ["export"], ["topics"], ["render", "preview"],
+        ["new"], ["add-camera"], ["add-depth-camera"], ["add-lidar"], ["add-stereo"], ["add-imu"],
+    ):  # fmt: skip
+        text = _sk(*cmd, "-h", env={"COLUMNS": "200"}).stdout
+        assert "--color" in text, cmd
+        assert cmd == ["rules"] or "--quiet" in text, cmd
+
+
+def test_quiet_prints_only_findings(tmp_path: Path) -> None:
+    good = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", good)
+    (tmp_path / "sensorkit.toml").write_text('target = "classic"\n')
+    loud = _sk("validate", str(good), str(BAD), cwd=tmp_path)
+    assert "errors," in loud.stdout and "ok: no findings" in loud.stdout
+    assert "from sensorkit.toml" in loud.stderr
+    res = _sk("validate", "-q", str(good), str(BAD), cwd=tmp_path)
+    assert res.returncode == 1 and res.stderr == ""
+    assert "SK502" in res.stdout and "rover.urdf" not in res.stdout and "errors," not in res.stdout
+    res = _sk("validate", "--quiet", str(good), cwd=tmp_path)  # near miss: clean, so silent
+    assert (res.returncode, res.stdout, res.stderr) == (0, "", "")
+    # a file that cannot be read is still said, and still exit 2
+    res = _sk("validate", "-q", str(tmp_path / "missing.urdf"))
+    assert res.returncode == 2 and "no such file" in res.stderr
+    # machine formats are unchanged by -q
+    assert json.loads(_sk("validate", "-q", "-f", "json", str(BAD)).stdout)["summary"]["error"] == 1
+
+
+def test_exit_zero(tmp_path: Path) -> None:
+    res = _sk("validate", "--exit-zero", str(BAD))
+    assert res.returncode == 0 and "SK502" in res.stdout
+    res = _sk("validate", "--exit-zero", "--fail-on", "info", str(BAD))
+    assert res.returncode == 0
+    assert _sk("validate", str(BAD)).returncode == 1  # near miss: without it
+    # usage and input errors stay 2
+    res = _sk("validate", "--exit-zero", str(tmp_path / "missing.urdf"))
+    assert res.returncode == 2
+    res = _sk("validate", "--exit-zero", "--fail-on", "sometimes", str(BAD))
+    assert res.returncode == 2 and "--fail-on" in res.stderr
+    copy = tmp_path / "bad.urdf"
+    shutil.copyfile(BAD, copy)
+    res = _sk("validate", "--exit-zero", "--diff", str(copy))
+    assert res.returncode == 0 and res.stdout.startswith("---")
+
+
+MACROS = (
+    '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    '  <xacro:property name="r" value="0.1"/>\n'
+    '  <xacro:macro name="wheel" params="n"><link name="${n}"/></xacro:macro>\n</robot>\n'
+)
+
+
+def test_macro_only_files_given_explicitly_make_no_noise(tmp_path: Path) -> None:
+    # pre-commit passes every changed *.xacro, partials included
+    (tmp_path / "wheel.xacro").write_text(MACROS)
+    (tmp_path / "props.urdf.xacro").write_text(MACROS.replace("<xacro:macro", "<xacro:property name='s' value='1'/><!--").replace("</xacro:macro>", "-->"))
+    rover = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", rover)
+    res = _sk("validate", "wheel.xacro", "props.urdf.xacro", "rover.urdf", cwd=tmp_path)
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "SK203" not in res.stdout and "wheel.xacro" not in res.stdout
+    assert res.stdout.splitlines()[-1] == "0 errors, 0 warnings, 0 info in 1 files; 2 macro-only files skipped"
+    res = _sk("validate", "-q", "wheel.xacro", cwd=tmp_path)
+    assert (res.returncode, res.stdout, res.stderr) == (0, "", "")
+    data = json.loads(_sk("validate", "-f", "json", "wheel.xacro", "rover.urdf", cwd=tmp_path).stdout)
+    assert data["findings"] == [] and data["macro_only"] == ["wheel.xacro"]
+    # Near miss: a xacro that makes a link is a robot, checked and shown.
+    (tmp_path / "one.xacro").write_text(MACROS.replace("</robot>", '  <xacro:wheel n="base"/>\n</robot>'))
+    res = _sk("validate", "one.xacro", cwd=tmp_path)
+    assert "one.xacro (target" in res.stdout and "skipped" not in res.stdout
+    # Near miss: a macro file with a real problem still reports it.
+    (tmp_path / "broken.xacro").write_text(MACROS.replace("</robot>", "<oops></robot>"))
+    res = _sk("validate", "broken.xacro", cwd=tmp_path)
+    assert res.returncode == 1 and "SK101" in res.stdout
+
+
+XNS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+
+
+def _stdin_workspace(tmp_path: Path) -> bytes:
+    """src/rover_pkg with a macro file; returns a top-level xacro that uses it both ways."""
+    pkg = tmp_path / "src" / "rover_pkg"
+    (pkg / "urdf").mkdir(parents=True)
+    (pkg / "package.xml").write_text('<?xml version="1.0"?>\n<package format="3"><name>rover_pkg</name></package>\n')
+    (pkg / "urdf" / "part.xacro").write_text(
+        f'<robot {XNS}><xacro:macro name="arm" params="n"><link name="${{n}}"/>'
+        '<joint name="${n}_j" type="fixed"><parent link="base_link"/><child link="${n}"/></joint>'
+        "</xacro:macro></robot>\n"
+    )
+    part = (pkg / "urdf" / "part.xacro").read_text()
+    (pkg / "urdf" / "wheel.xacro").write_text(part.replace('"arm"', '"wheel"'))
+    (pkg / "sensorkit.toml").write_text('target = "harmonic"\n')
+    return (
+        f'<?xml version="1.0"?>\n<robot name="r" {XNS}>\n'
+        '  <xacro:include filename="part.xacro"/>\n'
+        '  <xacro:include filename="$(find rover_pkg)/urdf/wheel.xacro"/>\n'
+        '  <link name="base_link"/>\n  <xacro:arm n="arm"/>\n  <xacro:wheel n="wheel"/>\n'
+        "  <!-- sensorkit: ignore-file SK301 -->\n</robot>\n"
+    ).encode()
+
+
+def test_stdin_with_stdin_filename_reads_like_that_file(tmp_path: Path) -> None:
+    text = _stdin_workspace(tmp_path)
+    name = "src/rover_pkg/urdf/robot.urdf.xacro"  # does not exist: stdin stands for it
+    res = _sk("validate", "-", "--stdin-filename", name, "-f", "json", stdin=text, cwd=tmp_path)
+    assert res.returncode == 0, res.stdout + res.stderr
+    data = json.loads(res.stdout)
+    assert data["files"] == [name] and data["target"] == "harmonic"  # settings found from the name
+    assert "target harmonic from src/rover_pkg/sensorkit.toml" in res.stderr
+    assert data["findings"] == []  # includes resolved; the inline suppression in stdin applies
+    # findings name the path given
+    bad = BAD.read_bytes()
+    res = _sk("validate", "-", "--stdin-filename", "cams/front.urdf", stdin=bad, cwd=tmp_path)
+    assert res.returncode == 1 and "cams/front.urdf:37: SK502" in res.stdout, res.stdout
+
+
+def test_stdin_without_a_name_is_stdin_from_the_working_folder(tmp_path: Path) -> None:
+    text = _stdin_workspace(tmp_path)
+    res = _sk("validate", "-", stdin=BAD.read_bytes(), cwd=tmp_path)
+    assert res.returncode == 1 and "<stdin>:37: SK502" in res.stdout
+    # relative includes resolve from the working folder: not found at the top ...
+    res = _sk("validate", "-", "-f", "json", stdin=text, cwd=tmp_path)
+    assert res.returncode == 1 and json.loads(res.stdout)["findings"][0]["rule"] == "SK102"
+    assert "part.xacro" in res.stdout
+    # ... and found from inside the package folder
+    res = _sk("validate", "-", stdin=text, cwd=tmp_path / "src" / "rover_pkg" / "urdf")
+    assert res.returncode == 0, res.stdout + res.stderr
+    # Near miss: the same robot as a file gives the same result.
+    robot = tmp_path / "src" / "rover_pkg" / "urdf" / "robot.urdf.xacro"
+    robot.write_bytes(text)
+    assert _sk("validate", str(robot)).returncode == 0
+
+
+def test_stdin_for_intrinsics_topics_and_export(tmp_path: Path) -> None:
+    bad = BAD.read_bytes()
+    from_file = _sk("intrinsics", str(BAD), "-f", "camera-info")
+    res = _sk("intrinsics", "-", "-f", "camera-info", stdin=bad)
+    assert res.returncode == 0 and res.stdout == from_file.stdout and "camera_matrix" in res.stdout
+    res = _sk("topics", "-", "-f", "json", stdin=bad)
+    assert res.returncode == 0 and json.loads(res.stdout)["topics"], res.stderr
+    res = _sk("export", "-", "--stdin-filename", "front.urdf", "-o", str(tmp_path / "out"), stdin=bad)
+    assert res.returncode in (0, 1) and "front_camera" in res.stdout, res.stderr
+    assert any((tmp_path / "out").rglob("camera_info.yaml"))
+
+
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (["add-camera", "-", "--name", "c", "--parent", "base_link"], "- (stdin): add-camera edits the robot file in place"),
+        (["add-imu", "-", "--name", "i", "--parent", "base_link"], "- (stdin): add-imu edits the robot file in place"),
+        (["render", "preview", "-"], "- (stdin): render preview"),
+        (["validate", "--fix", "-"], "--fix and --diff edit files"),
+        (["validate", "-", "-"], "- (stdin) given twice"),
+        (["validate", str(BAD), "--stdin-filename", "x.urdf"], "--stdin-filename only means something with -"),
+        (["intrinsics", str(BAD), "--stdin-filename", "x.urdf"], "--stdin-filename only means something with -"),
+    ],
+)
+def test_stdin_where_it_cannot_be_used_is_a_usage_error(argv: list[str], says: str) -> None:
+    res = _sk(*argv, stdin=BAD.read_bytes())
+    assert res.returncode == 2 and says in res.stderr, res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1, res.stderr
+
+
+def test_stdin_is_read_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
+    import io
+    import types
+
+    import typer
+
+    from sensorkit.cli import common
+    from sensorkit.loading import document
+
+    class Endless(io.RawIOBase):
+        read_total = 0
+
+        def readable(self) -> bool:
+            return True
+
+        def readinto(self, b: bytearray) -> int:  # type: ignore[override]
+            n = len(b)
+            b[:n] = b"x" * n
+            Endless.read_total += n
+            return n
+
+    monkeypatch.setattr(document, "MAX_FILE_BYTES", 1000)
+    monkeypatch.setattr(sys, "stdin", types.SimpleNamespace(buffer=io.BufferedReader(Endless(), 256)))
+    with pytest.raises(typer.Exit):
+        common.stdin_robot(Path("-"), None)
+    assert Endless.read_total <= 1001 + 256  # at most one buffer beyond the limit
+    # Near miss: exactly the limit is read whole.
+    monkeypatch.setattr(sys, "stdin", types.SimpleNamespace(buffer=io.BytesIO(b"y" * 1000)))
+    name, overlay = common.stdin_robot(Path("-"), None)
+    assert name == Path("<stdin>") and list(overlay.values()) == [b"y" * 1000]

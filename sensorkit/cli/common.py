@@ -39,7 +39,8 @@ UntrustedOpt = Annotated[
 EnvOpt = Annotated[
     list[str] | None,
     typer.Option(
-        "--env", help="with --untrusted: an environment variable xacro may read (repeatable)",
+        "--env",
+        help="with --untrusted: an environment variable xacro may read (repeatable)",
         metavar="NAME",
     ),
 ]
@@ -50,6 +51,29 @@ ConfigOpt = Annotated[
         help="settings file (sensorkit.toml, or pyproject.toml with [tool.sensorkit]); "
         "default: the nearest one above the robot file",
         metavar="FILE",
+    ),
+]
+ColorOpt = Annotated[
+    str,
+    typer.Option(
+        "--color",
+        help="auto (on a terminal, unless NO_COLOR is set), always or never",
+        metavar="auto|always|never",
+    ),
+]
+QuietOpt = Annotated[
+    bool,
+    typer.Option(
+        "--quiet", "-q", help="print only results and errors: no summary, notes or progress"
+    ),
+]
+StdinFilenameOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--stdin-filename",
+        help="with - as the file: the path the text on stdin stands for (messages, relative "
+        "includes, packages and the settings file are found from it)",
+        metavar="PATH",
     ),
 ]
 FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
@@ -70,7 +94,9 @@ def parse_xacro_args(items: list[str] | None) -> dict[str, str]:
 def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     """The ``Untrusted`` setting for ``--untrusted``/``--env``, or None (trusted input)."""
     if env and not untrusted:
-        die("--env only means something with --untrusted (trusted input sees the whole environment)")
+        die(
+            "--env only means something with --untrusted (trusted input sees the whole environment)"
+        )
     if not untrusted:
         return None
     from sensorkit.loading.untrusted import Untrusted
@@ -97,11 +123,11 @@ class Settings:
             return display_path(self.config.path)
         return f"--{key}"
 
-    def say_where(self, extra: tuple[str, ...] = ()) -> None:
-        """One stderr line naming the settings taken from the file, if any."""
-        note = self.config.describe([*self.used, *extra])
-        if note:
-            typer.echo(f"sensorkit: {note}", err=True)
+    def say_where(self, extra: tuple[str, ...] = (), *, quiet: bool = False) -> None:
+        """One stderr line naming the settings taken from the file, if any (not with -q)."""
+        said = self.config.describe([*self.used, *extra])
+        if said and not quiet:
+            typer.echo(f"sensorkit: {said}", err=True)
 
 
 def settings(
@@ -175,3 +201,93 @@ def handle_errors(func: F) -> F:
 
 def stderr_is_tty() -> bool:
     return sys.stderr.isatty()
+
+
+COLOR_CHOICES = ("auto", "always", "never")
+
+
+def use_color(choice: str, stream: Any = None) -> bool:
+    """Whether to colour what goes to ``stream`` (default stdout) for ``--color CHOICE``.
+
+    ``always`` and ``never`` win over the environment (as ruff and cargo do). ``auto``
+    colours a terminal only: no colour when ``NO_COLOR`` is set to anything non-empty
+    (https://no-color.org) or ``TERM=dumb``; ``FORCE_COLOR`` (non-empty) colours a pipe too.
+    """
+    if choice not in COLOR_CHOICES:
+        die(f"--color {choice!r}: use auto, always or never")
+    if choice != "auto":
+        return choice == "always"
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    if os.environ.get("TERM") == "dumb":
+        return False
+    out = sys.stdout if stream is None else stream
+    try:
+        return bool(out.isatty())
+    except (AttributeError, ValueError):  # a closed or replaced stream
+        return False
+
+
+def exit_status(code: int, *, exit_zero: bool) -> int:
+    """``--exit-zero``: findings (1) become 0; could-not-run (2) stays."""
+    return 0 if exit_zero and code == 1 else code
+
+
+STDIN = "-"
+STDIN_NAME = "<stdin>"
+
+
+def stdin_robot(path: Path, stdin_filename: Path | None) -> tuple[Path, dict[str, bytes]]:
+    """``-`` as the robot file: the path it stands for and ``{abspath: bytes}`` to read
+    instead of that file (``sensorkit.loading`` takes it as ``overlay``).
+
+    The path is ``--stdin-filename`` (messages name it; relative includes, packages and
+    the settings file are found from it), else ``<stdin>`` in the working folder. At most
+    ``MAX_FILE_BYTES`` are read, as from a file. Another path comes back as it is.
+    """
+    if str(path) != STDIN:
+        if stdin_filename is not None:
+            die("--stdin-filename only means something with - (stdin) as the robot file")
+        return path, {}
+    from sensorkit.loading.document import MAX_FILE_BYTES
+
+    if stdin_filename is not None and stdin_filename.is_dir():
+        die(f"--stdin-filename {stdin_filename}: is a folder; name the file the text stands for")
+    if sys.stdin is None:
+        die("-: there is no stdin to read the robot from")
+    data = sys.stdin.buffer.read(MAX_FILE_BYTES + 1)
+    if len(data) > MAX_FILE_BYTES:
+        die(f"-: stdin holds more than the {MAX_FILE_BYTES} bytes sensorkit reads")
+    name = stdin_filename if stdin_filename is not None else Path(STDIN_NAME)
+    return name, {os.path.abspath(name): data}
+
+
+def stdin_robots(
+    paths: list[Path], stdin_filename: Path | None
+) -> tuple[list[Path], dict[str, bytes]]:
+    """``stdin_robot`` for a list of files, where ``-`` may appear once."""
+    if sum(1 for p in paths if str(p) == STDIN) > 1:
+        die("- (stdin) given twice: stdin holds one robot")
+    if stdin_filename is not None and not any(str(p) == STDIN for p in paths):
+        die("--stdin-filename only means something with - (stdin) as the robot file")
+    out: list[Path] = []
+    overlay: dict[str, bytes] = {}
+    for p in paths:
+        name, data = stdin_robot(p, stdin_filename)
+        out.append(name)
+        overlay.update(data)
+    return out, overlay
+
+
+def refuse_stdin(path: Path, why: str) -> None:
+    """A usage error for ``-`` where the command needs a file on disk."""
+    if str(path) == STDIN:
+        die(f"- (stdin): {why}; give the path of the file")
+
+
+def note(message: str, quiet: bool = False) -> None:
+    """A line on stderr that ``--quiet`` drops (notes, progress, summaries)."""
+    if not quiet:
+        typer.echo(message, err=True)

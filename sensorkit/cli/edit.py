@@ -16,14 +16,19 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ColorOpt,
     ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
+    QuietOpt,
     UntrustedOpt,
     die,
     handle_errors,
+    note,
+    refuse_stdin,
     settings,
+    use_color,
 )
 
 
@@ -329,11 +334,17 @@ def _run(
     untrusted: bool = False,
     env: list[str] | None = None,
     config: Path | None = None,
+    quiet: bool = False,
+    color: str = "auto",
 ) -> None:
     from sensorkit.edit import AddRequest, add_sensor
     from sensorkit.engine import Options
     from sensorkit.loading.document import display_path
 
+    command = {"depth_camera": "add-depth-camera", "stereo_camera": "add-stereo", "imu": "add-imu",
+               "camera": "add-camera"}.get(kind, "add-lidar")  # fmt: skip
+    refuse_stdin(file, f"{command} edits the robot file in place")
+    use_color(color)  # checked; nothing printed is coloured
     for angle in rpy:
         if abs(angle) > 2 * math.pi:  # 90 means degrees, by habit: a quarter turn is 1.5708
             die(
@@ -365,7 +376,7 @@ def _run(
         params["sim"] = "gz" if is_gz(cfg.target) else "classic"
         if is_gz(cfg.target) and "gz_version" not in params:
             params["gz_version"] = cfg.target
-    st.say_where()
+    st.say_where(quiet=quiet)
     args = st.args
     package_paths = st.package_paths
     trust = st.untrusted
@@ -402,15 +413,15 @@ def _run(
         if was_enabled:
             gc.enable()
     leave_quickly()  # every write is done (add_sensor returned): skip freeing the model
-    for note in result.notes:
-        typer.echo(f"sensorkit: note: {note}", err=True)
+    for said in result.notes:
+        note(f"sensorkit: note: {said}", quiet)
     if diff:
         typer.echo(result.diff, nl=False)
         return
     made = ", ".join(result.links)
     where = display_path(result.target)
     label = result.kind.label
-    typer.echo(f"sensorkit: added {label} '{result.name}' to {where} ({made})", err=True)
+    note(f"sensorkit: added {label} '{result.name}' to {where} ({made})", quiet)
 
 
 def _common(
@@ -457,6 +468,8 @@ def add_camera(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Add a pinhole RGB camera (sensorkit_camera macro) to FILE."""
     options = {
@@ -480,6 +493,8 @@ def add_camera(
         untrusted=untrusted,
         env=env,
         config=config,
+        quiet=quiet,
+        color=color,
     )
 
 
@@ -513,6 +528,8 @@ def add_depth_camera(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Add an RGB-D camera (sensorkit_depth_camera macro) to FILE."""
     options = {
@@ -537,6 +554,8 @@ def add_depth_camera(
         untrusted=untrusted,
         env=env,
         config=config,
+        quiet=quiet,
+        color=color,
     )
 
 
@@ -573,6 +592,8 @@ def add_lidar(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Add a 2D lidar (sensorkit_lidar_2d macro), or with --3d a 3D one (sensorkit_lidar_3d)."""
     vertical = {
@@ -610,6 +631,8 @@ def add_lidar(
         untrusted=untrusted,
         env=env,
         config=config,
+        quiet=quiet,
+        color=color,
     )
 
 
@@ -642,6 +665,8 @@ def add_stereo(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Add a stereo camera pair (sensorkit_stereo_camera macro) to FILE."""
     options = {
@@ -666,6 +691,8 @@ def add_stereo(
         untrusted=untrusted,
         env=env,
         config=config,
+        quiet=quiet,
+        color=color,
     )
 
 
@@ -692,6 +719,8 @@ def add_imu(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Add an IMU (sensorkit_imu macro) to FILE."""
     options = {
@@ -716,6 +745,8 @@ def add_imu(
         untrusted=untrusted,
         env=env,
         config=config,
+        quiet=quiet,
+        color=color,
     )
 
 

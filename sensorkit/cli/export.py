@@ -15,13 +15,19 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ColorOpt,
     ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
+    QuietOpt,
+    StdinFilenameOpt,
     UntrustedOpt,
     handle_errors,
+    note,
     settings,
+    stdin_robot,
+    use_color,
 )
 
 ImuOpt = Annotated[
@@ -81,6 +87,9 @@ def intrinsics(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
+    stdin_filename: StdinFilenameOpt = None,
 ) -> None:
     """Print the camera_info each camera of FILE publishes, for a tool to read.
 
@@ -94,6 +103,8 @@ def intrinsics(
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
+    use_color(color)  # checked; the document printed has no colour
+    file, overlay = stdin_robot(file, stdin_filename)
     st = settings(
         file,
         config=config,
@@ -103,22 +114,31 @@ def intrinsics(
         untrusted=untrusted,
         env=env,
     )
-    st.say_where()
-    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    st.say_where(quiet=quiet)
+    robot = load(
+        file,
+        args=st.args,
+        package_paths=st.package_paths,
+        untrusted=st.untrusted,
+        overlay=overlay,
+    )
     info = describe(robot, st.target, convention=convention)  # type: ignore[arg-type]
     if st.target != "auto":
         info.target_reason = f"chosen with {st.origin('target')}"
     text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
     sys.stdout.write(text)
-    for note in notes:
-        typer.echo(f"sensorkit: note: {note}", err=True)
+    for said in notes:
+        note(f"sensorkit: note: {said}", quiet)
 
 
 @handle_errors
 def export(
     file: FileArg,
     out: Annotated[
-        Path, typer.Option("--out", "-o", "--output", help="the folder to create (must be missing or empty)")
+        Path,
+        typer.Option(
+            "--out", "-o", "--output", help="the folder to create (must be missing or empty)"
+        ),
     ] = Path("sensorkit-export"),
     force: Annotated[
         bool, typer.Option("--force", help="replace --out if it is not empty")
@@ -130,6 +150,9 @@ def export(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
+    stdin_filename: StdinFilenameOpt = None,
 ) -> None:
     """Write each sensor's config files into one folder per sensor.
 
@@ -146,6 +169,8 @@ def export(
     from sensorkit.exporters.robot import export_files, publish_export
     from sensorkit.sensorinfo import describe, load
 
+    use_color(color)  # checked; nothing printed is coloured
+    file, overlay = stdin_robot(file, stdin_filename)
     st = settings(
         file,
         config=config,
@@ -155,8 +180,14 @@ def export(
         untrusted=untrusted,
         env=env,
     )
-    st.say_where()
-    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    st.say_where(quiet=quiet)
+    robot = load(
+        file,
+        args=st.args,
+        package_paths=st.package_paths,
+        untrusted=st.untrusted,
+        overlay=overlay,
+    )
     info = describe(robot, st.target)
     if st.target != "auto":
         info.target_reason = f"chosen with {st.origin('target')}"
@@ -165,14 +196,14 @@ def export(
     written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:
         typer.echo(path.as_posix())
-    for note in plan.notes:
-        typer.echo(f"sensorkit: note: {note}", err=True)
-    for skipped in plan.skipped:
+    for said in plan.notes:
+        note(f"sensorkit: note: {said}", quiet)
+    for skipped in plan.skipped:  # why the exit status is 1: said with -q too
         typer.echo(f"sensorkit: not written: {skipped}", err=True)
-    typer.echo(
+    note(
         f"sensorkit: wrote {len(written)} files for {len(info.sensors)} sensors of "
         f"{robot.name} into {out} (target {info.target}, {info.target_reason})",
-        err=True,
+        quiet,
     )
     if plan.skipped:
         raise typer.Exit(1)

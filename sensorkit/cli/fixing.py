@@ -35,11 +35,15 @@ def run_fix(
     diff: bool,
     fix: bool,
     unsafe: bool,
+    quiet: bool = False,
+    color: bool = False,
+    exit_zero: bool = False,
 ) -> NoReturn:
     from sensorkit.errors import UsageError
 
     if unsafe and not (fix or diff):
         raise UsageError("--unsafe-fixes only means something with --fix or --diff")
+    from sensorkit.cli.common import exit_status, note
     from sensorkit.fix.apply import fix_paths
 
     run = fix_paths(files, options, unsafe=unsafe, write=not diff)
@@ -47,42 +51,42 @@ def run_fix(
     for ff in run.files:
         for fx in ff.applied:
             f = fx.finding
-            typer.echo(f"sensorkit: {verb} {_where(f)} {f.rule}: {fx.title}", err=True)
+            note(f"sensorkit: {verb} {_where(f)} {f.rule}: {fx.title}", quiet)
         for f in ff.revealed:
-            typer.echo(
+            note(
                 f"sensorkit: {_where(f)} {f.rule} shows now that the plugin loads "
                 f"(it was folded into SK601): {' '.join(f.message.split())}",
-                err=True,
+                quiet,
             )
-        for note in ff.notes:
-            f = note.finding
-            if note.kind == "unsafe":
-                why = f"an unsafe fix ({note.text}) needs --unsafe-fixes"
-            elif note.kind == "deferred":
-                why = f"waits: {note.text}"
+        for said in ff.notes:
+            f = said.finding
+            if said.kind == "unsafe":
+                why = f"an unsafe fix ({said.text}) needs --unsafe-fixes"
+            elif said.kind == "deferred":
+                why = f"waits: {said.text}"
             else:
-                why = note.text
-            typer.echo(f"sensorkit: not fixed {_where(f)} {f.rule}: {why}", err=True)
+                why = said.text
+            note(f"sensorkit: not fixed {_where(f)} {f.rule}: {why}", quiet)
         if ff.more:
-            typer.echo(f"sensorkit: {ff.path}: more fixes remain; run --fix again", err=True)
+            note(f"sensorkit: {ff.path}: more fixes remain; run --fix again", quiet)
     if diff:
         sys.stdout.write(run.diff())
         for ff in run.files:
             if ff.error:
                 typer.echo(f"sensorkit: {ff.error}", err=True)
-        typer.echo(f"would fix {_plural(run.fixed)} ({run.remaining} would remain)", err=True)
+        note(f"would fix {_plural(run.fixed)} ({run.remaining} would remain)", quiet)
         failed = any(ff.error or ff.internal_errors for ff in run.files)
         bad = any(f.severity >= threshold for ff in run.files for f in ff.after)
-        raise typer.Exit(2 if failed else 1 if bad else 0)
+        raise typer.Exit(exit_status(2 if failed else 1 if bad else 0, exit_zero=exit_zero))
     from sensorkit.engine import validate_paths
     from sensorkit.report import render
 
     report = validate_paths(files, options)
-    sys.stdout.write(render(report, fmt, color=fmt == "text" and sys.stdout.isatty()))
+    sys.stdout.write(render(report, fmt, color=color, quiet=quiet))
     for fr in report.files:
         if fr.error:
             typer.echo(f"sensorkit: {fr.error}", err=True)
         for err in fr.internal_errors:
             typer.echo(f"sensorkit: internal error: {err}", err=True)
-    typer.echo(f"fixed {_plural(run.fixed)} ({len(report.findings)} remain)", err=True)
-    raise typer.Exit(report.exit_code(threshold))
+    note(f"fixed {_plural(run.fixed)} ({len(report.findings)} remain)", quiet)
+    raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))

@@ -7,7 +7,8 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import ConfigOpt, handle_errors, settings
+from sensorkit.cli.common import ColorOpt, ConfigOpt, QuietOpt, handle_errors, settings, use_color
+from sensorkit.cli.common import note as say
 
 
 @handle_errors
@@ -22,7 +23,9 @@ def new(
     ],
     output: Annotated[
         Path,
-        typer.Option("--out", "-o", "--output", help="the package folder to create", show_default=False),
+        typer.Option(
+            "--out", "-o", "--output", help="the package folder to create", show_default=False
+        ),
     ],
     force: Annotated[
         bool, typer.Option("--force", help="replace OUTPUT if it is not empty")
@@ -31,6 +34,8 @@ def new(
         bool, typer.Option("--dry-run", help="check and list the files, write nothing")
     ] = False,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Generate a colcon-ready ament package: package.xml, CMakeLists.txt, the robot
     xacro with the base and sensor macros, launch files and, for Gazebo Sim, the
@@ -38,6 +43,7 @@ def new(
     from sensorkit.generate import new_package
     from sensorkit.model.targets import is_gz
 
+    use_color(color)  # checked; nothing printed is coloured
     st = settings(spec, config=config, target=None, package_path=None, arg=None)
     defaults: dict[str, str] = {}
     if st.config.target:  # the simulator a robot.yaml without `sim:` is generated for
@@ -45,17 +51,17 @@ def new(
         if is_gz(st.config.target):
             defaults["gz_version"] = st.config.target
         note = st.config.describe(["target"])
-        typer.echo(f"sensorkit: {note} (for a robot.yaml that names no sim)", err=True)
+        say(f"sensorkit: {note} (for a robot.yaml that names no sim)", quiet)
     result = new_package(spec, output, force=force, dry_run=dry_run, defaults=defaults)
     for rel in result.files:
         typer.echo((output / rel).as_posix())
     verb = "would write" if dry_run else "wrote"
-    typer.echo(
+    say(
         f"sensorkit: {verb} package {result.spec.package} ({len(result.files)} files) in {output}",
-        err=True,
+        quiet,
     )
     if not dry_run:
-        typer.echo(f"sensorkit: next: sensorkit validate {result.robot_xacro.as_posix()}", err=True)
+        say(f"sensorkit: next: sensorkit validate {result.robot_xacro.as_posix()}", quiet)
 
 
 def register(app: typer.Typer) -> None:

@@ -24,14 +24,19 @@ except ImportError:  # pragma: no cover - depends on the installed typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ColorOpt,
     ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
+    QuietOpt,
     UntrustedOpt,
     die,
     handle_errors,
+    note,
+    refuse_stdin,
     settings,
+    use_color,
 )
 
 
@@ -140,6 +145,8 @@ def preview(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
 ) -> None:
     """Render every camera and cast every lidar of FILE into --out, with checks.
 
@@ -148,6 +155,8 @@ def preview(
     and swapped in at the end: an interrupted render leaves the old one as it was.
     Exit status 0; 1 when a check fails; 2 when the preview cannot run.
     """
+    refuse_stdin(file, "render preview renders a file")
+    colored = use_color(color, sys.stderr)
     st = settings(
         file,
         config=config,
@@ -157,7 +166,7 @@ def preview(
         untrusted=untrusted,
         env=env,
     )
-    st.say_where()
+    st.say_where(quiet=quiet)
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
         die(
@@ -169,13 +178,15 @@ def preview(
     from sensorkit.render import render_preview
 
     def say(message: str) -> None:
-        typer.echo(message, err=True)
+        note(message, quiet)
 
-    log = say
-    if sys.stderr.isatty():  # rich's timestamps and colour for people; plain lines for logs
+    log = say  # with -q, say is silent: no progress
+    if colored and not quiet:  # rich's timestamps and colour for people; plain lines for logs
         from rich.console import Console
 
-        console = Console(stderr=True, highlight=False, log_path=False)
+        console = Console(
+            stderr=True, highlight=False, log_path=False, force_terminal=True, no_color=False
+        )
 
         def log(message: str) -> None:
             console.log(message, markup=False)
@@ -203,8 +214,8 @@ def preview(
         for c in s.checks:
             if c.status in ("warn", "fail"):
                 typer.echo(f"  {c.status}: {c.name}: {c.message}")
-    for note in result.notes:
-        say(f"note: {note}")
+    for said in result.notes:
+        say(f"note: {said}")
     typer.echo(f"wrote {result.files['index']}")
     from sensorkit.cli import leave_quickly
 

@@ -14,13 +14,19 @@ import typer
 
 from sensorkit.cli.common import (
     ArgOpt,
+    ColorOpt,
     ConfigOpt,
     EnvOpt,
     FileArg,
     PackagePathOpt,
+    QuietOpt,
+    StdinFilenameOpt,
     UntrustedOpt,
     handle_errors,
+    note,
     settings,
+    stdin_robot,
+    use_color,
 )
 
 FORMATS = ("text", "json")
@@ -60,6 +66,9 @@ def topics(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
+    stdin_filename: StdinFilenameOpt = None,
 ) -> None:
     """List every topic the sensors of FILE will publish: resolved name, message type,
     frame_id, image encoding and rate; on Gazebo Sim with the gz topic and the ROS name
@@ -74,6 +83,8 @@ def topics(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+    use_color(color)  # checked; the table has no colour
+    file, overlay = stdin_robot(file, stdin_filename)
     st = settings(
         file,
         config=config,
@@ -83,8 +94,14 @@ def topics(
         untrusted=untrusted,
         env=env,
     )
-    st.say_where()
-    robot = load(file, args=st.args, package_paths=st.package_paths, untrusted=st.untrusted)
+    st.say_where(quiet=quiet)
+    robot = load(
+        file,
+        args=st.args,
+        package_paths=st.package_paths,
+        untrusted=st.untrusted,
+        overlay=overlay,
+    )
     info = describe(robot, st.target)
     if st.target != "auto":
         info.target_reason = f"chosen with {st.origin('target')}"
@@ -93,17 +110,17 @@ def topics(
     if is_gz(info.target):
         config_read = load_bridge(robot, info.target, files)
     elif files:
-        typer.echo(
-            f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", err=True
-        )
+        note(f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", quiet)
     result = robot_topics(info, config_read)
     sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
-    for note in result.notes:
-        typer.echo(f"sensorkit: note: {note}", err=True)
+    if quiet:
+        return
+    for text in result.notes:
+        typer.echo(f"sensorkit: note: {text}", err=True)
     said: set[str] = set()
     for t in result.topics:
-        for note in t.notes:
-            line = f"sensorkit: note: {t.gz_name or t.name}: {note}"
+        for text in t.notes:
+            line = f"sensorkit: note: {t.gz_name or t.name}: {text}"
             if line not in said:
                 said.add(line)
                 typer.echo(line, err=True)

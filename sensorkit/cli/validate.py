@@ -9,13 +9,21 @@ from typing import Annotated
 import typer
 
 from sensorkit.cli.common import (
+    STDIN,
     ArgOpt,
+    ColorOpt,
     ConfigOpt,
     EnvOpt,
     PackagePathOpt,
+    QuietOpt,
+    StdinFilenameOpt,
     UntrustedOpt,
+    exit_status,
     handle_errors,
+    note,
     settings,
+    stdin_robots,
+    use_color,
 )
 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
@@ -95,6 +103,16 @@ def validate(
             min=0,
         ),
     ] = 1,
+    exit_zero: Annotated[
+        bool,
+        typer.Option(
+            "--exit-zero",
+            help="exit 0 even with findings (still 2 when sensorkit cannot run)",
+        ),
+    ] = False,
+    quiet: QuietOpt = False,
+    color: ColorOpt = "auto",
+    stdin_filename: StdinFilenameOpt = None,
 ) -> None:
     """Check URDF/xacro robots: frames, optical rotations, plugins, topics, masses.
 
@@ -102,7 +120,10 @@ def validate(
     *.xacro files that are more than macros, skipping build/, install/, log/, hidden
     folders and folders holding COLCON_IGNORE, in sorted order.
 
-    Exit status: 0 nothing at or above --fail-on, 1 findings, 2 could not run.
+    FILE - reads the robot from stdin (--stdin-filename names it).
+
+    Exit status: 0 nothing at or above --fail-on (or --exit-zero), 1 findings, 2 could
+    not run.
     """
     import gc
 
@@ -115,6 +136,10 @@ def validate(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+    colored = fmt == "text" and use_color(color)
+    if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
+        raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
+    files, overlay = stdin_robots(files, stdin_filename)
     st = settings(
         files[0] if files else None,
         config=config,
@@ -132,7 +157,12 @@ def validate(
     except ValueError as exc:
         raise UsageError(f"--fail-on: {exc}") from None
     st.say_where(
-        tuple(k for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on)) if not flag)
+        tuple(
+            k
+            for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on))
+            if not flag
+        ),
+        quiet=quiet,
     )
     options = Options(
         target=st.target,
@@ -145,28 +175,40 @@ def validate(
         bridges=tuple(str(b) for b in bridge or ()),
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
+        overlay=overlay,
     )
-    inputs = _expand_folders(files)
+    inputs = _expand_folders(files, quiet=quiet)
     if fix or diff or unsafe_fixes:
         from sensorkit.cli.fixing import run_fix
 
-        run_fix(inputs, options, fmt, threshold, diff=diff, fix=fix, unsafe=unsafe_fixes)
+        run_fix(
+            inputs,
+            options,
+            fmt,
+            threshold,
+            diff=diff,
+            fix=fix,
+            unsafe=unsafe_fixes,
+            quiet=quiet,
+            color=colored,
+            exit_zero=exit_zero,
+        )
     from sensorkit.fleet import cpu_count
 
     report = validate_paths(inputs, options, jobs=jobs or cpu_count())
     from sensorkit.cli import leave_quickly
 
     leave_quickly()  # only reading was done: nothing to clean up
-    sys.stdout.write(render(report, fmt, color=fmt == "text" and sys.stdout.isatty()))
+    sys.stdout.write(render(report, fmt, color=colored, quiet=quiet))
     for fr in report.files:
         if fr.error:
             typer.echo(f"sensorkit: {fr.error}", err=True)
         for err in fr.internal_errors:
             typer.echo(f"sensorkit: internal error: {err}", err=True)
-    raise typer.Exit(report.exit_code(threshold))
+    raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))
 
 
-def _expand_folders(items: list[Path]) -> list[Path]:
+def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
     """Files as given; each folder replaced by the robot descriptions found below it."""
     from sensorkit.cli.common import die
     from sensorkit.fleet import find_robots
@@ -188,9 +230,9 @@ def _expand_folders(items: list[Path]) -> list[Path]:
         if not found.files:
             die(f"{where}: no robot description (*.urdf, *.urdf.xacro, *.xacro) below it{skipped}")
         n = len(found.files)
-        typer.echo(
+        note(
             f"sensorkit: {where}: found {n} robot description{'' if n == 1 else 's'}{skipped}",
-            err=True,
+            quiet,
         )
         out.extend(found.files)
     return out
@@ -202,9 +244,8 @@ def rules(
         list[str] | None,
         typer.Argument(help="explain these rules (ids such as SK502)", show_default=False),
     ] = None,
-    fmt: Annotated[
-        str, typer.Option("--format", "-f", help="text, json or markdown")
-    ] = "text",
+    fmt: Annotated[str, typer.Option("--format", "-f", help="text, json or markdown")] = "text",
+    color: ColorOpt = "auto",
 ) -> None:
     """List every rule (id, severity, fixable, what it checks), or explain the ones named."""
     import json
@@ -216,10 +257,13 @@ def rules(
 
     if fmt not in ("text", "json", "markdown"):
         raise UsageError(f"--format {fmt!r}: use text, json or markdown")
+    colored = fmt == "text" and use_color(color)
     wanted = [i.upper() for i in ids or []]
     unknown = [i for i in wanted if i not in RULES]
     if unknown:
-        raise UsageError(f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)")
+        raise UsageError(
+            f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)"
+        )
     if fmt == "markdown" and not wanted:
         sys.stdout.write(rule_table())
         return
@@ -247,6 +291,10 @@ def rules(
 
         sys.stdout.write("\n".join(explain(rid) for rid in wanted))
         return
+    styles = {"error": "31", "warning": "33", "info": "36"}
     for rid in sorted(RULES):
         info = RULES[rid]
-        typer.echo(f"{rid}  {info.severity:<13} {fixable(rid) or '-':<11} {info.title}")
+        sev = f"{info.severity:<13}"
+        if colored:  # the first severity's colour (error/warning: red)
+            sev = f"\x1b[{styles[info.severity.split('/')[0]]}m{sev}\x1b[0m"
+        typer.echo(f"{rid}  {sev} {fixable(rid) or '-':<11} {info.title}", color=colored)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -29,11 +30,15 @@ def load_robot(
     package_paths: tuple[str, ...] | list[str] = (),
     timeout: float = 60.0,
     untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
 ) -> Loaded:
-    """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input."""
+    """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
+
+    ``overlay`` maps absolute paths to bytes read instead of those files (stdin, ``--fix``).
+    """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     result = load_description(
-        path, args=args, resolver=resolver, timeout=timeout, untrusted=untrusted
+        path, args=args, resolver=resolver, timeout=timeout, untrusted=untrusted, overlay=overlay
     )
     if result.document is None:
         return Loaded(None, result.findings)

@@ -335,6 +335,12 @@ class Robot:
     _all_posed: bool = field(default=False, repr=False)
     cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
 
+    @property
+    def macros_only(self) -> bool:
+        """A xacro that expands to no link, joint or sensor: it only defines macros or
+        properties for robots to include (a partial given explicitly)."""
+        return self.document.expanded and not self.links and not self.joints and not self.sensors
+
     # ---- tree -------------------------------------------------------------------------
     def roots(self) -> list[str]:
         """Links that no joint names as child, in document order."""

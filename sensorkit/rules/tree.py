@@ -72,15 +72,7 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
 def single_root(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     if not robot.links:
-        if robot.document.expanded and not robot.joints and not robot.sensors:
-            yield ctx.finding(
-                "SK203",
-                Severity.INFO,
-                "nothing to check: this file defines only macros or properties (no links); "
-                "validate a robot that uses them",
-                robot.document.root,
-                fix="run sensorkit validate on the top-level robot file instead",
-            )
+        if robot.macros_only:  # a partial: no finding (the report counts it as skipped)
             return
         yield ctx.finding(
             "SK203",
