@@ -613,7 +613,9 @@ def imu_figure(
         "stamped_frame": stamped_frame,
         "frame_check": check_status,
     }
-    caption = f"IMU axes; frame check {check_status}: {check_message}"
+    caption = f"IMU axes; frame check {check_status}" + (
+        f": {check_message}" if check_status == "warn" else ""
+    )
     return Figure("imu", caption, str(svg), facts)
 
 
