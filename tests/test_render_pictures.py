@@ -128,6 +128,10 @@ def test_depth_colour_range_stays_within_near_and_far() -> None:
     lo, hi = depth_colour_range(np.full((4, 4), 1.234), 0.1, 10.0)
     assert (lo, hi) == pytest.approx((1.2, 1.4))  # one depth: one round step around it
     assert depth_colour_range(np.full((3, 3), np.inf), 0.1, 10.0) == (0.1, 10.0)
+    # sky: the renderer leaves it on the far clip plane, which is no surface to scale for
+    scene = np.concatenate([np.full(300, 9.99995), np.linspace(0.5, 2.9, 700)])
+    lo, hi = depth_colour_range(scene, 0.1, 10.0)
+    assert lo <= 0.6 and 2.8 <= hi <= 3.0
     assert [nice_step(s) for s in (1.0, 7.0, 0.33)] == [0.2, 2.0, 0.1]
 
 

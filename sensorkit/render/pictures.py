@@ -47,6 +47,7 @@ __all__ = [
     "Figure",
     "Mount",
     "SideView",
+    "at_far_clip",
     "closeup_figure",
     "depth_colour_range",
     "depth_figure",
@@ -68,6 +69,7 @@ GROUND_HIT = (46, 160, 67)
 VIEW_YAW = math.radians(45.0)
 VIEW_PITCH = math.radians(30.0)
 _FONT = "font-family:system-ui,sans-serif"
+FAR_CLIP_REL = 1e-4  # depth this close to the far clip (relative) is the far plane itself
 
 
 @dataclass
@@ -186,14 +188,24 @@ def _ticks(lo: float, hi: float, count: int = 5) -> list[float]:
 
 
 # ---- depth -------------------------------------------------------------------------------
+def at_far_clip(depth: npt.NDArray[np.floating], far: float) -> npt.NDArray[np.bool_]:
+    """Pixels on the far clip plane (within ``FAR_CLIP_REL`` of ``far``): the renderer's
+    "nothing here" (sky), not a surface at that distance."""
+    d = np.asarray(depth, dtype=np.float64)
+    if not math.isfinite(far):
+        return np.zeros(d.shape, dtype=bool)
+    out: npt.NDArray[np.bool_] = np.isfinite(d) & (d >= far * (1.0 - FAR_CLIP_REL))
+    return out
+
+
 def depth_colour_range(
     depth: npt.NDArray[np.floating], near: float, far: float
 ) -> tuple[float, float]:
     """The depths the colour map spans: the 2nd to 98th percentile of the finite depths
-    (so that a few far pixels do not wash the scene out), widened to round values (a
-    tenth of the span, 1-2-5) and kept within ``near``..``far``."""
+    off the far clip plane (so that sky and a few far pixels do not wash the scene out),
+    widened to round values (a tenth of the span, 1-2-5) and kept within ``near``..``far``."""
     values = np.asarray(depth, dtype=np.float64)
-    values = values[np.isfinite(values)]
+    values = values[np.isfinite(values) & ~at_far_clip(values, far)]
     if values.size == 0:
         hi = far if math.isfinite(far) else near + 1.0
         return float(near), float(hi)
@@ -262,7 +274,7 @@ def depth_figure(
     legend_y = bottom + 18 if h > 150 else 150.0
     svg.height = max(svg.height, legend_y + 30)
     svg.add("rect", x=0, y=legend_y - 9, width=10, height=10, fill="#e1e1e1", stroke="#999")
-    svg.text(14, legend_y, f"nothing within {_metres(far)} (+inf)", size=10)
+    svg.text(14, legend_y, f"nothing within {_metres(far)} (+inf, or the far clip plane)", size=10)
     svg.add("rect", x=0, y=legend_y + 5, width=10, height=10, fill="#000")
     svg.text(14, legend_y + 14, f"nearer than {_metres(near)} (-inf)", size=10)
     facts = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
@@ -663,7 +675,8 @@ def closeup_figure(
     top_h = float(hi3[1] - lo3[1]) * scale
     side_h = float(hi3[2] - lo3[2]) * scale
     gap = 28.0
-    svg = _Svg(2 * panel_w + gap, max(top_h, side_h) + 60)
+    names_h = 30 + 12.0 * len(mounts)  # the column of names, at 12 px a name at least
+    svg = _Svg(2 * panel_w + gap, max(top_h, side_h, names_h) + 60)
 
     def projection(x0: float, axis: int) -> Callable[[FloatArray], tuple[float, float]]:
         def proj(p: FloatArray) -> tuple[float, float]:

@@ -229,7 +229,7 @@ def _camera(
         reprojection_check,
     )
     from sensorkit.render.overview import SensorDrawing
-    from sensorkit.render.pictures import depth_colour_range, depth_figure
+    from sensorkit.render.pictures import at_far_clip, depth_colour_range, depth_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
     from sensorkit.sensorinfo import depth_range, published_intrinsics
@@ -268,8 +268,9 @@ def _camera(
         out.files["depth"] = folder / "depth.npy"
         save_npy(out.files["depth"], published_depth.astype(np.float32))
         out.files["depth_png"] = folder / "depth.png"
-        lo, hi = depth_colour_range(published_depth, near, far)
-        png = write_png(out.files["depth_png"], colourise_depth(published_depth, lo=lo, hi=hi))
+        shown = np.where(at_far_clip(published_depth, far), np.inf, published_depth)
+        lo, hi = depth_colour_range(shown, near, far)
+        png = write_png(out.files["depth_png"], colourise_depth(shown, lo=lo, hi=hi))
         _add_figure(out, depth_figure(png, rc.width, rc.height, lo, hi, near, far))
     camera_name = None
     from sensorkit.model.frames import ros_plugin
