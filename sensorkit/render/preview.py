@@ -9,7 +9,7 @@ Output folder layout::
     DIR/summary.json  DIR/overview.png  DIR/index.html
     DIR/<sensor>/rgb.png camera_info.yaml [depth.npy depth.png]     cameras
     DIR/<sensor>/<camera>/...                                        multicamera
-    DIR/<sensor>/ranges.npy scan.png [points.npy]                    lidars
+    DIR/<sensor>/ranges.npy scan.png [points.npy side.png]           lidars
 """
 
 from __future__ import annotations
