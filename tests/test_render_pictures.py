@@ -23,10 +23,12 @@ from sensorkit.render import render_preview
 from sensorkit.render.pictures import (
     GROUND_HIT,
     depth_colour_range,
+    draw_side,
     nice_step,
     occluded_sectors,
+    side_figure,
 )
-from sensorkit.render.png import read_png
+from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.raster import colourise_depth
 
 HERE = Path(__file__).parent / "render_robots"
@@ -234,6 +236,20 @@ def test_side_view_puts_ground_hits_on_the_ground_below_the_sensor(
     assert sensor_label[0].text == f"sensor {height:g} m above the ground"
 
 
+def test_side_view_of_a_scan_with_no_returns_is_the_ground_and_the_sensor() -> None:
+    points = np.full((64 * 3, 3), np.nan)
+    rows = np.repeat(np.arange(3), 64)
+    none = np.zeros(len(points), dtype=bool)
+    image, view, facts = draw_side(
+        points, np.array([0.0, 0.0, 1.5]), np.array([1.0, 0, 0]), rows, 3, none, none
+    )
+    assert image.shape == (view.height, view.width, 3) and facts["ground_hits"] == 0
+    assert facts["nearest_ground_ahead_m"] is None and view.z_lo < 0 and view.z_hi > 1.5
+    svg = ET.fromstring(side_figure(encode_png(image), view, facts).svg)
+    assert texts(svg, "sensor")[0].text == "sensor 1.5 m above the ground"
+    assert not texts(svg, "ground")
+
+
 def test_a_level_2d_lidar_has_no_side_view(wall: Path) -> None:
     assert "side" not in pictures(wall, "laser") and not (wall / "laser" / "side.png").exists()
 
@@ -299,6 +315,8 @@ def test_an_unrendered_sensor_says_so_once(imu: Path) -> None:
     page = (imu / "index.html").read_text()
     assert "Not rendered: only cameras and lidars are" in page
     assert "not rendered: not rendered" not in page.lower()
+    # the overview's table gives the IMU the status of its checks, not "skipped"
+    assert "<a href='#imu'>imu</a></td><td>imu</td><td><span class=\"warn\">" in page
 
 
 # ---- the robot close up ------------------------------------------------------------------------

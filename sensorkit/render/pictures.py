@@ -181,6 +181,10 @@ def nice_step(span: float, count: int = 5) -> float:
 
 
 def _ticks(lo: float, hi: float, count: int = 5) -> list[float]:
+    """Round values from ``lo`` to ``hi``, about ``count`` of them (the ends when the span
+    is not a finite, positive number)."""
+    if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+        return [v for v in (lo, hi) if math.isfinite(v)]
     step = nice_step(hi - lo, count)
     first = math.ceil(lo / step - 1e-9) * step
     out = [round(first + k * step, 10) for k in range(int((hi - first) / step + 1e-9) + 1)]
@@ -342,14 +346,15 @@ def scan_figure(
     y = display + 16
     if rows > 1:
         palette = row_palette(rows)
-        for i, colour in enumerate(palette):
+        shown = np.unique(np.linspace(0, rows - 1, min(rows, 60)).round().astype(int))
+        for i, row in enumerate(shown):
             svg.add(
                 "rect",
-                x=4 + i * (120 / rows),
+                x=4 + i * (120 / len(shown)),
                 y=y - 9,
-                width=120 / rows + 0.5,
+                width=120 / len(shown) + 0.5,
                 height=10,
-                fill=_hex(colour),
+                fill=_hex(palette[row]),
             )
         svg.text(130, y, f"beam rows, lowest (blue) to highest (orange), {rows} rows", size=10)
     else:

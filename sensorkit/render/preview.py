@@ -1024,11 +1024,13 @@ def _lidar_figures(
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
     if (V <= 1 and tilt <= 1.0) or out.directory is None:
         return
-    ground_keys = {
-        key for key, shapes in run.world.shape_of.items() if any(x.kind == GROUND for x in shapes)
-    }
-    pairs = list(zip(scan.hits.body.tolist(), scan.hits.link.tolist(), strict=True))
-    ground = np.array([p in ground_keys for p in pairs], dtype=bool)
+    ground_keys = [
+        (body + 1) * 2**32 + (link + 1)
+        for (body, link), shapes in run.world.shape_of.items()
+        if any(x.kind == GROUND for x in shapes)
+    ]
+    hit_keys = (scan.hits.body.astype(np.int64) + 1) * 2**32 + (scan.hits.link.astype(np.int64) + 1)
+    ground = np.isin(hit_keys, ground_keys)
     world_pts = points @ scan.rotation.T + scan.origin
     image, side, facts = draw_side(
         world_pts, scan.origin, scan.rotation[:, 0], rows, V, ground, self_hit
@@ -1099,7 +1101,7 @@ def _robot_figures(
     ]
     try:
         pairs = describe(run.robot, run.target).stereo_pairs
-    except SensorkitError as exc:
+    except (SensorkitError, ValueError, ArithmeticError) as exc:  # a picture never stops a render
         notes.append(f"stereo pairs: not drawn ({exc})")
         return figures
     by_name = {p.name: p for p in previews}

@@ -303,7 +303,7 @@ def write_index(result: PreviewResult) -> None:
         if "colour" in s.info
     )
     skipped = "".join(
-        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status('skipped')}</td></tr>"
+        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status(s.status)}</td></tr>"
         for s in result.sensors
         if "colour" not in s.info
     )
