@@ -19,7 +19,16 @@ import numpy.typing as npt
 from sensorkit.render.raster import Canvas, convex_hull
 from sensorkit.render.scene import GROUND, MARKER, Shape
 
-__all__ = ["PALETTE", "SensorDrawing", "draw_overview", "draw_scan"]
+__all__ = [
+    "PALETTE",
+    "ScanView",
+    "SensorDrawing",
+    "draw_overview",
+    "draw_scan",
+    "row_palette",
+    "scan_colours",
+    "scan_view",
+]
 
 FloatArray = npt.NDArray[np.float64]
 PALETTE: list[tuple[int, int, int]] = [
@@ -132,45 +141,101 @@ def draw_overview(
     return canvas.image
 
 
+@dataclass
+class ScanView:
+    """Where ``draw_scan`` puts things: the sensor at the centre, forward (+x) up, left
+    (+y) left, ``half`` metres from the centre to each edge, a range ring every ``step`` m
+    (1, 2, 5, 10... m: at most 8 rings)."""
+
+    size: int
+    half: float
+    step: float
+
+    @property
+    def scale(self) -> float:
+        """Pixels per metre."""
+        return self.size / (2.0 * self.half)
+
+    @property
+    def centre(self) -> float:
+        return self.size / 2.0
+
+    @property
+    def rings(self) -> list[float]:
+        """The ring radii drawn, in metres."""
+        return [k * self.step for k in range(1, int(self.half / self.step + 1e-9) + 1)]
+
+    def px(self, xy: FloatArray) -> FloatArray:
+        """Sensor-frame (x, y) rows to pixel (column, row) rows."""
+        a = np.atleast_2d(np.asarray(xy, dtype=np.float64))
+        c = self.centre
+        return np.stack([c - a[:, 1] * self.scale, c - a[:, 0] * self.scale], axis=1)
+
+
+def scan_view(points: FloatArray, range_max: float, size: int = 480) -> ScanView:
+    """The view ``draw_scan`` uses for ``points``: out to the furthest return plus 10 %."""
+    finite = np.isfinite(points).all(axis=1)
+    reach = (
+        float(np.max(np.hypot(points[finite, 0], points[finite, 1]))) if finite.any() else range_max
+    )
+    half = max(1.0, min(range_max, reach * 1.1))
+    step = next((s for s in (0.5, 1, 2, 5, 10, 20, 50, 100) if half / s <= 8), 200.0)
+    return ScanView(size, half, float(step))
+
+
+SECTOR = (255, 222, 222)  # azimuths where a beam meets the robot itself
+SELF_HIT = (220, 30, 30)
+
+
 def draw_scan(
     points: FloatArray,
     elevation_index: npt.NDArray[np.int64],
     self_hit: npt.NDArray[np.bool_],
     range_max: float,
     size: int = 480,
+    *,
+    sectors: list[tuple[float, float]] | None = None,
 ) -> npt.NDArray[np.uint8]:
     """A lidar's returns seen from above in its own frame, forward (+x) up, left (+y) left.
 
-    Range rings every 1, 2, 5, 10... m; returns from the robot itself in red; 3D scans are
-    coloured by beam row.
+    Range rings every 1, 2, 5, 10... m (``scan_view``); returns from the robot itself in
+    red, and ``sectors`` (azimuth intervals in radians, counter-clockwise from +x) shaded
+    light red; 3D scans are coloured by beam row.
     """
     canvas = Canvas(size, size, (250, 250, 250))
     finite = np.isfinite(points).all(axis=1)
-    reach = (
-        float(np.max(np.hypot(points[finite, 0], points[finite, 1]))) if finite.any() else range_max
-    )
-    half = max(1.0, min(range_max, reach * 1.1))
-    scale = size / (2.0 * half)
-    c = size / 2.0
-
-    def px(xy: FloatArray) -> FloatArray:
-        return np.stack([c - xy[:, 1] * scale, c - xy[:, 0] * scale], axis=1)
-
-    step = next((s for s in (0.5, 1, 2, 5, 10, 20, 50, 100) if half / s <= 8), 200.0)
-    for k in range(1, int(half / step) + 1):
-        canvas.circle((c, c), k * step * scale, None, (215, 215, 215))
+    view = scan_view(points, range_max, size)
+    c = view.centre
+    for a0, a1 in sectors or []:
+        n = max(2, int(np.degrees(a1 - a0)) + 2)
+        arc = np.linspace(a0, a1, n)
+        reach = view.half * 1.5
+        rim = np.stack([np.cos(arc) * reach, np.sin(arc) * reach], axis=1)
+        canvas.polygon(np.vstack([[[c, c]], view.px(rim)]), SECTOR)
+    for radius in view.rings:
+        canvas.circle((c, c), radius * view.scale, None, (215, 215, 215))
     canvas.line((c, 0), (c, size), (225, 225, 225))
     canvas.line((0, c), (size, c), (225, 225, 225))
     rows = int(elevation_index.max()) + 1 if len(elevation_index) else 1
-    if rows > 1:  # one colour a row, looked up for each return
-        t = np.arange(rows) / max(1, rows - 1)
-        palette = np.stack([40 + 200 * t, 90 + 60 * (1 - t), 220 - 180 * t], axis=1).astype(
-            np.uint8
-        )
-        colours = palette[elevation_index[finite]]
-    else:
-        colours = np.tile(np.array([[31, 119, 180]], dtype=np.uint8), (int(finite.sum()), 1))
-    colours[self_hit[finite]] = (220, 30, 30)
-    canvas.points(px(points[finite, :2]), colours, radius=1.0)
+    colours = scan_colours(elevation_index[finite], self_hit[finite], rows)
+    canvas.points(view.px(points[finite, :2]), colours, radius=1.0)
     canvas.polygon(np.array([[c, c - 9], [c - 6, c + 6], [c + 6, c + 6]]), (0, 0, 0))
     return canvas.image
+
+
+def row_palette(rows: int) -> npt.NDArray[np.uint8]:
+    """One colour a beam row, lowest (blue) to highest (orange); one row: blue."""
+    if rows <= 1:
+        return np.array([[31, 119, 180]], dtype=np.uint8)
+    t = np.arange(rows) / max(1, rows - 1)
+    return np.stack([40 + 200 * t, 90 + 60 * (1 - t), 220 - 180 * t], axis=1).astype(np.uint8)
+
+
+def scan_colours(
+    elevation_index: npt.NDArray[np.int64], self_hit: npt.NDArray[np.bool_], rows: int
+) -> npt.NDArray[np.uint8]:
+    """The colour of each return: its row's of ``rows`` (``row_palette``), red when it hit
+    the robot."""
+    colours = row_palette(rows)[elevation_index]
+    colours[self_hit] = SELF_HIT
+    return colours

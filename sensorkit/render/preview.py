@@ -9,7 +9,7 @@ Output folder layout::
     DIR/summary.json  DIR/overview.png  DIR/index.html
     DIR/<sensor>/rgb.png camera_info.yaml [depth.npy depth.png]     cameras
     DIR/<sensor>/<camera>/...                                        multicamera
-    DIR/<sensor>/ranges.npy scan.png [points.npy]                    lidars
+    DIR/<sensor>/ranges.npy scan.png [points.npy side.png]           lidars
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from sensorkit.errors import InputError, UsageError
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
@@ -37,7 +38,9 @@ if TYPE_CHECKING:
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
+    from sensorkit.render.lidar import LidarScan
     from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.pictures import Figure
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
 
@@ -61,6 +64,7 @@ class SensorPreview:
     notes: list[str] = field(default_factory=list)
     skipped: str | None = None  # why nothing was rendered
     info: dict[str, Any] = field(default_factory=dict)  # frames, intrinsics, scan, topics
+    figures: dict[str, Figure] = field(default_factory=dict)  # labelled pictures, by key
 
     @property
     def status(self) -> str:
@@ -82,6 +86,7 @@ class PreviewResult:
     findings_error: str | None = None
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
+    figures: list[Figure] = field(default_factory=list)  # the robot close up, stereo pairs
 
     @property
     def status(self) -> str:
@@ -224,6 +229,7 @@ def _camera(
         reprojection_check,
     )
     from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.pictures import at_far_clip, depth_colour_range, depth_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
     from sensorkit.sensorinfo import depth_range, published_intrinsics
@@ -262,7 +268,10 @@ def _camera(
         out.files["depth"] = folder / "depth.npy"
         save_npy(out.files["depth"], published_depth.astype(np.float32))
         out.files["depth_png"] = folder / "depth.png"
-        write_png(out.files["depth_png"], colourise_depth(published_depth))
+        shown = np.where(at_far_clip(published_depth, far), np.inf, published_depth)
+        lo, hi = depth_colour_range(shown, near, far)
+        png = write_png(out.files["depth_png"], colourise_depth(shown, lo=lo, hi=hi))
+        _add_figure(out, depth_figure(png, rc.width, rc.height, lo, hi, near, far))
     camera_name = None
     from sensorkit.model.frames import ros_plugin
 
@@ -300,9 +309,7 @@ def _camera(
 
     out.checks.append(reprojection_check(rc, image, published, run.markers))
     out.checks.append(depth_check(rc, image, depth, run.world.shape_of))
-    out.checks.append(
-        self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels")
-    )
+    out.checks.append(self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels"))
     out.checks.append(orb_check(image.rgb, sensor.kind))
     if sensor.reference is not None:
         out.checks.append(run.pose_check(sensor.reference))
@@ -384,10 +391,18 @@ def _lidar(
     rows = np.repeat(np.arange(V), H)
     self_hit = np.isin(scan.hits.body, run.world.robot_bodies)
     out.files["scan_png"] = folder / "scan.png"
-    write_png(
+    sectors = _self_occluded(scan, self_hit)
+    png = write_png(
         out.files["scan_png"],
-        draw_scan(scan.points.reshape(-1, 3).astype(np.float64), rows, self_hit, beams.range_max),
+        draw_scan(
+            scan.points.reshape(-1, 3).astype(np.float64),
+            rows,
+            self_hit,
+            beams.range_max,
+            sectors=sectors,
+        ),
     )
+    _lidar_figures(run, out, scan, png, rows, self_hit, sectors)
 
     frames = run.frames(sensor)
     out.info["frames"] = run.frame_info(frames, T_render)
@@ -468,7 +483,7 @@ def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | Senso
                     sensor.type,
                     sensor.kind,
                     sensor.reference,
-                    skipped=f"not rendered: {why}",
+                    skipped=why,
                 )
             )
     return plan
@@ -922,6 +937,7 @@ def render_preview(
             plan = _plan(robot, sensors, stage)
             results = _render_all(run, plan, progress, workers)
             previews = [p for p, _ in results]
+            _draw_imus(run, previews)
             drawings = [d for _, d in results if d is not None]
             robot_boxes = []
             for body in world.robot_bodies:
@@ -954,6 +970,7 @@ def render_preview(
         overview = draw_overview(world_scene.shapes, robot_shapes, robot_boxes, drawings, half)
         result.files["overview"] = stage / "overview.png"
         write_png(result.files["overview"], overview)
+        result.figures += _robot_figures(run, previews, robot_boxes, robot_shapes, notes)
         result.seconds = time.perf_counter() - started
         result.files["summary"] = stage / "summary.json"
         result.files["index"] = stage / "index.html"
@@ -961,3 +978,151 @@ def render_preview(
         write_index(result)
     _rebase(result, stage, out_dir)
     return result
+
+
+# ---- labelled pictures (sensorkit.render.pictures) -------------------------------------------
+def _add_figure(out: SensorPreview, figure: Figure) -> None:
+    """Show ``figure`` on the sensor's part of index.html; its numbers go to summary.json."""
+    out.figures[figure.key] = figure
+    out.info.setdefault("pictures", {})[figure.key] = figure.facts
+
+
+def _self_occluded(scan: LidarScan, self_hit: np.ndarray) -> list[tuple[float, float]]:
+    """Azimuth sectors of the scan in which some beam meets the robot itself."""
+    from sensorkit.render.pictures import occluded_sectors
+
+    beams = scan.beams
+    V, H = beams.shape
+    azimuth = beams.azimuth
+    full = H > 1 and float(azimuth[-1] - azimuth[0]) >= 2 * math.pi - 1.5 * float(
+        azimuth[1] - azimuth[0]
+    )
+    blocked: npt.NDArray[np.bool_] = np.asarray(self_hit.reshape(V, H).any(axis=0), dtype=bool)
+    return occluded_sectors(azimuth, blocked, full_circle=full)
+
+
+def _lidar_figures(
+    run: _Run,
+    out: SensorPreview,
+    scan: LidarScan,
+    scan_png: bytes,
+    rows: np.ndarray,
+    self_hit: np.ndarray,
+    sectors: list[tuple[float, float]],
+) -> None:
+    """scan.png labelled; for a 3D lidar or a tilted 2D one, side.png and its labels."""
+    from sensorkit.render.overview import scan_view
+    from sensorkit.render.pictures import draw_side, scan_figure, side_figure
+    from sensorkit.render.png import write_png
+    from sensorkit.render.scene import GROUND
+
+    beams = scan.beams
+    V = beams.shape[0]
+    points = scan.points.reshape(-1, 3).astype(np.float64)
+    view = scan_view(points, beams.range_max)
+    _add_figure(out, scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
+    tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
+    if (V <= 1 and tilt <= 1.0) or out.directory is None:
+        return
+    ground_keys = [
+        (body + 1) * 2**32 + (link + 1)
+        for (body, link), shapes in run.world.shape_of.items()
+        if any(x.kind == GROUND for x in shapes)
+    ]
+    hit_keys = (scan.hits.body.astype(np.int64) + 1) * 2**32 + (scan.hits.link.astype(np.int64) + 1)
+    ground = np.isin(hit_keys, ground_keys)
+    world_pts = points @ scan.rotation.T + scan.origin
+    image, side, facts = draw_side(
+        world_pts, scan.origin, scan.rotation[:, 0], rows, V, ground, self_hit
+    )
+    facts["tilt_deg"] = tilt
+    out.files["side_png"] = out.directory / "side.png"
+    png = write_png(out.files["side_png"], image)
+    _add_figure(out, side_figure(png, side, facts))
+
+
+def _draw_imus(run: _Run, previews: list[SensorPreview]) -> None:
+    """Give each IMU (nothing to render) its frame checks and a picture of its axes."""
+    from sensorkit.render.pictures import imu_figure
+
+    for k, p in enumerate(previews):
+        sensor = next(
+            (x for x in run.robot.sensors if x.name == p.sensor and x.kind == "imu"), None
+        )
+        if p.kind != "imu" or sensor is None:
+            continue
+        T_render = run.T_world_render(sensor)
+        if T_render is None:
+            continue
+        imu = SensorPreview(p.name, p.sensor, p.type, p.kind, p.link)
+        frames = run.frames(sensor)
+        imu.info["frames"] = run.frame_info(frames, T_render)
+        imu.info["topics"] = _topics(sensor, run.target)
+        if sensor.reference is not None:
+            imu.checks.append(run.pose_check(sensor.reference))
+        frame = frames.published
+        T_frame = run.poses.get(frame) if frame is not None else None
+        fcheck = frame_check(T_render, T_frame, frame, frames.how, optical=False)
+        imu.checks.append(fcheck)
+        stamped = T_frame[:3, :3] if fcheck.status == "warn" and T_frame is not None else None
+        _add_figure(
+            imu, imu_figure(T_render[:3, :3], stamped, frame, fcheck.status, fcheck.message)
+        )
+        previews[k] = imu
+
+
+def _robot_figures(
+    run: _Run,
+    previews: list[SensorPreview],
+    boxes: list[tuple[np.ndarray, np.ndarray]],
+    robot_shapes: list[Shape],
+    notes: list[str],
+) -> list[Figure]:
+    """The robot close up with every sensor's mount, and each stereo pair side by side."""
+    from sensorkit.errors import SensorkitError
+    from sensorkit.render.pictures import Mount, closeup_figure, stereo_figure
+    from sensorkit.render.png import read_png
+    from sensorkit.sensorinfo import describe
+
+    mounts = []
+    for p in previews:
+        pose = p.info.get("frames", {}).get("render_pose")
+        if pose is not None:
+            mounts.append(
+                Mount(p.name, p.info.get("colour", "#000000"), np.array(pose["matrix"]), p.link)
+            )
+    figures = [
+        closeup_figure(
+            boxes,
+            [s.outline() for s in robot_shapes],
+            [T[:3, 3] for T in run.poses.values()],
+            mounts,
+        )
+    ]
+    try:
+        pairs = describe(run.robot, run.target).stereo_pairs
+    except (SensorkitError, ValueError, ArithmeticError) as exc:  # a picture never stops a render
+        notes.append(f"stereo pairs: not drawn ({exc})")
+        return figures
+    by_name = {p.name: p for p in previews}
+    for pair in pairs:
+        left, right = by_name.get(pair.left.id), by_name.get(pair.right.id)
+        if left is None or right is None or "rgb" not in left.files or "rgb" not in right.files:
+            continue
+        left_png = left.files["rgb"].read_bytes()
+        h, w = read_png(left_png).shape[:2]
+        figures.append(
+            stereo_figure(
+                pair.name,
+                left.name,
+                right.name,
+                left_png,
+                right.files["rgb"].read_bytes(),
+                (w, h),
+                pair.baseline,
+                pair.T_left_right[:3, 3],
+                pair.rectified,
+                pair.how,
+            )
+        )
+    return figures

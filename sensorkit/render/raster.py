@@ -11,15 +11,16 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Canvas", "colourise_depth", "convex_hull"]
+__all__ = ["DEPTH_STOPS", "Canvas", "colourise_depth", "convex_hull"]
 
 Colour = tuple[int, int, int]
 # Dots past this count are drawn by pixel rather than one by one (same picture).
 _MANY = 4096
 Points = npt.NDArray[np.float64]
 
-# Near (warm, bright) to far (cool, dark); +inf and -inf get their own greys.
-_DEPTH_STOPS = np.array(
+# Near (warm, bright) to far (cool, dark), evenly spaced over the scale; +inf and -inf
+# get their own greys. Public for the colour bar beside depth.png.
+DEPTH_STOPS = np.array(
     [
         [255, 236, 64],
         [246, 150, 40],
@@ -223,9 +224,9 @@ def colourise_depth(
         hi = float(np.percentile(values, 99)) if hi is None else hi
         if hi <= lo:
             hi = lo + 1e-6
-        t = np.clip((values - lo) / (hi - lo), 0.0, 1.0) * (len(_DEPTH_STOPS) - 1)
-        i = np.minimum(t.astype(np.int64), len(_DEPTH_STOPS) - 2)
+        t = np.clip((values - lo) / (hi - lo), 0.0, 1.0) * (len(DEPTH_STOPS) - 1)
+        i = np.minimum(t.astype(np.int64), len(DEPTH_STOPS) - 2)
         f = (t - i)[:, None]
-        rgb = _DEPTH_STOPS[i] * (1.0 - f) + _DEPTH_STOPS[i + 1] * f
+        rgb = DEPTH_STOPS[i] * (1.0 - f) + DEPTH_STOPS[i + 1] * f
         out[finite] = np.rint(rgb).astype(np.uint8)
     return out

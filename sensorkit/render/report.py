@@ -95,6 +95,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
             "conventions": CONVENTIONS,
             "sensors": [_sensor_dict(s, base) for s in result.sensors],
             "validate": {"findings": findings, "error": result.findings_error},
+            "pictures": {f.key: f.facts for f in result.figures},
             "notes": result.notes,
         }
     )
@@ -174,15 +175,19 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
         parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
         return "\n".join(parts)
     figures = []
+    labelled = {"depth_png": "depth", "scan_png": "scan"}  # files shown by s.figures
     for key, caption in (
         ("rgb", "rgb.png"),
         ("depth_png", "depth.png (near warm, far blue; grey: nothing in range)"),
         ("scan_png", "scan.png (top-down, forward up)"),
     ):
-        if key in s.files:
+        if labelled.get(key) in s.figures:
+            figures.append(s.figures[labelled[key]].html())
+        elif key in s.files:
             figures.append(
                 f"<figure>{_img(s.files[key], caption)}<figcaption>{e(caption)}</figcaption></figure>"
             )
+    figures += [f.html() for k, f in s.figures.items() if k not in labelled.values()]
     if figures:
         parts.append('<div class="imgs">' + "".join(figures) + "</div>")
     rows = "".join(
@@ -278,6 +283,16 @@ def _findings_html(result: PreviewResult) -> str:
     )
 
 
+def _pictures_html(result: PreviewResult) -> str:
+    """The robot close up, then each stereo pair (sensorkit.render.pictures)."""
+    out = []
+    for title, prefix in (("The robot close up", "closeup"), ("Stereo pairs", "stereo:")):
+        shown = [f.html() for f in result.figures if f.key.startswith(prefix)]
+        if shown:
+            out.append(f"<h2>{title}</h2><div class='imgs'>{''.join(shown)}</div>")
+    return "\n".join(out)
+
+
 def write_index(result: PreviewResult) -> None:
     e = html.escape
     base = result.out_dir
@@ -288,7 +303,7 @@ def write_index(result: PreviewResult) -> None:
         if "colour" in s.info
     )
     skipped = "".join(
-        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status('skipped')}</td></tr>"
+        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status(s.status)}</td></tr>"
         for s in result.sensors
         if "colour" not in s.info
     )
@@ -304,6 +319,7 @@ def write_index(result: PreviewResult) -> None:
 <div class="imgs"><figure>{_img(result.files["overview"], "overview")}
 <figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Dashed magenta: the forward axis of the frame its data is stamped with, when that differs.</figcaption></figure>
 <table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
+{_pictures_html(result)}
 <h2>Sensors</h2>
 {"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
 <h2>validate's findings</h2>

@@ -108,27 +108,35 @@ class Shape:
 
     def footprint(self) -> Array:
         """Points whose xy convex hull is the shape seen from above."""
+        return self.outline()[:, :2]
+
+    def outline(self) -> Array:
+        """World points whose convex hull, seen along any world axis, is the shape's
+        silhouette from that side (a sphere's three great circles); none for ground and
+        meshes."""
+        a = np.linspace(0, 2 * np.pi, 24, endpoint=False)
         if self.kind == "box":
             hx, hy, hz = self.size
             local = np.array(
                 [[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
             )
         elif self.kind == "sphere":
-            a = np.linspace(0, 2 * np.pi, 24, endpoint=False)
             r = self.size[0]
-            return np.stack(
-                [self.centre[0] + r * np.cos(a), self.centre[1] + r * np.sin(a)], axis=1
+            c, s = r * np.cos(a), r * np.sin(a)
+            zero = np.zeros_like(a)
+            circles = np.concatenate(
+                [np.stack(v, axis=1) for v in ((c, s, zero), (c, zero, s), (zero, c, s))]
             )
+            return np.asarray(circles + self.centre, dtype=np.float64)
         elif self.kind == "cylinder":
             r, h = self.size
-            a = np.linspace(0, 2 * np.pi, 24, endpoint=False)
             ring = np.stack([r * np.cos(a), r * np.sin(a), np.zeros_like(a)], axis=1)
             cap = np.array([0.0, 0.0, h])
             local = np.concatenate([ring + cap, ring - cap])
         else:
-            return np.zeros((0, 2))
-        world = local @ self.T_world[:3, :3].T + self.T_world[:3, 3]
-        return world[:, :2]
+            return np.zeros((0, 3))
+        world: Array = local @ self.T_world[:3, :3].T + self.T_world[:3, 3]
+        return world
 
 
 def _box(o: Array, d: Array, h: Array) -> tuple[Array, Array]:
