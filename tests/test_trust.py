@@ -52,6 +52,23 @@ def test_sk207_ignores_a_fixed_joint_with_mimic(check) -> None:
 # --- SK405 depth precision only where depth is published -------------------------
 
 
+def test_sk405_far_near_ratio_is_not_reported_on_classic(check) -> None:
+    # agilexrobotics/limo_ros2 limo_gazebo.gazebo: a depth camera with near 0.02, far 300
+    # (far/near 15000) was told "depth precision collapses". Gazebo Classic's depth camera
+    # writes depth = gl_Position.w, the linear view depth, into a PF_FLOAT32_R texture
+    # (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:9;
+    # gazebo/rendering/DepthCamera.cc CreateDepthTexture): the ratio does not coarsen it.
+    clip = "<camera><clip><near>0.02</near><far>300</far></clip></camera>"
+    depth = robot(camera=camera_sensor(stype="depth", camera=clip))
+    assert "SK405" not in rules_of(check(depth, target="classic"))
+    assert "SK405" not in rules_of(check(depth, target="ros1"))
+    # Trigger kept where it was not measured away: Gazebo Sim.
+    assert "SK405" in rules_of(check(depth, target="harmonic"))
+    # Near miss on classic: a clip that is simply wrong is still an error.
+    bad = robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>5</near><far>1</far></clip></camera>"))
+    assert "SK405" in rules_of(check(bad, target="classic"))
+
+
 def test_sk405_precision_only_for_depth(check) -> None:
     clip = "<camera><clip><near>0.001</near><far>100</far></clip></camera>"
     assert "SK405" not in rules_of(check(robot(camera=camera_sensor(camera=clip)), target="classic"))
