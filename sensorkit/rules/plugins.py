@@ -324,7 +324,7 @@ def _info_topic(s: Sensor, base: str) -> str:
 @rule(
     "SK604",
     "error",
-    "two plugins resolve to the same ROS node name (gazebo_ros refuses the second)",
+    "two plugins resolve to the same ROS 2 node name (gazebo_ros refuses the second)",
     "gazebo_ros, at run time",
 )
 def node_names(ctx: Context) -> Iterator[Finding]:

@@ -237,7 +237,7 @@ def camera_fov(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK405",
     "error/warning",
-    "clip 0 < near < far (error); near < 0.01 m, or far/near > 1e4 (warning: depth precision); "
+    "clip 0 < near < far (error); near < 0.01 m, or on Gazebo Sim far/near > 1e4 (warning: depth precision); "
     "min_depth/max_depth inside the clip range",
 )
 def camera_clip(ctx: Context) -> Iterator[Finding]:
