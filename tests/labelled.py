@@ -35,6 +35,10 @@ class Robot:
     args: dict[str, str] = field(default_factory=dict)
     target: str = "auto"
     bridge: list[str] = field(default_factory=list)
+    # NAME -> folder (relative to the corpus): a package this robot must find before the
+    # corpora's own (two repositories here ship a package of one name, e.g. velodyne_description
+    # in its ROS 2 port under tests/corpus and its ROS 1 original under tests/realworld).
+    packages: dict[str, str] = field(default_factory=dict)
 
     @property
     def path(self) -> Path:
@@ -75,6 +79,7 @@ def robots() -> list[Robot]:
                     args={k: str(v) for k, v in (entry.get("args") or {}).items()},
                     target=entry.get("target", "auto") or "auto",
                     bridge=list(entry.get("bridge") or []),
+                    packages={k: str(v) for k, v in (entry.get("packages") or {}).items()},
                 )
             )
     return out
@@ -98,7 +103,10 @@ def run(robot: Robot) -> Outcome:
     options = Options(
         target=robot.target,
         args=dict(robot.args),
-        package_paths=tuple(str(c) for c in CORPORA if c.is_dir()),
+        package_paths=(
+            *(f"{name}={robot.corpus / folder}" for name, folder in robot.packages.items()),
+            *(str(c) for c in CORPORA if c.is_dir()),
+        ),
         ignore=IGNORED,
         bridges=tuple(str(robot.corpus / b) for b in robot.bridge),
     )

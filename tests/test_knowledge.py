@@ -328,3 +328,16 @@ def test_gz_systems_know_both_library_prefixes() -> None:
     for system in ("joint-state-publisher", "sensors", "imu", "navsat", "pose-publisher"):
         assert lookup(f"gz-sim-{system}-system", "gz") is not None
         assert lookup(f"ignition-gazebo-{system}-system", "gz") is not None
+
+
+def test_velodyne_generations_read_different_parameters() -> None:
+    # ROS 1: tier4/velodyne_simulator@master fe021b6:GazeboRosVelodyneLaser.cpp:115-158;
+    # ROS 2 port: prepare/humble 00759c8:GazeboRosVelodyneLaser.cpp:73-114.
+    ros1_only, ros2_only = known.generation_params("libgazebo_ros_velodyne_laser.so")
+    assert {"topicName", "frameName", "gaussianNoise", "robotNamespace"} <= ros1_only
+    assert {"ros", "frame_name", "gaussian_noise", "organize_cloud", "tf_prefix"} <= ros2_only
+    assert not {"min_range", "max_range", "min_intensity"} & (ros1_only | ros2_only)
+    # The GPU library has no ROS 2 port; the CPU port's parameters stand for it (one source).
+    assert known.generation_params("libgazebo_ros_velodyne_gpu_laser.so") == (ros1_only, ros2_only)
+    # Near miss: gazebo_ros_pkgs' plugins are told apart by sensorkit.knowledge.gazebo_ros.
+    assert known.generation_params("libgazebo_ros_camera.so") == (frozenset(), frozenset())

@@ -52,6 +52,23 @@ def test_sk207_ignores_a_fixed_joint_with_mimic(check) -> None:
 # --- SK405 depth precision only where depth is published -------------------------
 
 
+def test_sk405_far_near_ratio_is_not_reported_on_classic(check) -> None:
+    # agilexrobotics/limo_ros2 limo_gazebo.gazebo: a depth camera with near 0.02, far 300
+    # (far/near 15000) was told "depth precision collapses". Gazebo Classic's depth camera
+    # writes depth = gl_Position.w, the linear view depth, into a PF_FLOAT32_R texture
+    # (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:9;
+    # gazebo/rendering/DepthCamera.cc CreateDepthTexture): the ratio does not coarsen it.
+    clip = "<camera><clip><near>0.02</near><far>300</far></clip></camera>"
+    depth = robot(camera=camera_sensor(stype="depth", camera=clip))
+    assert "SK405" not in rules_of(check(depth, target="classic"))
+    assert "SK405" not in rules_of(check(depth, target="ros1"))
+    # Trigger kept where it was not measured away: Gazebo Sim.
+    assert "SK405" in rules_of(check(depth, target="harmonic"))
+    # Near miss on classic: a clip that is simply wrong is still an error.
+    bad = robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>5</near><far>1</far></clip></camera>"))
+    assert "SK405" in rules_of(check(bad, target="classic"))
+
+
 def test_sk405_precision_only_for_depth(check) -> None:
     clip = "<camera><clip><near>0.001</near><far>100</far></clip></camera>"
     assert "SK405" not in rules_of(check(robot(camera=camera_sensor(camera=clip)), target="classic"))
@@ -444,3 +461,73 @@ def test_sk604_only_for_plugins_that_load(check) -> None:
     assert "SK604" not in rules_of(check(ros1, target="classic"))
     ros2 = robot(extra=extra.replace("{p}", "libgazebo_ros_camera.so"))
     assert "SK604" in rules_of(check(ros2, target="classic"))
+
+
+# --- third-party plugins: the parameters each generation reads say which it is ------------
+
+
+def _velodyne(name: str, params: str, plugin: str = "libgazebo_ros_velodyne_laser.so", stype: str = "ray") -> str:
+    from builders import lidar_sensor
+
+    # Both sensors' plugins are called as in velodyne_description's macros (VLP-16.urdf.xacro).
+    return lidar_sensor(name, stype=stype, plugin=plugin, params=params).replace(
+        f'name="{name}_controller"', 'name="gazebo_ros_laser_controller"'
+    )
+
+
+def _velodyne_ros1(frame: str, topic: str) -> str:
+    # The tags tier4/velodyne_simulator@master fe021b6:velodyne_description/urdf/VLP-16.urdf.xacro
+    # writes, read by the ROS 1 plugin (velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:115-158).
+    return (f"<topicName>{topic}</topicName><frameName>{frame}</frameName><min_range>0.9</min_range>"
+            "<max_range>130.0</max_range><gaussianNoise>0.008</gaussianNoise>")
+
+
+def _velodyne_ros2(frame: str, ros: str = "") -> str:
+    # The ROS 2 port's tags (prepare/humble 00759c8: GazeboRosVelodyneLaser.cpp:73-114).
+    return (f"{ros}<tf_prefix></tf_prefix><frame_name>{frame}</frame_name><organize_cloud>false</organize_cloud>"
+            "<min_range>0.9</min_range><max_range>130.0</max_range><gaussian_noise>0.008</gaussian_noise>")
+
+
+def test_ros1_velodyne_description_is_ros1(check) -> None:
+    # tier4/velodyne_simulator master (ROS 1): example.urdf.xacro was taken for ROS 2 and got
+    # SK303/SK503 (frame_name default), SK604 and SK605 (the ROS 2 node and ~/out), all false.
+    # Parameters velodyne's ROS 1 spec reads and its ROS 2 spec does not (topicName, frameName,
+    # gaussianNoise: sensorkit/knowledge/plugins.py VELODYNE_ROS1_PARAMS) are ROS 1 evidence.
+    two = robot(camera=_velodyne("velodyne2", _velodyne_ros1("camera_link", "/velodyne_points2")),
+                lidar=_velodyne("velodyne", _velodyne_ros1("laser_link", "/velodyne_points")))
+    report = check(two)
+    assert report.target == "ros1" and "written for ROS 1" in report.target_reason
+    assert not rules_of(report) & {"SK303", "SK503", "SK602", "SK604", "SK605", "SK610"}
+    # One sensor's three ROS 1-only tags are enough; the GPU library (the same source built
+    # twice: CMakeLists.txt:29,36) reads the same tags.
+    one = robot(camera=camera_sensor(params="<frameName>camera_optical_frame</frameName>"),
+                lidar=_velodyne("velodyne", _velodyne_ros1("laser_link", "/velodyne_points"),
+                        plugin="libgazebo_ros_velodyne_gpu_laser.so", stype="gpu_ray"))
+    assert check(one).target == "ros1"
+
+
+def test_ros2_velodyne_description_stays_ros2(check) -> None:
+    # Near miss: the ROS 2 port (tier4/velodyne_simulator prepare/humble) with its <ros> block.
+    ns = "<ros><namespace>/{n}</namespace><remapping>~/out:={n}_points</remapping></ros>"
+    ros2 = robot(camera=_velodyne("velodyne2", _velodyne_ros2("camera_link", ns.format(n="velodyne2"))),
+                 lidar=_velodyne("velodyne", _velodyne_ros2("laser_link", ns.format(n="velodyne"))))
+    report = check(ros2)
+    assert report.target == "classic"
+    assert not rules_of(report) & {"SK611", "SK604", "SK605"}
+    # Without <ros>, the port's own snake_case tags (frame_name, gaussian_noise, organize_cloud)
+    # still say ROS 2, against a file with more ROS 1 tags elsewhere: and then the two plugins
+    # of one name are one ROS 2 node, which gazebo_ros refuses (SK604 is still reported).
+    bare = robot(camera=ROS1_CAMERA, lidar=_velodyne("velodyne", _velodyne_ros2("laser_link")),
+                 extra=f'<gazebo reference="base_link">{_velodyne("velodyne2", _velodyne_ros2("base_link"))}</gazebo>')
+    r2 = check(bare)
+    assert r2.target == "classic" and "SK604" in rules_of(r2)
+
+
+def test_sk604_is_not_reported_under_ros1(check) -> None:
+    # ROS 1 gzserver is one node, "gazebo" (gazebo_ros_api_plugin.cpp:126); plugins open
+    # NodeHandles in it, so two plugins of one name make no clash (trigger: the same robot
+    # under classic, where each is a gazebo_ros::Node of that name).
+    two = (camera_sensor("a", plugin_name="same") + camera_sensor("b", plugin_name="same"))
+    r = robot(extra=f'<gazebo reference="base_link">{two}</gazebo>')
+    assert "SK604" in rules_of(check(r, target="classic"))
+    assert "SK604" not in rules_of(check(r, target="ros1"))

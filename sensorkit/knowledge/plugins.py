@@ -46,7 +46,49 @@ class PluginSpec:
     topic_ns_param: str | None = None
     topic_ns_default: str | None = None
     sensor_params: tuple[str, ...] = ()  # model plugins that publish sensors named by these params
+    # Every SDF parameter the plugin's Load() reads, as its source says (empty: not recorded).
+    # Where a library has a ROS 1 and a ROS 2 spec, both recorded, the parameters only one of
+    # them reads tell which generation a description was written for (see
+    # :func:`generation_params`, used by sensorkit.model.targets.ros1_evidence).
+    params: frozenset[str] = frozenset()
     source: str = ""  # repo@path:line (branch) it was read from
+
+
+# The parameters each velodyne_gazebo_plugins generation reads (PluginSpec.params).
+# ROS 1: tier4/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:115-158
+# (master fe021b6, the upstream ROS 1 code: robotNamespace, frameName, min_range, max_range,
+# min_intensity, topicName, gaussianNoise); lmark1/velodyne_simulator's fork (master e08185a)
+# reads the same at the same lines and adds staticTopicName/staticFrameName (:191).
+VELODYNE_ROS1_PARAMS = frozenset(
+    {
+        "robotNamespace",
+        "frameName",
+        "min_range",
+        "max_range",
+        "min_intensity",
+        "topicName",
+        "gaussianNoise",
+        "staticTopicName",
+        "staticFrameName",
+    }
+)
+# ROS 2 port: tier4/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp
+# (prepare/humble 00759c8): :73 gazebo_ros::Node::Get(_sdf) reads <ros>
+# (ros-simulation/gazebo_ros_pkgs@gazebo_ros/src/node.cpp:62, ros2 d52f7c4), :79 tf_prefix,
+# :80 SensorFrameID reads frame_name (gazebo_ros/src/utils.cpp:55), :82-114 organize_cloud,
+# min_range, max_range, min_intensity, gaussian_noise.
+VELODYNE_ROS2_PARAMS = frozenset(
+    {
+        "ros",
+        "tf_prefix",
+        "frame_name",
+        "organize_cloud",
+        "min_range",
+        "max_range",
+        "min_intensity",
+        "gaussian_noise",
+    }
+)
 
 
 PLUGINS: tuple[PluginSpec, ...] = (
@@ -625,6 +667,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",  # GazeboRosVelodyneLaser.cpp:119-123
         topics=(("topicName", "/points"),),  # GazeboRosVelodyneLaser.cpp:147-151
+        params=VELODYNE_ROS1_PARAMS,
         source="lmark1/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:121 (master e08185a)",
     ),
     PluginSpec(
@@ -638,6 +681,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",
         topics=(("topicName", "/points"),),
+        params=VELODYNE_ROS1_PARAMS,  # the same source file as the CPU library
         source="lmark1/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:121 (master e08185a)",
     ),
     PluginSpec(
@@ -651,6 +695,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LINK,
         lumped=True,
         topics=((None, "~/out"),),  # GazeboRosVelodyneLaser.cpp:118
+        params=VELODYNE_ROS2_PARAMS,
         source="tier4/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:80 (prepare/humble 00759c8)",
     ),
     # ---------------------------------------------------------------------------------------
@@ -932,3 +977,34 @@ def lookup(filename_or_library: str, ros: str) -> PluginSpec | None:
 _INDEX: dict[tuple[str, str], PluginSpec] = {
     (lib, spec.ros): spec for spec in PLUGINS for lib in spec.libraries
 }
+
+
+def generation_params(filename_or_library: str) -> tuple[frozenset[str], frozenset[str]]:
+    """(ROS 1-only, ROS 2-only) parameters of a plugin library both ROS generations build.
+
+    A parameter the library's ROS 1 spec reads and its ROS 2 spec does not (``topicName``
+    of velodyne's laser) marks a description written for ROS 1, and the other way round.
+    Empty sets when the library lacks either spec or either spec has no recorded params.
+    """
+    one, two = lookup(filename_or_library, "ros1"), lookup(filename_or_library, "ros2")
+    if one is not None and one.params and two is None:
+        # A ROS 1 library built from the same source as one that has a ROS 2 port reads the
+        # same parameters (velodyne's gpu library: the CPU source built twice,
+        # lmark1/velodyne_simulator@velodyne_gazebo_plugins/CMakeLists.txt:29,36), so the
+        # port's parameters tell the generations apart for it too.
+        two = next(
+            (
+                spec
+                for spec in PLUGINS
+                if spec.ros == "ros2"
+                and spec.params
+                and any(
+                    (sib := lookup(lib, "ros1")) is not None and sib.params == one.params
+                    for lib in spec.libraries
+                )
+            ),
+            None,
+        )
+    if one is None or two is None or not one.params or not two.params:
+        return frozenset(), frozenset()
+    return one.params - two.params, two.params - one.params

@@ -106,12 +106,26 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
         ROS2_LIBRARIES,
         ROS2_ONLY,
     )
+    from sensorkit.knowledge.plugins import generation_params
     from sensorkit.model.robot import local
     from sensorkit.model.sensors import all_plugins
 
     out = Ros1Evidence()
     for p in all_plugins(robot):
         lib = p.library
+        # A third-party plugin with a ROS 1 and a ROS 2 spec in sensorkit.knowledge.plugins:
+        # the parameters only one generation's source reads say which one the file targets
+        # (velodyne's ROS 1 plugin reads <topicName>/<frameName>, its ROS 2 port <ros> and
+        # <frame_name>; the sources are cited on the specs).
+        ros1_only, ros2_only = generation_params(p.filename)
+        if ros1_only or ros2_only:
+            for el in p.param_elements():
+                tag = local(el)
+                if tag in ros1_only:
+                    out.tags.append(tag)
+                elif tag in ros2_only:
+                    out.ros2.append(f"{p.filename} <{tag}>")
+            continue
         if not lib.startswith("gazebo_ros"):
             continue
         name = lib[len("gazebo_ros_") :] if lib.startswith("gazebo_ros_") else lib

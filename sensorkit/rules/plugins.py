@@ -324,11 +324,16 @@ def _info_topic(s: Sensor, base: str) -> str:
 @rule(
     "SK604",
     "error",
-    "two plugins resolve to the same ROS node name (gazebo_ros refuses the second)",
+    "two plugins resolve to the same ROS 2 node name (gazebo_ros refuses the second)",
     "gazebo_ros, at run time",
 )
 def node_names(ctx: Context) -> Iterator[Finding]:
-    if is_gz(ctx.target):
+    if is_gz(ctx.target) or ctx.target == "ros1":
+        # ROS 1: gzserver is one ROS node, "gazebo" (ros-simulation/gazebo_ros_pkgs@noetic-devel
+        # f9e1a46:gazebo_ros/src/gazebo_ros_api_plugin.cpp:126 ros::init(..., "gazebo")), and
+        # plugins only open ros::NodeHandles in it (gazebo_plugins/src/gazebo_ros_camera_utils.cpp:288;
+        # velodyne: tier4/velodyne_simulator@master fe021b6:velodyne_gazebo_plugins/src/
+        # GazeboRosVelodyneLaser.cpp:169): a plugin's name="..." names no node, so none clash.
         return
     from sensorkit.knowledge import plugins as known
     from sensorkit.knowledge.gazebo_ros import ROS2_LIBRARIES

@@ -243,7 +243,7 @@ def camera_fov(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK405",
     "error/warning",
-    "clip 0 < near < far (error); near < 0.01 m, or far/near > 1e4 (warning: depth precision); "
+    "clip 0 < near < far (error); near < 0.01 m, or on Gazebo Sim far/near > 1e4 (warning: depth precision); "
     "min_depth/max_depth inside the clip range",
 )
 def camera_clip(ctx: Context) -> Iterator[Finding]:
@@ -282,7 +282,13 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
                         sensor=s.name,
                         fix="use near >= 0.01 m (0.05 is typical)",
                     )
-                elif far / near > 1e4:
+                elif far / near > 1e4 and is_gz(ctx.target):
+                    # Not on Gazebo Classic: its depth camera writes the linear view depth
+                    # (depth = gl_Position.w) as float32, not the non-linear z-buffer value
+                    # (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:9,
+                    # @f62d0cd:depth_map.frag:12; gazebo/rendering/DepthCamera.cc
+                    # CreateDepthTexture, PF_FLOAT32_R with material Gazebo/DepthMap), so a
+                    # large far/near does not coarsen the published depth (seen on agilexrobotics/limo_ros2).
                     yield ctx.finding(
                         "SK405",
                         Severity.WARNING,
