@@ -29,6 +29,7 @@ from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
 
 if TYPE_CHECKING:
+    from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.loading.untrusted import Untrusted
 
 
@@ -46,6 +47,9 @@ class Options:
     bridges: tuple[str, ...] = ()  # ros_gz_bridge YAML files (none: look in the package's config/)
     untrusted: Untrusted | None = None  # --untrusted: see sensorkit.loading.untrusted
     target_origin: str = "--target"  # where a target other than auto came from
+    # Bridge entries not on disk yet, read as if in the first bridge file: add-* checks
+    # a sensor together with the entries the same add appends to the package's bridge.
+    bridge_pending: tuple[BridgeTopic, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -168,6 +172,7 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
             out.topics.extend(read_bridge(p, display_path(p)))
         except BridgeError as exc:
             raise UsageError(f"--bridge {exc}") from None
+    out.topics.extend(options.bridge_pending)
     return out
 
 

@@ -84,7 +84,8 @@ SimOpt = Annotated[
     Sim | None,
     typer.Option(
         "--sim",
-        help="simulator the sensor block is for [macro default: classic]",
+        help="simulator the sensor block is for [default: the robot's: its other sensors' "
+        "sim expression, else what --target auto sees, else classic]",
         show_default=False,
     ),
 ]
@@ -402,6 +403,8 @@ def _run(
         if was_enabled:
             gc.enable()
     leave_quickly()  # every write is done (add_sensor returned): skip freeing the model
+    if result.simulator:
+        typer.echo(f"sensorkit: {result.simulator}", err=True)
     for note in result.notes:
         typer.echo(f"sensorkit: note: {note}", err=True)
     if diff:
@@ -411,6 +414,10 @@ def _run(
     where = display_path(result.target)
     label = result.kind.label
     typer.echo(f"sensorkit: added {label} '{result.name}' to {where} ({made})", err=True)
+    for w in result.package_files:
+        verb = "wrote" if w.original is None else "updated"
+        why = f" ({w.why})" if w.why else ""
+        typer.echo(f"sensorkit: {verb} {display_path(w.path)}{why}", err=True)
 
 
 def _common(
