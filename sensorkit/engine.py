@@ -29,6 +29,7 @@ from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
 
 if TYPE_CHECKING:
+    from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.loading.untrusted import Untrusted
 
 
@@ -48,6 +49,9 @@ class Options:
     target_origin: str = "--target"  # where a target other than auto came from
     # absolute path -> bytes read instead of that file (``-``: the robot read from stdin)
     overlay: dict[str, bytes] = field(default_factory=dict)
+    # Bridge entries not on disk yet, read as if in the first bridge file: add-* checks
+    # a sensor together with the entries the same add appends to the package's bridge.
+    bridge_pending: tuple[BridgeTopic, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -178,6 +182,7 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
             out.topics.extend(read_bridge(p, display_path(p)))
         except BridgeError as exc:
             raise UsageError(f"--bridge {exc}") from None
+    out.topics.extend(options.bridge_pending)
     return out
 
 

@@ -89,7 +89,8 @@ SimOpt = Annotated[
     Sim | None,
     typer.Option(
         "--sim",
-        help="simulator the sensor block is for [macro default: classic]",
+        help="simulator the sensor block is for [default: the robot's: its other sensors' "
+        "sim expression, else what --target auto sees, else classic]",
         show_default=False,
     ),
 ]
@@ -413,6 +414,8 @@ def _run(
         if was_enabled:
             gc.enable()
     leave_quickly()  # every write is done (add_sensor returned): skip freeing the model
+    if result.simulator:
+        note(f"sensorkit: {result.simulator}", quiet)
     for said in result.notes:
         note(f"sensorkit: note: {said}", quiet)
     if diff:
@@ -422,6 +425,10 @@ def _run(
     where = display_path(result.target)
     label = result.kind.label
     note(f"sensorkit: added {label} '{result.name}' to {where} ({made})", quiet)
+    for w in result.package_files:
+        verb = "wrote" if w.original is None else "updated"
+        why = f" ({w.why})" if w.why else ""
+        note(f"sensorkit: {verb} {display_path(w.path)}{why}", quiet)
 
 
 def _common(

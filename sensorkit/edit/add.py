@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import dataclasses
 import difflib
 import functools
 import os
 import posixpath
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -36,8 +37,26 @@ from sensorkit.edit.check import (
 from sensorkit.edit.fragment import Fragment, expand_fragment
 from sensorkit.edit.kinds import KINDS, XACRO_NS, MacroInfo, SensorKind, read_macro, shipped_macro
 from sensorkit.edit.layout import Layout, read_layout
-from sensorkit.edit.render import Lines, fragment_lines, macro_call_lines, render_block
-from sensorkit.errors import EditRefused, InputError, UsageError
+from sensorkit.edit.package import (
+    SPEC_WHY,
+    NewSensor,
+    PackageContext,
+    PackagePlan,
+    find_package,
+    lock_paths,
+    plan_generated,
+    plan_package,
+    read_package,
+)
+from sensorkit.edit.render import (
+    Lines,
+    format_number,
+    fragment_lines,
+    macro_call_lines,
+    render_block,
+)
+from sensorkit.edit.simchoice import choose_simulator
+from sensorkit.errors import EditRefused, InputError, UsageError, WriteFailed
 from sensorkit.findings import Finding
 from sensorkit.loading.document import (
     Document,
@@ -52,6 +71,7 @@ from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:
     from sensorkit.engine import Options
+    from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model import Robot
 
 NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
@@ -78,12 +98,16 @@ class AddRequest:
 
 @dataclass(frozen=True)
 class PlannedWrite:
-    """One file an add writes: ``role`` is ``"robot"`` or ``"macro"``."""
+    """One file an add writes: ``role`` is ``"robot"``, ``"macro"`` (a new copy of a
+    shipped macro) or ``"package"`` (another file of the robot's package, or its robot
+    YAML: ``original`` holds its bytes as planned, None for a new file)."""
 
     path: Path
     data: bytes
     role: str
     mode: int | None = None
+    original: bytes | None = None
+    why: str = ""
 
 
 @dataclass
@@ -106,6 +130,12 @@ class AddResult:
     joints: list[str] = field(default_factory=list)
     sensors: list[str] = field(default_factory=list)
     written: bool = False
+    simulator: str = ""  # where sim came from, when --sim did not say (one line)
+
+    @property
+    def package_files(self) -> list[PlannedWrite]:
+        """The package files the add writes besides the robot file and macro copy."""
+        return [w for w in self.writes if w.role == "package"]
 
     @functools.cached_property
     def diff(self) -> str:
@@ -249,10 +279,12 @@ def _macro_label(info: MacroInfo) -> str:
     return f"the {info.name} macro in {display_path(info.path)}"
 
 
-def _call_attributes(req: AddRequest, info: MacroInfo) -> list[tuple[str, str]]:
+def _call_attributes(
+    req: AddRequest, info: MacroInfo, params: Mapping[str, str]
+) -> list[tuple[str, str]]:
     known = info.names()
     label = _macro_label(info)
-    for key in req.params:
+    for key in params:
         if key in _RESERVED or key not in known:
             offered = ", ".join(n for n in known if n not in _RESERVED)
             msg = f"{label} has no parameter {key!r} (it takes: {offered})"
@@ -265,7 +297,7 @@ def _call_attributes(req: AddRequest, info: MacroInfo) -> list[tuple[str, str]]:
         msg = f"{label} takes no *origin block"
         raise EditRefused(msg)
     attrs = [("name", req.name), ("parent", req.parent)]
-    attrs += [(n, req.params[n]) for n in known if n in req.params]
+    attrs += [(n, params[n]) for n in known if n in params]
     missing = [p.name for p in info.params if p.default is None and p.name not in dict(attrs)]
     if missing:
         msg = f"{label} needs {', '.join(missing)} (no default)"
@@ -351,13 +383,35 @@ def plan_add(req: AddRequest) -> AddResult:
     check_names(robot, req.name, (), where, used)
     check_parent(robot, req.parent, where)
 
+    notes: list[str] = []
+    pkg: PackageContext | None = None
+    if source.resolve() == target.resolve():
+        guarded = req.validation is not None and req.validation.untrusted is not None
+        pkg = read_package(source, data, untrusted=guarded)
+        notes += pkg.notes if pkg is not None else []
+    elif find_package(source) is not None:
+        notes.append(
+            "-o: the package's other files (bridge, README, robot YAML) are left as they are"
+        )
+    params = dict(req.params)
+    if pkg is not None and pkg.spec is not None:
+        _follow_spec(pkg, params)
+
     choice = _choose_macro(kind, xacro_style, target)
-    attrs = _call_attributes(req, choice.info)
+    known = set(choice.info.names())
+    sim = choose_simulator(params, robot, root if xacro_style else None, req.args)
+    params.update({k: v for k, v in sim.values.items() if k in known and k not in params})
+    expressions = {k: v for k, v in sim.expressions.items() if k in known}
+    if pkg is not None and pkg.spec is not None and "sim" not in expressions:
+        _refuse_literal_sim(pkg, params)
+    notes += sim.notes
+    attrs = _call_attributes(req, choice.info, params)
     call = macro_call_lines(kind.macro_name, attrs, req.xyz, req.rpy, include=None)
     frag = expand_fragment(choice.path, kind.macro_name, call)
     check_names(robot, req.name, frag.created(), where, used)
+    written_attrs = [(k, expressions.get(k, v)) for k, v in attrs]
 
-    notes = list(choice.notes)
+    notes += choice.notes
     ns_decl: str | None = None
     inserted_keys: list[str]
     if xacro_style:
@@ -370,7 +424,9 @@ def plan_add(req: AddRequest) -> AddResult:
         if not present and source.resolve().parent == target.resolve().parent:
             present = str(local) in {os.path.abspath(p) for p in robot.document.includes}
         include = None if present else rel
-        lines: Lines = macro_call_lines(kind.macro_name, attrs, req.xyz, req.rpy, include=include)
+        lines: Lines = macro_call_lines(
+            kind.macro_name, written_attrs, req.xyz, req.rpy, include, expressions
+        )
         inserted_keys = ([] if include is None else ["include"]) + [kind.macro_name]
         if "xacro" not in root.nsmap:
             ns_decl = f' xmlns:xacro="{XACRO_NS}"'
@@ -391,6 +447,18 @@ def plan_add(req: AddRequest) -> AddResult:
     new = _splice(data, layout, block, at, ns_decl)
     tail = _check_splice(layout, new, at, ns_decl, inserted_keys, xacro_style, where)
 
+    regenerated: bytes | None = None
+    package = PackagePlan()
+    if pkg is not None:
+        sensor = _new_sensor(req, kind, frag, params, choice.info)
+        if pkg.spec is not None:
+            package = plan_generated(pkg, source, new, sensor)
+        else:
+            package = plan_package(pkg, sensor)
+        notes += package.notes
+        if package.robot is not None:
+            regenerated = package.robot
+
     verdict = _validate(
         req,
         robot=robot,
@@ -398,7 +466,10 @@ def plan_add(req: AddRequest) -> AddResult:
         tail=tail,
         frag=frag,
         xacro_style=xacro_style,
+        bridge_added=package.bridged,
     )
+    if regenerated is not None:
+        new = regenerated  # the same robot (plan_generated checked), as `new` writes it
     if verdict.new_errors:
         first = verdict.new_errors[0]
         more = len(verdict.new_errors) - 1
@@ -414,6 +485,17 @@ def plan_add(req: AddRequest) -> AddResult:
         writes.append(PlannedWrite(choice.copy_to, choice.copy_data, "macro"))
         rel_copy = display_path(choice.copy_to)
         notes.append(f"copied sensorkit's {kind.macro_file} to {rel_copy}")
+    for change in package.changes:
+        if choice.copy_to is not None and change.path.resolve() == choice.copy_to.resolve():
+            if change.new != choice.copy_data:
+                msg = f"internal error: two different copies of {kind.macro_file} planned"
+                raise EditRefused(msg)
+            continue
+        if change.old is not None:
+            check_editable(change.path)
+        writes.append(
+            PlannedWrite(change.path, change.new, "package", change.mode, change.old, change.why)
+        )
     mode = (target if target.exists() else source).stat().st_mode
     writes.append(PlannedWrite(target, new, "robot", mode))
     new_text = new[len(layout.bom) :].decode(layout.encoding)
@@ -423,6 +505,12 @@ def plan_add(req: AddRequest) -> AddResult:
     if choice.copy_to is not None:
         macro_text = choice.copy_data.decode("utf-8", "replace")
         changes.append(("", macro_text, "/dev/null", f"b/{display_path(choice.copy_to)}"))
+    for w in writes:
+        if w.role == "package":
+            shown = display_path(w.path)
+            old_text = "" if w.original is None else w.original.decode("utf-8", "replace")
+            old_label = "/dev/null" if w.original is None else f"a/{shown}"
+            changes.append((old_text, w.data.decode("utf-8", "replace"), old_label, f"b/{shown}"))
     return AddResult(
         kind=kind,
         name=req.name,
@@ -438,6 +526,61 @@ def plan_add(req: AddRequest) -> AddResult:
         links=list(frag.links),
         joints=list(frag.joints),
         sensors=list(frag.sensors),
+        simulator=sim.origin,
+    )
+
+
+def _follow_spec(pkg: PackageContext, params: dict[str, str]) -> None:
+    """In a package its robot YAML generates, ``namespace`` and ``gz_version`` are the
+    YAML's (set once for every sensor there): fill them in, refuse another value."""
+    spec = pkg.spec
+    assert spec is not None and pkg.spec_path is not None
+    for key, value in (("namespace", spec.namespace), ("gz_version", spec.gz_version)):
+        given = params.get(key)
+        if given is None:
+            params[key] = value
+        elif (given.strip("/") if key == "namespace" else given) != value:
+            msg = (
+                f"--{key.replace('_', '-')} {given}: {display_path(pkg.spec_path)}, which "
+                f"generates this package, sets {key} {value!r} for every sensor; change it "
+                "there and run sensorkit new --force, or leave the option out"
+            )
+            raise EditRefused(msg)
+
+
+def _refuse_literal_sim(pkg: PackageContext, params: Mapping[str, str]) -> None:
+    """A sensor fixed to one simulator has no place in a generated package, whose sensors
+    all follow its ``sim`` argument (the robot YAML has one ``sim`` for all)."""
+    assert pkg.spec is not None and pkg.spec_path is not None
+    msg = (
+        f"--sim {params.get('sim')}: every sensor of this package follows its sim argument "
+        f"(default {pkg.spec.sim}, from {display_path(pkg.spec_path)}); leave --sim out, or "
+        f"change sim there and run sensorkit new --force"
+    )
+    raise EditRefused(msg)
+
+
+def _new_sensor(
+    req: AddRequest,
+    kind: SensorKind,
+    frag: Fragment,
+    params: Mapping[str, str],
+    info: MacroInfo,
+) -> NewSensor:
+    def default(key: str) -> str:
+        param = info.param(key)
+        return params.get(key) or (param.default if param and param.default else "")
+
+    return NewSensor(
+        kind=kind.key,
+        name=req.name,
+        parent=req.parent,
+        xyz=[format_number(v) for v in req.xyz],
+        rpy=[format_number(v) for v in req.rpy],
+        options=dict(req.params),
+        sensors=[s for el in frag.elements() for s in el.iter("sensor")],
+        sim=default("sim") or None,
+        gz_version=default("gz_version") or "harmonic",
     )
 
 
@@ -492,6 +635,7 @@ def _validate(
     tail: etree._Element,
     frag: Fragment,
     xacro_style: bool,
+    bridge_added: Sequence[BridgeTopic] = (),
 ) -> Verdict:
     """What the add changes in the validator's findings (``check.compare_added``).
 
@@ -502,6 +646,8 @@ def _validate(
     from sensorkit.engine import Options
 
     options = req.validation or Options(args=dict(req.args), package_paths=req.package_paths)
+    if bridge_added:
+        options = dataclasses.replace(options, bridge_pending=tuple(bridge_added))
     doc = robot.document
     if xacro_style:
         root = etree.Element(doc.root.tag, dict(doc.root.attrib), nsmap=doc.root.nsmap)
@@ -523,10 +669,14 @@ def _validate(
 
 
 def apply_add(result: AddResult) -> AddResult:
-    """Publish a planned add: the macro copy first, then the robot file, each atomically.
+    """Publish a planned add, each file atomically: new files first (the macro copy, new
+    package files), then the package files that change, the robot file, and the robot
+    YAML last.
 
-    Refuses (and writes nothing) when the robot file changed since it was planned. If
-    the robot file cannot be written, a macro copy made for it is removed again.
+    Refuses (and writes nothing) when a file changed since it was planned. If a write
+    fails, the files written before it are put back as they were (their planned bytes)
+    and the new ones removed, so the package is left as it was; if even that fails, the
+    error names the files that could not be put back.
     """
     if result.source.resolve() == result.target.resolve():
         try:
@@ -539,27 +689,68 @@ def apply_add(result: AddResult) -> AddResult:
                 f"{display_path(result.target)} changed while sensorkit worked; nothing was written"
             )
             raise EditRefused(msg)
+    for w in result.writes:
+        if w.role != "package":
+            continue
+        try:
+            now: bytes | None = w.path.read_bytes()
+        except FileNotFoundError:
+            now = None
+        except OSError as exc:
+            msg = f"{display_path(w.path)}: cannot read it again ({exc.strerror})"
+            raise InputError(msg) from None
+        if now != w.original:
+            what = "appeared" if w.original is None else "changed"
+            msg = f"{display_path(w.path)} {what} while sensorkit worked; nothing was written"
+            raise EditRefused(msg)
+
+    def order(w: PlannedWrite) -> int:
+        if w.role == "robot":
+            return 2
+        if w.role == "package" and w.original is not None:
+            return 3 if w.why == SPEC_WHY else 1
+        return 0
+
+    writes = sorted(result.writes, key=order)  # stable: the planned order within a step
     made_dirs: list[Path] = []
     made_files: list[Path] = []
+    replaced: list[tuple[Path, bytes]] = []
     try:
-        for w in result.writes:
-            if w.role == "macro":
+        for w in writes:
+            if w.role == "macro" or (w.role == "package" and w.original is None):
                 if w.path.exists():
                     msg = f"{display_path(w.path)} appeared meanwhile; nothing was written"
                     raise EditRefused(msg)
-                if not w.path.parent.is_dir():
-                    w.path.parent.mkdir()
-                    made_dirs.append(w.path.parent)
-                write_bytes(w.path, w.data)
+                missing = [p for p in [w.path.parent, *w.path.parent.parents] if not p.exists()]
+                for folder in reversed(missing):
+                    folder.mkdir()
+                    made_dirs.append(folder)
+                write_bytes(w.path, w.data, mode=w.mode)
                 made_files.append(w.path)
             else:
                 write_bytes(w.path, w.data, mode=w.mode)
+                if w.role == "package" and w.original is not None:
+                    replaced.append((w.path, w.original))
+                elif w.role == "robot" and result.source.resolve() == w.path.resolve():
+                    replaced.append((w.path, result.original))
     except BaseException:
+        stuck: list[str] = []
+        for path, old in reversed(replaced):
+            try:
+                write_bytes(path, old)
+            except (OSError, WriteFailed):
+                stuck.append(display_path(path))
         for f in made_files:
             f.unlink(missing_ok=True)
         for d in reversed(made_dirs):
             with contextlib.suppress(OSError):
                 d.rmdir()
+        if stuck:
+            msg = (
+                "the add failed part way and these files could not be put back as they "
+                f"were (they hold the new text): {', '.join(stuck)}"
+            )
+            raise WriteFailed(msg) from None
         raise
     result.written = True
     return result
@@ -575,7 +766,8 @@ def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
         return plan_add(req)
     target = req.output if req.output is not None else req.path
     check_editable(target)
-    with editing(req.path, target):
+    # The folders of the robot's package too (bridge, README, robot YAML beside it).
+    with editing(req.path, target, *lock_paths(req.path)):
         result = plan_add(req)
         apply_add(result)
     return result

@@ -7,7 +7,7 @@ Text is produced as ``(depth, line)`` pairs and only turned into characters by
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Iterable, Sequence
 
 from lxml import etree
 
@@ -61,12 +61,20 @@ def macro_call_lines(
     xyz: Sequence[float],
     rpy: Sequence[float],
     include: str | None,
+    expressions: Collection[str] = (),
 ) -> Lines:
-    """``[<xacro:include .../>] <xacro:MACRO a="..."><origin .../></xacro:MACRO>``."""
+    """``[<xacro:include .../>] <xacro:MACRO a="..."><origin .../></xacro:MACRO>``.
+
+    Values are written as literals (``$(`` and ``${`` escaped), except those of the
+    attributes named in ``expressions``, which are xacro expressions taken from the
+    file itself (``sim="$(arg sim)"``) and written as they are.
+    """
     lines: Lines = []
     if include is not None:
         lines.append((0, f'<xacro:include filename="{xml_attr(include)}"/>'))
-    attrs = " ".join(f'{k}="{xml_attr(xacro_literal(v))}"' for k, v in attributes)
+    attrs = " ".join(
+        f'{k}="{xml_attr(v if k in expressions else xacro_literal(v))}"' for k, v in attributes
+    )
     lines.append((0, f"<xacro:{macro_name} {attrs}>"))
     lines.append((1, origin_tag(xyz, rpy)))
     lines.append((0, f"</xacro:{macro_name}>"))

@@ -160,6 +160,19 @@ def detect_target(robot: Robot) -> tuple[str, str]:
     Among gz versions: ``ignition_*`` names mean fortress, a sensor ``<frame_id>`` jetty,
     anything else harmonic.
     """
+    gz, classic, version = _evidence(robot)
+    if len(gz) > len(classic):
+        return version, f"auto: {gz[0]}"
+    if classic:
+        ev = ros1_evidence(robot)
+        if ev.is_ros1:
+            return "ros1", f"auto: written for ROS 1 ({ev.describe()})"
+        return "classic", f"auto: {classic[0]}"
+    return "classic", "auto: no simulator-specific tags; assuming ROS 2 with Gazebo Classic"
+
+
+def _evidence(robot: Robot) -> tuple[list[str], list[str], str]:
+    """(Gazebo Sim evidence, Gazebo Classic evidence, the gz version the former suggests)."""
     from sensorkit.model.sensors import all_plugins
 
     gz: list[str] = []
@@ -178,12 +191,20 @@ def detect_target(robot: Robot) -> tuple[str, str]:
             gz.append(f"<{tag}>")
             fortress |= tag == "ignition_frame_id"
             jetty |= tag == "frame_id"
+    version = "fortress" if fortress else "jetty" if jetty else "harmonic"
+    return gz, classic, version
+
+
+def robot_simulator(robot: Robot) -> tuple[str, str | None, str] | None:
+    """``(sim, gz_version, why)`` the robot's own plugins and sensors say it runs on, as
+    the ``sim`` of sensorkit's macros (``gz`` or ``classic``), or None when nothing in it
+    is simulator-specific. The same evidence and the same weighing as :func:`detect_target`
+    (``add-*`` without ``--sim`` follows what ``validate --target auto`` sees); a ROS 1
+    description gives ``classic``, the only Gazebo Classic the macros write.
+    """
+    gz, classic, version = _evidence(robot)
     if len(gz) > len(classic):
-        version = "fortress" if fortress else "jetty" if jetty else "harmonic"
-        return version, f"auto: {gz[0]}"
+        return "gz", version, gz[0]
     if classic:
-        ev = ros1_evidence(robot)
-        if ev.is_ros1:
-            return "ros1", f"auto: written for ROS 1 ({ev.describe()})"
-        return "classic", f"auto: {classic[0]}"
-    return "classic", "auto: no simulator-specific tags; assuming ROS 2 with Gazebo Classic"
+        return "classic", None, classic[0]
+    return None
