@@ -268,9 +268,18 @@ def t_cli_validate(inp: FuzzInput, work: Path) -> Outcome:
 
 
 def check_add(
-    inp: FuzzInput, work: Path, before: dict[str, bytes], refused: bool, dry_run: bool
+    inp: FuzzInput,
+    work: Path,
+    before: dict[str, bytes],
+    refused: bool,
+    dry_run: bool,
+    cwd: Path | None = None,
 ) -> Outcome:
-    """The add-* contract: refused or dry -> every byte kept; done -> only insertions."""
+    """The add-* contract: refused or dry -> every byte kept; done -> only insertions.
+
+    The result is validated in ``cwd``, the folder the add ran in (None: this process's),
+    as ``$(cwd)`` in a xacro resolves against it.
+    """
     k = inp.knobs
     after = snapshot(work)
     main = inp.case.main
@@ -306,9 +315,10 @@ def check_add(
             return Outcome(inp.target, f"add changed another file {rel}")
     from sensorkit.engine import Options, validate_file
 
-    report = validate_file(
-        work / out_rel, Options(args=dict(inp.case.args), timeout=XACRO_TIMEOUT * 5)
-    )
+    with _cwd(cwd) if cwd is not None else contextlib.nullcontext():
+        report = validate_file(
+            work / out_rel, Options(args=dict(inp.case.args), timeout=XACRO_TIMEOUT * 5)
+        )
     if report.error or report.robot is None or report.internal_errors:
         detail = (
             report.error
@@ -434,7 +444,9 @@ def t_cli_add(inp: FuzzInput, work: Path) -> Outcome:
         )
     if "internal error" in res.stderr:
         return Outcome(inp.target, "add noted a validator internal error", res.stderr[-2000:])
-    return check_add(inp, work, before, res.exit_code == 2, bool(inp.knobs.get("dry_run")))
+    return check_add(
+        inp, work, before, res.exit_code == 2, bool(inp.knobs.get("dry_run")), cwd=work
+    )
 
 
 def t_intrinsics(inp: FuzzInput, work: Path) -> Outcome:
@@ -608,7 +620,7 @@ def t_cli_subprocess(inp: FuzzInput, work: Path) -> Outcome:
     if command == "add":
         if res.returncode == 1:
             return Outcome(inp.target, "add exited 1 (0: added, 2: refused)", res.stderr[-2000:])
-        return check_add(inp, work, before, res.returncode == 2, bool(k.get("dry_run")))
+        return check_add(inp, work, before, res.returncode == 2, bool(k.get("dry_run")), cwd=work)
     return Outcome(inp.target, note=f"exit {res.returncode}")
 
 
