@@ -39,7 +39,8 @@ UntrustedOpt = Annotated[
 EnvOpt = Annotated[
     list[str] | None,
     typer.Option(
-        "--env", help="with --untrusted: an environment variable xacro may read (repeatable)",
+        "--env",
+        help="with --untrusted: an environment variable xacro may read (repeatable)",
         metavar="NAME",
     ),
 ]
@@ -50,6 +51,15 @@ ConfigOpt = Annotated[
         help="settings file (sensorkit.toml, or pyproject.toml with [tool.sensorkit]); "
         "default: the nearest one above the robot file",
         metavar="FILE",
+    ),
+]
+FailOnOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--fail-on",
+        help="lowest severity that fails: error | warning | info (default: the settings "
+        "file's, else error)",
+        show_default=False,
     ),
 ]
 FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
@@ -70,7 +80,9 @@ def parse_xacro_args(items: list[str] | None) -> dict[str, str]:
 def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     """The ``Untrusted`` setting for ``--untrusted``/``--env``, or None (trusted input)."""
     if env and not untrusted:
-        die("--env only means something with --untrusted (trusted input sees the whole environment)")
+        die(
+            "--env only means something with --untrusted (trusted input sees the whole environment)"
+        )
     if not untrusted:
         return None
     from sensorkit.loading.untrusted import Untrusted
@@ -144,6 +156,24 @@ def settings(
         used.append("args")
     args.update(parse_xacro_args(arg))
     return Settings(target, paths, args, trust, cfg, used)
+
+
+def fail_on_threshold(flag: str | None, cfg: Any, *, never: bool = False) -> Any:
+    """``--fail-on``, else the settings file's ``fail-on``, else error, as a Severity;
+    with ``never`` allowed (render preview), ``never`` is None. A bad value is a usage
+    error naming where it came from."""
+    from sensorkit.errors import UsageError
+    from sensorkit.findings import Severity
+
+    text = flag or cfg.fail_on or "error"
+    where = "--fail-on" if flag else f"{cfg.path}: fail-on"
+    if never and text.strip().lower() == "never":
+        return None
+    try:
+        return Severity.parse(text)
+    except ValueError as exc:
+        msg = f"{where}: {exc}" + (" (or never)" if never else "")
+        raise UsageError(msg) from None
 
 
 def die(message: str, code: int = 2) -> None:

@@ -12,8 +12,10 @@ from sensorkit.cli.common import (
     ArgOpt,
     ConfigOpt,
     EnvOpt,
+    FailOnOpt,
     PackagePathOpt,
     UntrustedOpt,
+    fail_on_threshold,
     handle_errors,
     settings,
 )
@@ -43,10 +45,7 @@ def validate(
         typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
     ] = None,
     fmt: Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)] = "text",
-    fail_on: Annotated[
-        str | None,
-        typer.Option("--fail-on", help="lowest severity that fails: error | warning | info"),
-    ] = None,
+    fail_on: FailOnOpt = None,
     select: Annotated[
         list[str] | None,
         typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
@@ -110,7 +109,6 @@ def validate(
 
     gc.disable()  # a short-lived process building many small acyclic objects
     from sensorkit.errors import UsageError
-    from sensorkit.findings import Severity
     from sensorkit.report import FORMATS, render
 
     if fmt not in FORMATS:
@@ -127,12 +125,13 @@ def validate(
     cfg = st.config
     sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
     ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
-    try:
-        threshold = Severity.parse(fail_on or cfg.fail_on or "error")
-    except ValueError as exc:
-        raise UsageError(f"--fail-on: {exc}") from None
+    threshold = fail_on_threshold(fail_on, cfg)
     st.say_where(
-        tuple(k for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on)) if not flag)
+        tuple(
+            k
+            for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on))
+            if not flag
+        )
     )
     options = Options(
         target=st.target,
@@ -202,9 +201,7 @@ def rules(
         list[str] | None,
         typer.Argument(help="explain these rules (ids such as SK502)", show_default=False),
     ] = None,
-    fmt: Annotated[
-        str, typer.Option("--format", "-f", help="text, json or markdown")
-    ] = "text",
+    fmt: Annotated[str, typer.Option("--format", "-f", help="text, json or markdown")] = "text",
 ) -> None:
     """List every rule (id, severity, fixable, what it checks), or explain the ones named."""
     import json
@@ -219,7 +216,9 @@ def rules(
     wanted = [i.upper() for i in ids or []]
     unknown = [i for i in wanted if i not in RULES]
     if unknown:
-        raise UsageError(f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)")
+        raise UsageError(
+            f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)"
+        )
     if fmt == "markdown" and not wanted:
         sys.stdout.write(rule_table())
         return

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sensorkit.errors import InputError, UsageError
+from sensorkit.findings import Severity
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
 from sensorkit.model.transforms_np import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
@@ -37,6 +38,7 @@ if TYPE_CHECKING:
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
+    from sensorkit.render.gate import Verdict
     from sensorkit.render.overview import SensorDrawing
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
@@ -57,6 +59,7 @@ class SensorPreview:
     link: str | None
     directory: Path | None = None
     files: dict[str, Path] = field(default_factory=dict)
+    findings: list[Finding] = field(default_factory=list)  # validate's, about this sensor
     checks: list[Check] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     skipped: str | None = None  # why nothing was rendered
@@ -82,14 +85,24 @@ class PreviewResult:
     findings_error: str | None = None
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
+    fail_on: Severity | None = Severity.ERROR  # the gate's threshold; None: never fail
 
     @property
     def status(self) -> str:
+        """The worst check's status (the findings are not in it; see ``verdict``)."""
         return worst([c for s in self.sensors for c in s.checks])
 
     @property
+    def verdict(self) -> Verdict:
+        """Pass or fail at ``fail_on``, from validate's findings and the checks."""
+        from sensorkit.render.gate import verdict
+
+        checks = [(s.name, c) for s in self.sensors for c in s.checks]
+        return verdict(self.findings, self.findings_error, checks, self.fail_on)
+
+    @property
     def failed(self) -> bool:
-        return self.status == "fail"
+        return self.verdict.failed
 
 
 def _say(progress: Progress | None, message: str) -> None:
@@ -300,9 +313,7 @@ def _camera(
 
     out.checks.append(reprojection_check(rc, image, published, run.markers))
     out.checks.append(depth_check(rc, image, depth, run.world.shape_of))
-    out.checks.append(
-        self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels")
-    )
+    out.checks.append(self_occlusion_check(image.body, image.link, run.world.robot_links, "pixels"))
     out.checks.append(orb_check(image.rgb, sensor.kind))
     if sensor.reference is not None:
         out.checks.append(run.pose_check(sensor.reference))
@@ -638,15 +649,25 @@ def _reach(robot_shapes: list[Shape], poses: dict[str, Mat]) -> float:
 
 
 def _validate(
-    path: Path, target: str, args: Mapping[str, str], package_paths: Sequence[str]
+    path: Path,
+    target: str,
+    args: Mapping[str, str],
+    package_paths: Sequence[str],
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
 ) -> tuple[list[Finding] | None, str | None]:
     try:
         from sensorkit.engine import Options, validate_file
     except ImportError as exc:
         return None, f"validate is not available ({exc})"
-    report = validate_file(
-        path, Options(target=target, args=dict(args), package_paths=tuple(package_paths))
+    options = Options(
+        target=target,
+        args=dict(args),
+        package_paths=tuple(package_paths),
+        select=tuple(select),
+        ignore=tuple(ignore),
     )
+    report = validate_file(path, options)
     if report.error:
         return None, report.error
     return list(report.findings), None
@@ -775,6 +796,9 @@ def render_preview(
     force: bool = False,
     untrusted: Untrusted | None = None,
     target_origin: str = "--target",
+    fail_on: Severity | None = Severity.ERROR,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -802,6 +826,11 @@ def render_preview(
         max_rays: the most rays one lidar may cast per scan.
         force: replace a non-empty ``out_dir`` that is not an earlier preview (never the
             working folder, home, a root, nor one holding the robot or the scene).
+        fail_on: the gate (``result.verdict``, the page's header): fail on validate's
+            findings of this severity or above and on checks that fail (``warning``: that
+            warn too); None never fails.
+        select, ignore: validate's rules to run or skip (ids or prefixes), as for
+            ``sensorkit validate``.
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
@@ -834,6 +863,9 @@ def render_preview(
         raise UsageError(msg)
     check_budget(robot, sensors, max_pixels=max_pixels, max_rays=max_rays)
     check_structure(robot, target)
+    from sensorkit.engine import Options
+
+    Options(target=target, select=tuple(select), ignore=tuple(ignore))  # unknown rules: exit 2
     positions = joint_positions(robot, dict(joints or {}))
     poses = link_poses(robot, positions)
     robot_shapes = _robot_shapes(robot, poses)
@@ -930,7 +962,11 @@ def render_preview(
                         robot_boxes.append((lo, hi))
 
         _say(progress, "running validate")
-        findings, findings_error = _validate(path, target, args, package_paths)
+        findings, findings_error = _validate(path, target, args, package_paths, select, ignore)
+        from sensorkit.render.gate import sensor_findings
+
+        for p in previews:
+            p.findings = sensor_findings(findings, p.sensor)
 
         result = PreviewResult(
             out_dir=stage,
@@ -944,6 +980,7 @@ def render_preview(
             findings=findings,
             findings_error=findings_error,
             notes=notes,
+            fail_on=fail_on,
         )
         from sensorkit.render.overview import draw_overview
         from sensorkit.render.png import write_png
