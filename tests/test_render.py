@@ -225,6 +225,17 @@ def test_a_camera_stamped_with_its_body_frame_is_still_rendered(mounts: Path) ->
     overview = read_png((mounts / "overview.png").read_bytes()).astype(np.int64)
     magenta = (np.abs(overview - [230, 0, 200]).sum(axis=2) == 0).sum()
     assert magenta > 20  # the stamped frame is drawn beside the true one
+    # what RViz will show: it reads the depth (optical z) as body_cam_link's z, up. The
+    # camera (at x -0.2, 0.6 m up) looks back at the -x wall: the data lies there, low,
+    # and RViz floats it over the camera, metres up.
+    rviz = sensor(data, "body_cam")["rviz"]
+    assert rviz["frame"] == "body_cam_link" and rviz["points"] > 500
+    assert rviz["centre_true"][0] < -1.5 and rviz["centre_true"][2] < 1.5
+    assert abs(rviz["centre_in_rviz"][0] + 0.2) < 0.5 and rviz["centre_in_rviz"][2] > 2.0
+    picture = read_png((mounts / "body_cam" / "rviz.png").read_bytes()).astype(np.int64)
+    assert (np.abs(picture - [230, 0, 200]).sum(axis=2) == 0).sum() > 200
+    for name in ("pitch_cam", "yaw_cam"):  # stamped right: no RViz view
+        assert "rviz" not in sensor(data, name) and not (mounts / name / "rviz.png").exists()
 
 
 # ---- 3D lidar ----------------------------------------------------------------------------
@@ -510,6 +521,7 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     assert all(w > 0 for w in seen["widths"]), seen["widths"]
     assert seen["sections"] == [s["name"] for s in summary(mounts)["sensors"]]
     assert seen["sections"] == ["pitch_cam", "yaw_cam", "body_cam"]
+    assert seen["rviz"] == ["rviz-body_cam"] and seen["rviz_img"][0] > 0  # not pitch_cam's
     assert seen["verdict"] == "FAIL: 1 error (SK502 body_cam)", seen["verdict"]
     assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
 

@@ -428,6 +428,32 @@ def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
     assert bad.status == "fail" and bad.value == pytest.approx(0.05, abs=1e-3), bad.message
 
 
+# ---- what RViz will show -------------------------------------------------------------------
+def test_rviz_places_data_by_the_stamped_frame() -> None:
+    from sensorkit.render.rviz import MISMATCH, PANEL, Misplaced, camera_points, draw_rviz
+
+    # a scan whose frame is turned 90 degrees left of where the lidar looks
+    T_true = transform((0.0, 0.0, 1.0))
+    T_stamped = transform((0.0, 0.0, 1.0), (0.0, 0.0, math.pi / 2))
+    pts = np.array([[2.0, 0.0, 0.0], [3.0, 1.0, 0.0]])
+    m = Misplaced("laser_mount", T_true, T_stamped, pts, 0, 1.0)
+    np.testing.assert_allclose(m.true_world(pts), [[2, 0, 1], [3, 1, 1]], atol=1e-12)
+    np.testing.assert_allclose(m.stamped_world(pts), [[0, 2, 1], [-1, 3, 1]], atol=1e-12)
+    np.testing.assert_allclose(m.forward(), [[1, 0, 1], [0, 1, 1]], atol=1e-12)
+    assert m.to_dict()["centre_moved_m"] == pytest.approx(math.hypot(3.0, 2.0))
+    image = draw_rviz(m, (31, 119, 180))
+    assert image.shape == (PANEL[1], 2 * PANEL[0] + 6, 3)
+    magenta = (image == MISMATCH).all(axis=2)
+    assert magenta[:, : PANEL[0]].sum() > 20 and magenta[:, PANEL[0] + 6 :].sum() > 20
+    # a camera's depth as points in its optical frame: a flat wall 2 m ahead
+    depth = np.full((3, 4), 2.0, dtype=np.float32)
+    depth[0, 0] = np.inf  # nothing there: no point
+    points, corners = camera_points(depth, fx=2.0, fy=2.0, cx=1.5, cy=1.0, reach=4.0)
+    assert len(points) == 11 and np.allclose(points[:, 2], 2.0)
+    np.testing.assert_allclose(points[0], [(1 - 1.5) / 2 * 2, (0 - 1.0) / 2 * 2, 2.0])
+    np.testing.assert_allclose(corners[2], [(3 - 1.5) / 2 * 4, (2 - 1.0) / 2 * 4, 4.0])
+
+
 # ---- rendering in several processes --------------------------------------------------------
 def test_sensors_are_split_over_processes_by_work() -> None:
     from sensorkit.render.preview import _cost, _groups, _plan

@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from sensorkit.model.sensors import CameraSpec, Sensor
     from sensorkit.render.gate import Verdict
     from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.rviz import Misplaced
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
 
@@ -345,9 +346,14 @@ def _camera(
         origin + rc.T_world_optical[:3, 2] * axis_len,
         [end(0), end(1)],
     )
-    if fcheck.status == "warn" and T_frame is not None:
+    if fcheck.status == "warn" and T_frame is not None and frame is not None:
+        from sensorkit.render.rviz import Misplaced, camera_points
+
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 2] * axis_len
+        pts, corners = camera_points(depth, rc.fx, rc.fy, rc.cx, rc.cy, rc.skew, axis_len)
+        seen = Misplaced(frame, rc.T_world_optical, T_frame, pts, 2, axis_len, corners)
+        _show_misplaced(out, drawing, seen)
     out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
     return out, drawing
 
@@ -435,11 +441,34 @@ def _lidar(
         [],
         world_pts[finite],
     )
-    if fcheck.status == "warn" and T_frame is not None:
+    if fcheck.status == "warn" and T_frame is not None and frame is not None:
+        from sensorkit.render.rviz import Misplaced, lidar_points
+
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 0] * min(fwd, 1.0)
+        seen = Misplaced(frame, T_render, T_frame, lidar_points(scan.points), 0, min(fwd, 1.0))
+        _show_misplaced(out, drawing, seen)
     out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
     return out, drawing
+
+
+def _show_misplaced(out: SensorPreview, drawing: SensorDrawing, seen: Misplaced) -> None:
+    """Data stamped with a frame that is not where the sensor looks: put it where RViz
+    will, in the overview (magenta) and in rviz.png (from above and from the side)."""
+    from sensorkit.render.png import write_png
+    from sensorkit.render.rviz import draw_rviz, moved_text
+
+    drawing.published_hits = seen.stamped_world(seen.points)
+    if seen.frustum is not None:
+        drawing.published_edges = list(seen.stamped_world(seen.frustum))
+    assert out.directory is not None
+    out.files["rviz_png"] = out.directory / "rviz.png"
+    write_png(out.files["rviz_png"], draw_rviz(seen, drawing.colour))
+    out.info["rviz"] = seen.to_dict()
+    out.notes.append(
+        f"RViz will place this data in {seen.frame!r}, not where the sensor sees it: "
+        f"{moved_text(seen)} (rviz.png)"
+    )
 
 
 def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | SensorPreview]:
@@ -543,6 +572,7 @@ def _preload(jobs: list[_Job], target: str) -> None:
         "sensorkit.render.overview",
         "sensorkit.render.png",
         "sensorkit.render.raster",
+        "sensorkit.render.rviz",
         "sensorkit.sensorinfo",
     ]
     if any(j.cam is not None for j in jobs):

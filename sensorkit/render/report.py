@@ -149,6 +149,7 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict.pass{background:#e8f6ea;border-color:#17702a;color:#115420}
 .verdict.never{background:#f0f0f0;border-color:#888;color:#333}
 .verdict ul{font-size:13px;font-weight:400;margin:6px 0 0;padding-left:20px}
+.rviz{border-color:#e600c8 !important}
 """
 
 
@@ -177,6 +178,7 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
     parts = [
         f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}{_counts(s)}</h3>',
         _sensor_findings_html(s),
+        _rviz_html(s),
     ]
     if s.skipped:
         parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
@@ -291,6 +293,23 @@ def _sensor_findings_html(s: SensorPreview) -> str:
     return f"<ul class='findings' id='findings-{e(s.name)}'>{rows}</ul>"
 
 
+def _rviz_html(s: SensorPreview) -> str:
+    """What RViz will show, for a sensor whose data is stamped with another frame."""
+    if "rviz_png" not in s.files:
+        return ""
+    e = html.escape
+    frame = s.info.get("rviz", {}).get("frame", "?")
+    caption = (
+        f"What RViz will show: {s.name}'s data placed by the frame it is stamped with, "
+        f"{frame!r} (magenta), beside where the sensor really sees it (its colour). Left: "
+        "from above; right: from the side, along the sensor's heading."
+    )
+    return (
+        f"<div class='imgs'><figure class='rviz' id='rviz-{e(s.name)}'>"
+        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{e(caption)}</figcaption></figure></div>"
+    )
+
+
 def _verdict_html(result: PreviewResult) -> str:
     e = html.escape
     v = result.verdict
@@ -358,7 +377,7 @@ def write_index(result: PreviewResult) -> None:
 {_findings_html(result)}
 <h2>Overview</h2>
 <div class="imgs"><figure>{_img(result.files["overview"], "overview")}
-<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Dashed magenta: the forward axis of the frame its data is stamped with, when that differs.</figcaption></figure>
+<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Magenta, when the frame its data is stamped with differs: that frame's forward axis (dashed) and the data as RViz will place it.</figcaption></figure>
 <table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
 <h2>Sensors</h2>
 {"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
