@@ -150,6 +150,7 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict.never{background:#f0f0f0;border-color:#888;color:#333}
 .verdict ul{font-size:13px;font-weight:400;margin:6px 0 0;padding-left:20px}
 .rviz{border-color:#e600c8 !important}
+.findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
 """
 
 
@@ -337,7 +338,7 @@ def _findings_html(result: PreviewResult) -> str:
     if not result.findings:
         return "<p class='ok'>validate found nothing to report.</p>"
     rows = []
-    for f in result.findings:
+    for f in sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key())):
         where = f"{f.file}:{f.line}" if f.line else (f.file or "")
         fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
         rows.append(
