@@ -38,11 +38,13 @@ if TYPE_CHECKING:
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
-    from sensorkit.render.gate import Verdict
     from sensorkit.render.overview import SensorDrawing
-    from sensorkit.render.rviz import Misplaced
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
+
+if TYPE_CHECKING:  # the gate and the RViz view
+    from sensorkit.render.gate import Verdict
+    from sensorkit.render.rviz import Misplaced
 
 __all__ = ["PreviewResult", "SensorPreview", "render_preview"]
 
@@ -83,10 +85,10 @@ class PreviewResult:
     sensors: list[SensorPreview]
     files: dict[str, Path] = field(default_factory=dict)  # summary, overview, index
     findings: list[Finding] | None = None  # validate's; None when it could not run
+    fail_on: Severity | None = Severity.ERROR  # the gate's threshold; None: never fail
     findings_error: str | None = None
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
-    fail_on: Severity | None = Severity.ERROR  # the gate's threshold; None: never fail
 
     @property
     def status(self) -> str:

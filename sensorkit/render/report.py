@@ -361,7 +361,7 @@ def write_index(result: PreviewResult) -> None:
         if "colour" in s.info
     )
     skipped = "".join(
-        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status('skipped')}{_counts(s)}</td></tr>"
+        f"<tr><td><a href='#{e(s.name)}'>{e(s.name)}</a></td><td>{e(s.type)}</td><td>{_status('skipped')}</td></tr>"
         for s in result.sensors
         if "colour" not in s.info
     )
