@@ -429,7 +429,8 @@ def _chromium() -> str:
 
 # Injected into a copy of index.html: records console errors and failed loads from the
 # start, adds a broken control image (proves the checks can fail here), and on load
-# writes what it saw into <pre id="probe-result"> for --dump-dom.
+# decodes every picture (<img>, and SVG <image> under labels) and writes what it saw into
+# <pre id="probe-result"> for --dump-dom.
 _PROBE = """<script>
 window.__seen = [];
 const __error = console.error;
@@ -438,16 +439,25 @@ window.addEventListener("error", (e) => {
   const t = e.target;
   window.__seen.push(t && t.tagName ? "load-failed: " + (t.id || t.tagName) : "error: " + e.message);
 }, true);
-window.addEventListener("load", () => {
+async function __width(src) {
+  const i = new Image();
+  i.src = src;
+  try { await i.decode(); } catch (e) { return 0; }
+  return i.naturalWidth;
+}
+window.addEventListener("load", async () => {
   console.error("probe-control");
   const control = document.getElementById("probe-control");
   const imgs = [...document.images].filter((i) => i !== control);
+  const svg = [...document.querySelectorAll("image")].map(
+    (i) => i.getAttribute("href") || i.getAttribute("xlink:href"));
+  const svgWidths = await Promise.all(svg.map(__width));
   const verdict = document.getElementById("verdict");
   const overview = [...document.querySelectorAll("h2")].find((h) => h.textContent === "Overview");
   const out = document.createElement("pre");
   out.id = "probe-result";
   out.textContent = JSON.stringify({
-    widths: imgs.map((i) => i.naturalWidth),
+    widths: imgs.map((i) => i.naturalWidth).concat(svgWidths),
     control: control.naturalWidth,
     sections: [...document.querySelectorAll("h3[id]")].map((h) => h.id),
     rviz: [...document.querySelectorAll("figure.rviz")].map((f) => f.id),
