@@ -21,7 +21,10 @@ import pytest
 from typer.testing import CliRunner
 
 from sensorkit.cli import app
+from sensorkit.findings import Finding, Severity
 from sensorkit.render import render_preview
+from sensorkit.render.checks import Check
+from sensorkit.render.gate import verdict
 from sensorkit.render.png import read_png
 
 HERE = Path(__file__).parent / "render_robots"
@@ -30,6 +33,8 @@ WALL_SCENE = HERE / "wall_scene.urdf"
 MOUNTS_BOT = HERE / "mounts_bot.urdf"
 GZ_BOT = HERE / "gz_bot.urdf"
 OCCLUDED_BOT = HERE / "occluded_bot.urdf"
+ROOT = Path(__file__).parent.parent
+SK502_BAD = Path(__file__).parent / "robots" / "acceptance" / "sk502_bad.urdf"
 CM = 0.01
 
 # marker centres of wall_scene.urdf (world = scene root), all radius 0.06
@@ -220,6 +225,17 @@ def test_a_camera_stamped_with_its_body_frame_is_still_rendered(mounts: Path) ->
     overview = read_png((mounts / "overview.png").read_bytes()).astype(np.int64)
     magenta = (np.abs(overview - [230, 0, 200]).sum(axis=2) == 0).sum()
     assert magenta > 20  # the stamped frame is drawn beside the true one
+    # what RViz will show: it reads the depth (optical z) as body_cam_link's z, up. The
+    # camera (at x -0.2, 0.6 m up) looks back at the -x wall: the data lies there, low,
+    # and RViz floats it over the camera, metres up.
+    rviz = sensor(data, "body_cam")["rviz"]
+    assert rviz["frame"] == "body_cam_link" and rviz["points"] > 500
+    assert rviz["centre_true"][0] < -1.5 and rviz["centre_true"][2] < 1.5
+    assert abs(rviz["centre_in_rviz"][0] + 0.2) < 0.5 and rviz["centre_in_rviz"][2] > 2.0
+    picture = read_png((mounts / "body_cam" / "rviz.png").read_bytes()).astype(np.int64)
+    assert (np.abs(picture - [230, 0, 200]).sum(axis=2) == 0).sum() > 200
+    for name in ("pitch_cam", "yaw_cam"):  # stamped right: no RViz view
+        assert "rviz" not in sensor(data, name) and not (mounts / name / "rviz.png").exists()
 
 
 # ---- 3D lidar ----------------------------------------------------------------------------
@@ -404,10 +420,65 @@ def test_importing_the_cli_does_not_import_pybullet() -> None:
     assert proc.returncode == 0, proc.stderr
 
 
-def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
+def _chromium() -> str:
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
         pytest.fail("Chromium is missing: apt-get install chromium (bash tests/run installs it)")
+    return browser
+
+
+# Injected into a copy of index.html: records console errors and failed loads from the
+# start, adds a broken control image (proves the checks can fail here), and on load
+# decodes every picture (<img>, and SVG <image> under labels) and writes what it saw into
+# <pre id="probe-result"> for --dump-dom.
+_PROBE = """<script>
+window.__seen = [];
+const __error = console.error;
+console.error = function (...a) { window.__seen.push("console: " + a.join(" ")); __error.apply(console, a); };
+window.addEventListener("error", (e) => {
+  const t = e.target;
+  window.__seen.push(t && t.tagName ? "load-failed: " + (t.id || t.tagName) : "error: " + e.message);
+}, true);
+async function __width(src) {
+  const i = new Image();
+  i.src = src;
+  try { await i.decode(); } catch (e) { return 0; }
+  return i.naturalWidth;
+}
+window.addEventListener("load", async () => {
+  console.error("probe-control");
+  const control = document.getElementById("probe-control");
+  const imgs = [...document.images].filter((i) => i !== control);
+  const svg = [...document.querySelectorAll("image")].map(
+    (i) => i.getAttribute("href") || i.getAttribute("xlink:href"));
+  const svgWidths = await Promise.all(svg.map(__width));
+  const verdict = document.getElementById("verdict");
+  const overview = [...document.querySelectorAll("h2")].find((h) => h.textContent === "Overview");
+  const out = document.createElement("pre");
+  out.id = "probe-result";
+  out.textContent = JSON.stringify({
+    widths: imgs.map((i) => i.naturalWidth).concat(svgWidths),
+    control: control.naturalWidth,
+    sections: [...document.querySelectorAll("h3[id]")].map((h) => h.id),
+    rviz: [...document.querySelectorAll("figure.rviz")].map((f) => f.id),
+    rviz_img: [...document.querySelectorAll("figure.rviz img")].map((i) => i.naturalWidth),
+    verdict: verdict ? verdict.firstChild.textContent : null,
+    verdict_class: verdict ? verdict.className : null,
+    verdict_first: !!(verdict && overview && (verdict.compareDocumentPosition(overview) & 4)),
+    seen: window.__seen,
+  });
+  document.body.appendChild(out);
+});
+</script>"""
+
+
+def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Path) -> None:
+    """The page as a browser shows it: every sensor's section, the verdict at the top, the
+    RViz view for the mis-stamped camera only, every picture decoded, no console error."""
+    import html as html_lib
+    import re
+
+    browser = _chromium()
     shot = tmp_path / "shot.png"
     subprocess.run(
         [
@@ -427,6 +498,42 @@ def test_index_html_in_headless_chromium(wall: Path, tmp_path: Path) -> None:
     assert data.startswith(b"\x89PNG")
     # a blank page compresses to a few kilobytes; the preview's pictures do not
     assert len(data) > 50_000
+
+    page = (mounts / "index.html").read_text()
+    control = '<img id="probe-control" alt="control" src="data:image/png;base64,AAAA">'
+    probed = tmp_path / "probed.html"
+    probed.write_text(
+        page.replace("<head>", "<head>" + _PROBE, 1).replace("</body>", control + "</body>", 1)
+    )
+    proc = subprocess.run(
+        [
+            browser,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--virtual-time-budget=10000",
+            "--dump-dom",
+            probed.as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    found = re.search(r'<pre id="probe-result">(.*?)</pre>', proc.stdout, re.S)
+    assert found, proc.stdout[-2000:] + proc.stderr[-2000:]
+    seen = json.loads(html_lib.unescape(found.group(1)))
+    # the control: a broken picture and a console error are caught here
+    assert seen["control"] == 0
+    assert {"load-failed: probe-control", "console: probe-control"} <= set(seen["seen"])
+    assert [s for s in seen["seen"] if "probe-control" not in s] == []  # the page's own: none
+    assert len(seen["widths"]) == page.count("data:image/png;base64,") >= 6
+    assert all(w > 0 for w in seen["widths"]), seen["widths"]
+    assert seen["sections"] == [s["name"] for s in summary(mounts)["sensors"]]
+    assert seen["sections"] == ["pitch_cam", "yaw_cam", "body_cam"]
+    assert seen["rviz"] == ["rviz-body_cam"] and seen["rviz_img"][0] > 0  # not pitch_cam's
+    assert seen["verdict"] == "FAIL: 1 error (SK502 body_cam)", seen["verdict"]
+    assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
 
 
 def test_forked_cameras_give_the_same_files(
@@ -481,3 +588,123 @@ def test_multicamera_renders_each_camera_from_its_own_pose(tmp_path: Path) -> No
     a = (tmp_path / "stereo" / "left" / "rgb.png").read_bytes()
     b = (tmp_path / "stereo" / "right" / "rgb.png").read_bytes()
     assert a != b
+
+
+# ---- the gate: --fail-on, the verdict, exit status -------------------------------------
+def _f(rule: str, severity: Severity, sensor: str | None = "cam") -> Finding:
+    return Finding(rule, severity, f"{rule} says something about {sensor}", sensor=sensor)
+
+
+def test_the_verdict_fails_at_or_above_fail_on_and_on_failed_checks() -> None:
+    sk502, sk407 = _f("SK502", Severity.ERROR), _f("SK407", Severity.WARNING)
+    ok, warned = Check("depth", "ok", ""), Check("self_occlusion", "warn", "2% hit the robot")
+    failed = Check("reprojection", "fail", "20 px off")
+    v = verdict([sk502, sk407], None, [("cam", ok), ("cam", warned)], Severity.ERROR)
+    assert v.failed and v.text == "FAIL: 1 error (SK502 cam)"
+    assert v.reasons == ["error: SK502 cam: SK502 says something about cam"]
+    assert v.findings == {"error": 1, "warning": 1, "info": 0} and v.checks["warn"] == 1
+    v = verdict([sk407], None, [("cam", warned)], Severity.ERROR)  # near miss
+    assert not v.failed and v.text.startswith("PASS: no finding or check at or above error")
+    v = verdict([sk407], None, [("cam", warned)], Severity.WARNING)
+    assert v.failed and v.text == "FAIL: 1 warning (SK407 cam), 1 warned check (cam self_occlusion)"
+    v = verdict([], None, [("cam", ok), ("lidar", failed)], Severity.ERROR)
+    assert v.failed and v.text == "FAIL: 1 failed check (lidar reprojection)"
+    v = verdict([sk502], None, [("lidar", failed)], None)  # --fail-on never
+    assert not v.failed and v.text.startswith("NOT GATED (--fail-on never): validate: 1 error")
+    v = verdict(None, "xacro took too long", [("cam", ok)], Severity.ERROR)
+    assert v.failed and v.text == "FAIL: validate could not run"
+    assert "xacro took too long" in v.reasons[0]
+    many = [_f("SK502", Severity.ERROR, f"cam{i}") for i in range(12)]
+    v = verdict(many, None, [], Severity.ERROR)
+    assert v.text == "FAIL: 12 errors (SK502 cam0, SK502 cam1, SK502 cam10 and 9 more)"
+    assert len(v.reasons) == 12
+
+
+def _verdict_on_page(page: str) -> str:
+    import re
+
+    found = re.search(r"<div id='verdict' class='verdict (\w+)'>([^<]*)", page)
+    assert found, "no verdict on the page"
+    assert page.index("id='verdict'") < page.index("<h2>Overview</h2>")  # at the top
+    return f"{found.group(1)}: {found.group(2)}"
+
+
+def test_a_mis_stamped_camera_fails_the_preview_and_the_header_says_why(tmp_path: Path) -> None:
+    out = tmp_path / "p"
+    result = CliRunner().invoke(app, ["render", "preview", str(SK502_BAD), "--out", str(out)])
+    assert result.exit_code == 1, result.output
+    assert "FAIL: 1 error (SK502 front_camera)" in result.output
+    assert "error: SK502 front_camera: camera 'front_camera' stamps its images" in result.output
+    page = (out / "index.html").read_text()
+    assert _verdict_on_page(page) == "fail: FAIL: 1 error (SK502 front_camera)"
+    data = summary(out)
+    assert data["verdict"]["status"] == "fail" and data["verdict"]["findings"]["error"] == 1
+    cam = sensor(data, "front_camera")
+    assert [f["rule"] for f in cam["findings"]] == ["SK502"]
+    assert page.index("id='findings-front_camera'") < page.index("rgb.png")  # top of its section
+    # --fail-on never: the same page, not gated
+    result = CliRunner().invoke(
+        app, ["render", "preview", str(SK502_BAD), "--out", str(out), "--fail-on", "never"]
+    )
+    assert result.exit_code == 0, result.output
+    page = (out / "index.html").read_text()
+    assert _verdict_on_page(page).startswith(
+        "never: NOT GATED (--fail-on never): validate: 1 error"
+    )
+    # --exit-zero (as validate's): the verdict still fails and says so, the exit is 0
+    result = CliRunner().invoke(
+        app, ["render", "preview", str(SK502_BAD), "--out", str(out), "--exit-zero"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "FAIL: 1 error (SK502 front_camera)" in result.output
+
+
+def test_fail_on_from_the_flag_and_the_settings_file(tmp_path: Path) -> None:
+    robot = tmp_path / "wall_bot.urdf"
+    shutil.copy(WALL_BOT, robot)  # validate: one SK304 info, nothing else
+    laser = ["--sensor", "laser"]
+    runner = CliRunner()
+    result = runner.invoke(
+        app, ["render", "preview", str(robot), "-o", str(tmp_path / "a"), *laser]
+    )
+    assert result.exit_code == 0 and "PASS" in result.output, result.output
+    args = ["render", "preview", str(robot), "-o", str(tmp_path / "b"), *laser, "--fail-on", "info"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 1 and "FAIL: 1 info (SK304 base_link)" in result.output
+    (tmp_path / "sensorkit.toml").write_text('fail-on = "info"\n')
+    result = runner.invoke(
+        app, ["render", "preview", str(robot), "-o", str(tmp_path / "c"), *laser]
+    )
+    assert result.exit_code == 1 and "fail-on info from" in result.output, result.output
+    (tmp_path / "sensorkit.toml").write_text('fail-on = "info"\nignore = ["SK304"]\n')
+    result = runner.invoke(
+        app, ["render", "preview", str(robot), "-o", str(tmp_path / "d"), *laser]
+    )
+    assert result.exit_code == 0, result.output  # the settings file's ignore, as validate's
+    result = runner.invoke(app, ["render", "preview", str(robot), "--fail-on", "sometimes"])
+    assert result.exit_code == 2 and "--fail-on: unknown severity 'sometimes'" in result.output
+
+
+CLEAN = [
+    ROOT / "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_robot.urdf.xacro",
+    ROOT / "examples/humble_three_sensors/urdf/robot_with_sensors.xacro",
+    ROOT / "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro",
+    GZ_BOT,
+    WALL_BOT,
+]
+
+
+@pytest.mark.parametrize("robot", CLEAN, ids=[p.name.split(".")[0] for p in CLEAN])
+def test_clean_robots_pass_the_gate_in_the_default_room(robot: Path, tmp_path: Path) -> None:
+    """Every example and clean test robot, lidars included: no check cries wolf."""
+    result = CliRunner().invoke(app, ["render", "preview", str(robot), "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert result.output.rstrip().splitlines()[-1].startswith("PASS: ")
+    data = summary(tmp_path)
+    assert data["verdict"]["status"] == "pass" and data["scene"] == "default"
+    lidars = [s for s in data["sensors"] if "scan" in s]
+    for s in lidars:
+        ranges = next(c for c in s["checks"] if c["name"] == "ranges")
+        assert ranges["status"] == "ok", (s["name"], ranges["message"])
+    if robot != ROOT / "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro":
+        assert lidars, "a lidar robot without a lidar"

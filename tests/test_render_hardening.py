@@ -317,7 +317,7 @@ def test_a_robot_within_the_limit_stays_one_body(wall: Path) -> None:
 
 
 # ---- staged output: --out is replaced whole, or not at all --------------------------------
-STEREO_BOT = HERE / "stereo_bot.urdf"
+STEREO_BOT = HERE / "stereo_bot.urdf"  # SK502/SK503 errors: rendered with --fail-on never here
 
 
 def snapshot(folder: Path) -> dict[str, bytes]:
@@ -338,7 +338,8 @@ def cli(*args: str) -> tuple[int, list[str], str]:
 
     from sensorkit.cli import app
 
-    result = CliRunner().invoke(app, ["render", "preview", *args])
+    # not the gate's tests: stereo_bot's frame errors would exit 1
+    result = CliRunner().invoke(app, ["render", "preview", *args, "--fail-on", "never"])
     lines = [ln for ln in result.output.splitlines() if ln.startswith("sensorkit:")]
     return result.exit_code, lines, result.output
 
@@ -494,7 +495,8 @@ def test_two_renders_into_one_folder_take_turns(old_preview: Path) -> None:
     try:
         assert held.wait(30)
         proc = subprocess.Popen(
-            [sys.executable, "-m", "sensorkit", "render", "preview", str(STEREO_BOT), "--out", str(old_preview)],
+            [sys.executable, "-m", "sensorkit", "render", "preview", str(STEREO_BOT), "--out", str(old_preview),
+             "--fail-on", "never"],
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
             text=True,

@@ -228,7 +228,9 @@ def test_shape_intersections() -> None:
     # a ray parallel to a face, beside the box, never enters it (nor one along an edge's
     # slab but off to the side)
     level = Shape("l", "box", transform((3.0, 0.0, 0.4)), (0.3, 0.3, 0.4))
-    over = level.intersect(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.4]]), np.array([[1.0, 0, 0]] * 2))
+    over = level.intersect(
+        np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.4]]), np.array([[1.0, 0, 0]] * 2)
+    )
     assert np.isnan(over).all()
     assert level.intersect(np.array([[0.0, 0.0, 0.5]]), np.array([[1.0, 0, 0]]))[0] == 2.7
 
@@ -353,6 +355,59 @@ def test_a_2d_lidar_above_the_crates_passes_the_range_check() -> None:
     assert check.status == "ok" and check.details["wrong_shape"] == 0, check.message
 
 
+@pytest.mark.parametrize(
+    ("rows", "cols", "xyz", "pitch", "yaw"),
+    [
+        # pitched 2D lidars: a beam at the foot of a wall or a crate, where the floor meets
+        # it, once failed as "1 beams hit a different known shape than the exact first hit"
+        (1, 720, (-0.382, -0.46, 1.563), 0.229, 2.28),
+        (1, 720, (0.791, -0.66, 1.275), -0.227, -2.199),
+        (1, 1800, (-0.988, 0.442, 0.568), 0.094, 1.109),
+        # a 3D beam on the top edge of a wall, which the exact geometry just misses
+        (32, 720, (0.0, -0.15, 1.911), 0.0, 0.755),
+        # a level beam clipping a crate's corner by 0.4 mm, under pybullet's tolerance:
+        # pybullet sees the wall behind it
+        (
+            1,
+            1800,
+            (0.10011433703800576, -0.8482257974573126, 0.11871156739070256),
+            0.0,
+            -1.868417991343553,
+        ),
+    ],
+)
+def test_range_check_passes_beams_on_edges_within_their_footprint(
+    rows: int, cols: int, xyz: tuple[float, float, float], pitch: float, yaw: float
+) -> None:
+    """A correct scan never fails: where a beam's footprint spans an edge, its range is
+    compared with the exact ranges across the footprint, not with the shape it hit. A
+    range outside the footprint still fails there."""
+    from sensorkit.render.sim import World
+
+    scene = default_scene(0.5)
+    with World() as world:
+        world.add_default_shapes(scene, scene.half_extent)
+        world.refresh_bounds()
+        scan = cast(world, transform(xyz, (0.0, pitch, yaw)), lidar_beams(_lidar_spec(rows, cols)))
+        shapes_of = dict(world.shape_of)
+    good = range_check(scan, shapes_of)
+    assert good.status == "ok" and good.details["wrong_shape"] == 0, good.message
+    # the beams where pybullet hit another shape than the exact first hit, made long
+    sample = check_sample(rows, cols)
+    known = [s for shapes in shapes_of.values() for s in shapes if s.collision]
+    body_of = {id(s): key for key, shapes in shapes_of.items() for s in shapes}
+    _, first, _ = _first_hits(known, scan.origin, scan.dirs_world[sample], 0.3)
+    exact_body = np.array([body_of[id(known[i])][0] if i >= 0 else -1 for i in first])
+    edges = sample[(scan.hits.body[sample] >= 0) & (scan.hits.body[sample] != exact_body)]
+    assert len(edges) == good.details["other_shape_in_footprint"]
+    flat = scan.ranges.reshape(-1)
+    if not len(edges):  # pybullet agreed on every shape: any beams, then
+        edges = sample[np.isfinite(flat[sample])][:5]
+    flat[edges] += 0.5  # beyond their footprint (a grazing one may not be)
+    bad = range_check(scan, shapes_of)
+    assert bad.status == "fail" and 0.1 < bad.value < 0.51, bad.message
+
+
 def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
     """A 4 cm bar across the middle row of a 15-row scan (rows 2 degrees apart): the rows
     above and below miss it, yet its beams are compared, and a wrong range there fails."""
@@ -371,6 +426,32 @@ def test_range_check_compares_an_object_seen_by_a_single_row() -> None:
     scan.ranges[on_bar] += 0.05
     bad = range_check(scan, shapes_of)
     assert bad.status == "fail" and bad.value == pytest.approx(0.05, abs=1e-3), bad.message
+
+
+# ---- what RViz will show -------------------------------------------------------------------
+def test_rviz_places_data_by_the_stamped_frame() -> None:
+    from sensorkit.render.rviz import MISMATCH, PANEL, Misplaced, camera_points, draw_rviz
+
+    # a scan whose frame is turned 90 degrees left of where the lidar looks
+    T_true = transform((0.0, 0.0, 1.0))
+    T_stamped = transform((0.0, 0.0, 1.0), (0.0, 0.0, math.pi / 2))
+    pts = np.array([[2.0, 0.0, 0.0], [3.0, 1.0, 0.0]])
+    m = Misplaced("laser_mount", T_true, T_stamped, pts, 0, 1.0)
+    np.testing.assert_allclose(m.true_world(pts), [[2, 0, 1], [3, 1, 1]], atol=1e-12)
+    np.testing.assert_allclose(m.stamped_world(pts), [[0, 2, 1], [-1, 3, 1]], atol=1e-12)
+    np.testing.assert_allclose(m.forward(), [[1, 0, 1], [0, 1, 1]], atol=1e-12)
+    assert m.to_dict()["centre_moved_m"] == pytest.approx(math.hypot(3.0, 2.0))
+    image = draw_rviz(m, (31, 119, 180))
+    assert image.shape == (PANEL[1], 2 * PANEL[0] + 6, 3)
+    magenta = (image == MISMATCH).all(axis=2)
+    assert magenta[:, : PANEL[0]].sum() > 20 and magenta[:, PANEL[0] + 6 :].sum() > 20
+    # a camera's depth as points in its optical frame: a flat wall 2 m ahead
+    depth = np.full((3, 4), 2.0, dtype=np.float32)
+    depth[0, 0] = np.inf  # nothing there: no point
+    points, corners = camera_points(depth, fx=2.0, fy=2.0, cx=1.5, cy=1.0, reach=4.0)
+    assert len(points) == 11 and np.allclose(points[:, 2], 2.0)
+    np.testing.assert_allclose(points[0], [(1 - 1.5) / 2 * 2, (0 - 1.0) / 2 * 2, 2.0])
+    np.testing.assert_allclose(corners[2], [(3 - 1.5) / 2 * 4, (2 - 1.0) / 2 * 4, 4.0])
 
 
 # ---- rendering in several processes --------------------------------------------------------

@@ -76,6 +76,15 @@ StdinFilenameOpt = Annotated[
         metavar="PATH",
     ),
 ]
+FailOnOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--fail-on",
+        help="lowest severity that fails: error | warning | info (default: the settings "
+        "file's, else error)",
+        show_default=False,
+    ),
+]
 FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
 FileArg = Annotated[Path, typer.Argument(help="a URDF or xacro file", show_default=False)]
 
@@ -170,6 +179,24 @@ def settings(
         used.append("args")
     args.update(parse_xacro_args(arg))
     return Settings(target, paths, args, trust, cfg, used)
+
+
+def fail_on_threshold(flag: str | None, cfg: Any, *, never: bool = False) -> Any:
+    """``--fail-on``, else the settings file's ``fail-on``, else error, as a Severity;
+    with ``never`` allowed (render preview), ``never`` is None. A bad value is a usage
+    error naming where it came from."""
+    from sensorkit.errors import UsageError
+    from sensorkit.findings import Severity
+
+    text = flag or cfg.fail_on or "error"
+    where = "--fail-on" if flag else f"{cfg.path}: fail-on"
+    if never and text.strip().lower() == "never":
+        return None
+    try:
+        return Severity.parse(text)
+    except ValueError as exc:
+        msg = f"{where}: {exc}" + (" (or never)" if never else "")
+        raise UsageError(msg) from None
 
 
 def die(message: str, code: int = 2) -> None:

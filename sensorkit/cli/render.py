@@ -3,7 +3,9 @@
 Thin: parse options, call ``sensorkit.render.render_preview``, print. pybullet (and
 numpy-heavy rendering code) is imported inside the command, so ``sensorkit validate``
 never loads it. Progress goes to stderr; the per-sensor result and the paths written
-go to stdout. Exit status: 0, or 1 when a check failed, 2 when it could not run.
+go to stdout, the verdict last. Exit status: 0; 1 when validate's findings at or above
+--fail-on or a failed check say so (the page's header says which); 2 when it could not
+run.
 """
 
 from __future__ import annotations
@@ -32,6 +34,8 @@ from sensorkit.cli.common import (
     QuietOpt,
     UntrustedOpt,
     die,
+    exit_status,
+    fail_on_threshold,
     handle_errors,
     note,
     refuse_stdin,
@@ -147,13 +151,31 @@ def preview(
     config: ConfigOpt = None,
     quiet: QuietOpt = False,
     color: ColorOpt = "auto",
+    fail_on: Annotated[
+        str | None,
+        typer.Option(
+            "--fail-on",
+            help="lowest severity of validate's findings that fails, and of checks (a failed "
+            "check is an error, a warned one a warning): error | warning | info | never "
+            "(default: the settings file's, else error)",
+            show_default=False,
+        ),
+    ] = None,
+    exit_zero: Annotated[
+        bool,
+        typer.Option(
+            "--exit-zero",
+            help="exit 0 even when the verdict fails (still 2 when the preview cannot run)",
+        ),
+    ] = False,
 ) -> None:
-    """Render every camera and cast every lidar of FILE into --out, with checks.
+    """Render every camera and cast every lidar of FILE into --out, with checks: a gate.
 
     Writes images, depth, ranges and camera_info per sensor, plus summary.json,
-    overview.png and a self-contained index.html. The folder is filled beside --out
-    and swapped in at the end: an interrupted render leaves the old one as it was.
-    Exit status 0; 1 when a check fails; 2 when the preview cannot run.
+    overview.png and a self-contained index.html whose header gives the verdict. The
+    folder is filled beside --out and swapped in at the end: an interrupted render leaves
+    the old one as it was. Exit status 0; 1 when validate finds something at or above
+    --fail-on or a check fails; 2 when the preview cannot run.
     """
     refuse_stdin(file, "render preview renders a file")
     colored = use_color(color, sys.stderr)
@@ -166,7 +188,8 @@ def preview(
         untrusted=untrusted,
         env=env,
     )
-    st.say_where(quiet=quiet)
+    threshold = fail_on_threshold(fail_on, st.config, never=True)
+    st.say_where(() if fail_on else ("fail-on", "select", "ignore"), quiet=quiet)
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
         die(
@@ -176,6 +199,7 @@ def preview(
         )
 
     from sensorkit.render import render_preview
+    from sensorkit.render.gate import found_text
 
     def say(message: str) -> None:
         note(message, quiet)
@@ -208,20 +232,34 @@ def preview(
         force=force,
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
+        fail_on=threshold,
+        select=tuple(st.config.select),
+        ignore=tuple(st.config.ignore),
     )
     for s in result.sensors:
-        typer.echo(f"{s.name}: {s.status}" + (f" ({s.skipped})" if s.skipped else ""))
+        found = found_text(s.findings)
+        typer.echo(
+            f"{s.name}: {s.status}"
+            + (f" ({s.skipped})" if s.skipped else "")
+            + (f"; validate: {found}" if found else "")
+        )
+        for f in s.findings:
+            typer.echo(f"  {f.severity.label}: {f.rule} {f.message}")
         for c in s.checks:
             if c.status in ("warn", "fail"):
                 typer.echo(f"  {c.status}: {c.name}: {c.message}")
     for said in result.notes:
         say(f"note: {said}")
     typer.echo(f"wrote {result.files['index']}")
+    verdict = result.verdict
+    typer.echo(verdict.text)
+    for reason in verdict.reasons if verdict.failed else ():
+        typer.echo(f"  {reason}")
     from sensorkit.cli import leave_quickly
 
     leave_quickly()  # everything is written and pybullet disconnected: skip teardown
-    if result.failed:
-        raise typer.Exit(1)
+    if verdict.failed:
+        raise typer.Exit(exit_status(1, exit_zero=exit_zero))
 
 
 def register(app: typer.Typer) -> None:

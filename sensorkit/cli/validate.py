@@ -14,11 +14,13 @@ from sensorkit.cli.common import (
     ColorOpt,
     ConfigOpt,
     EnvOpt,
+    FailOnOpt,
     PackagePathOpt,
     QuietOpt,
     StdinFilenameOpt,
     UntrustedOpt,
     exit_status,
+    fail_on_threshold,
     handle_errors,
     note,
     settings,
@@ -51,10 +53,7 @@ def validate(
         typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
     ] = None,
     fmt: Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)] = "text",
-    fail_on: Annotated[
-        str | None,
-        typer.Option("--fail-on", help="lowest severity that fails: error | warning | info"),
-    ] = None,
+    fail_on: FailOnOpt = None,
     select: Annotated[
         list[str] | None,
         typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
@@ -131,7 +130,6 @@ def validate(
 
     gc.disable()  # a short-lived process building many small acyclic objects
     from sensorkit.errors import UsageError
-    from sensorkit.findings import Severity
     from sensorkit.report import FORMATS, render
 
     if fmt not in FORMATS:
@@ -152,10 +150,7 @@ def validate(
     cfg = st.config
     sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
     ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
-    try:
-        threshold = Severity.parse(fail_on or cfg.fail_on or "error")
-    except ValueError as exc:
-        raise UsageError(f"--fail-on: {exc}") from None
+    threshold = fail_on_threshold(fail_on, cfg)
     st.say_where(
         tuple(
             k

@@ -6,7 +6,8 @@ own colour: a camera's frustum (edge rays at the middle image row, as far as the
 and optical axis, a lidar's beams to their hits. When the frame the data is stamped with
 does not match where the sensor looks, that frame's forward axis is drawn dashed in
 magenta from the frame's origin, beside the true axis (two magenta rings when that axis
-points straight up or down).
+points straight up or down), with the data (and a camera's frustum) in magenta where
+RViz will place it.
 """
 
 from __future__ import annotations
@@ -56,6 +57,10 @@ class SensorDrawing:
     hits: FloatArray | None = None  # lidar hit points (N, 3)
     published_origin: FloatArray | None = None
     published_axis_end: FloatArray | None = None
+    published_hits: FloatArray | None = (
+        None  # the data where RViz will put it (sensorkit.render.rviz)
+    )
+    published_edges: list[FloatArray] = field(default_factory=list)  # the frustum, likewise
 
 
 class _View:
@@ -133,6 +138,10 @@ def draw_overview(
             pe = view.px(s.published_axis_end[:2])[0]
             true_len = float(np.hypot(*(view.px(s.axis_end[:2])[0] - o)))
             canvas.line(po, pe, MISMATCH, width=2, dash=6)
+            if s.published_hits is not None and len(s.published_hits):
+                canvas.points(view.px(s.published_hits[:, :2]), MISMATCH, radius=1.0)
+            for edge in s.published_edges:
+                canvas.line(po, view.px(edge[:2])[0], MISMATCH)
             if float(np.hypot(*(pe - po))) < max(6.0, 0.2 * true_len):  # it points up or down
                 canvas.circle(po, 9, None, MISMATCH)
                 canvas.circle(po, 12, None, MISMATCH)

@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sensorkit.errors import InputError, UsageError
+from sensorkit.findings import Severity
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
 from sensorkit.model.transforms_np import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
@@ -43,6 +44,10 @@ if TYPE_CHECKING:
     from sensorkit.render.pictures import Figure
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
+
+if TYPE_CHECKING:  # the gate and the RViz view
+    from sensorkit.render.gate import Verdict
+    from sensorkit.render.rviz import Misplaced
 
 __all__ = ["PreviewResult", "SensorPreview", "render_preview"]
 
@@ -60,6 +65,7 @@ class SensorPreview:
     link: str | None
     directory: Path | None = None
     files: dict[str, Path] = field(default_factory=dict)
+    findings: list[Finding] = field(default_factory=list)  # validate's, about this sensor
     checks: list[Check] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     skipped: str | None = None  # why nothing was rendered
@@ -83,6 +89,7 @@ class PreviewResult:
     sensors: list[SensorPreview]
     files: dict[str, Path] = field(default_factory=dict)  # summary, overview, index
     findings: list[Finding] | None = None  # validate's; None when it could not run
+    fail_on: Severity | None = Severity.ERROR  # the gate's threshold; None: never fail
     findings_error: str | None = None
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
@@ -90,11 +97,20 @@ class PreviewResult:
 
     @property
     def status(self) -> str:
+        """The worst check's status (the findings are not in it; see ``verdict``)."""
         return worst([c for s in self.sensors for c in s.checks])
 
     @property
+    def verdict(self) -> Verdict:
+        """Pass or fail at ``fail_on``, from validate's findings and the checks."""
+        from sensorkit.render.gate import verdict
+
+        checks = [(s.name, c) for s in self.sensors for c in s.checks]
+        return verdict(self.findings, self.findings_error, checks, self.fail_on)
+
+    @property
     def failed(self) -> bool:
-        return self.status == "fail"
+        return self.verdict.failed
 
 
 def _say(progress: Progress | None, message: str) -> None:
@@ -341,9 +357,14 @@ def _camera(
         origin + rc.T_world_optical[:3, 2] * axis_len,
         [end(0), end(1)],
     )
-    if fcheck.status == "warn" and T_frame is not None:
+    if fcheck.status == "warn" and T_frame is not None and frame is not None:
+        from sensorkit.render.rviz import Misplaced, camera_points
+
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 2] * axis_len
+        pts, corners = camera_points(depth, rc.fx, rc.fy, rc.cx, rc.cy, rc.skew, axis_len)
+        seen = Misplaced(frame, rc.T_world_optical, T_frame, pts, 2, axis_len, corners)
+        _show_misplaced(out, drawing, seen)
     out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
     return out, drawing
 
@@ -439,11 +460,34 @@ def _lidar(
         [],
         world_pts[finite],
     )
-    if fcheck.status == "warn" and T_frame is not None:
+    if fcheck.status == "warn" and T_frame is not None and frame is not None:
+        from sensorkit.render.rviz import Misplaced, lidar_points
+
         drawing.published_origin = T_frame[:3, 3].copy()
         drawing.published_axis_end = T_frame[:3, 3] + T_frame[:3, 0] * min(fwd, 1.0)
+        seen = Misplaced(frame, T_render, T_frame, lidar_points(scan.points), 0, min(fwd, 1.0))
+        _show_misplaced(out, drawing, seen)
     out.info["colour"] = "#{:02x}{:02x}{:02x}".format(*drawing.colour)
     return out, drawing
+
+
+def _show_misplaced(out: SensorPreview, drawing: SensorDrawing, seen: Misplaced) -> None:
+    """Data stamped with a frame that is not where the sensor looks: put it where RViz
+    will, in the overview (magenta) and in rviz.png (from above and from the side)."""
+    from sensorkit.render.png import write_png
+    from sensorkit.render.rviz import draw_rviz, moved_text
+
+    drawing.published_hits = seen.stamped_world(seen.points)
+    if seen.frustum is not None:
+        drawing.published_edges = list(seen.stamped_world(seen.frustum))
+    assert out.directory is not None
+    out.files["rviz_png"] = out.directory / "rviz.png"
+    write_png(out.files["rviz_png"], draw_rviz(seen, drawing.colour))
+    out.info["rviz"] = seen.to_dict()
+    out.notes.append(
+        f"RViz will place this data in {seen.frame!r}, not where the sensor sees it: "
+        f"{moved_text(seen)} (rviz.png)"
+    )
 
 
 def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | SensorPreview]:
@@ -547,6 +591,7 @@ def _preload(jobs: list[_Job], target: str) -> None:
         "sensorkit.render.overview",
         "sensorkit.render.png",
         "sensorkit.render.raster",
+        "sensorkit.render.rviz",
         "sensorkit.sensorinfo",
     ]
     if any(j.cam is not None for j in jobs):
@@ -653,15 +698,25 @@ def _reach(robot_shapes: list[Shape], poses: dict[str, Mat]) -> float:
 
 
 def _validate(
-    path: Path, target: str, args: Mapping[str, str], package_paths: Sequence[str]
+    path: Path,
+    target: str,
+    args: Mapping[str, str],
+    package_paths: Sequence[str],
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
 ) -> tuple[list[Finding] | None, str | None]:
     try:
         from sensorkit.engine import Options, validate_file
     except ImportError as exc:
         return None, f"validate is not available ({exc})"
-    report = validate_file(
-        path, Options(target=target, args=dict(args), package_paths=tuple(package_paths))
+    options = Options(
+        target=target,
+        args=dict(args),
+        package_paths=tuple(package_paths),
+        select=tuple(select),
+        ignore=tuple(ignore),
     )
+    report = validate_file(path, options)
     if report.error:
         return None, report.error
     return list(report.findings), None
@@ -790,6 +845,9 @@ def render_preview(
     force: bool = False,
     untrusted: Untrusted | None = None,
     target_origin: str = "--target",
+    fail_on: Severity | None = Severity.ERROR,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -817,6 +875,11 @@ def render_preview(
         max_rays: the most rays one lidar may cast per scan.
         force: replace a non-empty ``out_dir`` that is not an earlier preview (never the
             working folder, home, a root, nor one holding the robot or the scene).
+        fail_on: the gate (``result.verdict``, the page's header): fail on validate's
+            findings of this severity or above and on checks that fail (``warning``: that
+            warn too); None never fails.
+        select, ignore: validate's rules to run or skip (ids or prefixes), as for
+            ``sensorkit validate``.
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
@@ -849,6 +912,9 @@ def render_preview(
         raise UsageError(msg)
     check_budget(robot, sensors, max_pixels=max_pixels, max_rays=max_rays)
     check_structure(robot, target)
+    from sensorkit.engine import Options
+
+    Options(target=target, select=tuple(select), ignore=tuple(ignore))  # unknown rules: exit 2
     positions = joint_positions(robot, dict(joints or {}))
     poses = link_poses(robot, positions)
     robot_shapes = _robot_shapes(robot, poses)
@@ -946,7 +1012,11 @@ def render_preview(
                         robot_boxes.append((lo, hi))
 
         _say(progress, "running validate")
-        findings, findings_error = _validate(path, target, args, package_paths)
+        findings, findings_error = _validate(path, target, args, package_paths, select, ignore)
+        from sensorkit.render.gate import sensor_findings
+
+        for p in previews:
+            p.findings = sensor_findings(findings, p.sensor)
 
         result = PreviewResult(
             out_dir=stage,
@@ -960,6 +1030,7 @@ def render_preview(
             findings=findings,
             findings_error=findings_error,
             notes=notes,
+            fail_on=fail_on,
         )
         from sensorkit.render.overview import draw_overview
         from sensorkit.render.png import write_png

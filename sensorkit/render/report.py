@@ -71,6 +71,7 @@ def _sensor_dict(s: SensorPreview, base: Path) -> dict[str, Any]:
         "files": {k: _rel(v, base) for k, v in s.files.items()},
         **{k: v for k, v in s.info.items() if k != "colour"},
         "checks": [c.to_dict() for c in s.checks],
+        "findings": [f.to_dict() for f in s.findings],
         "notes": s.notes,
     }
 
@@ -90,6 +91,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
             "scene": result.scene,
             "joints": result.joints,
             "status": result.status,
+            "verdict": result.verdict.to_dict(),
             "seconds": round(result.seconds, 3),
             "files": {k: _rel(v, base) for k, v in result.files.items()},
             "conventions": CONVENTIONS,
@@ -143,6 +145,13 @@ th{background:#f0f0f0} .meta{color:#555;font-size:13px}
 figcaption{font-size:12px;color:#555;margin-top:4px}
 .swatch{display:inline-block;width:12px;height:12px;border-radius:2px;margin-right:6px;vertical-align:middle}
 code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
+.verdict{font-size:17px;font-weight:700;padding:10px 14px;margin:10px 0 4px;border-radius:4px;border:2px solid}
+.verdict.fail{background:#fde8e8;border-color:#b3171b;color:#8a1014}
+.verdict.pass{background:#e8f6ea;border-color:#17702a;color:#115420}
+.verdict.never{background:#f0f0f0;border-color:#888;color:#333}
+.verdict ul{font-size:13px;font-weight:400;margin:6px 0 0;padding-left:20px}
+.rviz{border-color:#e600c8 !important}
+.findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
 """
 
 
@@ -169,7 +178,9 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
     colour = s.info.get("colour")
     swatch = f'<span class="swatch" style="background:{colour}"></span>' if colour else ""
     parts = [
-        f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}</h3>'
+        f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}{_counts(s)}</h3>',
+        _sensor_findings_html(s),
+        _rviz_html(s),
     ]
     if s.skipped:
         parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
@@ -261,6 +272,68 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
     return "\n".join(parts)
 
 
+def _counts(s: SensorPreview) -> str:
+    """`` <span class="error">1 error</span>``: the sensor's findings by severity."""
+    from sensorkit.render.gate import found_text
+
+    out = ""
+    for label in ("error", "warning", "info"):
+        these = [f for f in s.findings if f.severity.label == label]
+        if these:
+            out += f' &middot; <span class="{label}">{found_text(these)}</span>'
+    return out
+
+
+def _sensor_findings_html(s: SensorPreview) -> str:
+    """validate's findings about this sensor, at the top of its section."""
+    if not s.findings:
+        return ""
+    e = html.escape
+    rows = "".join(
+        f"<li>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
+        f"<span class='meta'>{e(f'{f.file}:{f.line}' if f.line else f.file or '')}</span> {e(f.message)}"
+        + (f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else "")
+        + "</li>"
+        for f in s.findings
+    )
+    return f"<ul class='findings' id='findings-{e(s.name)}'>{rows}</ul>"
+
+
+def _rviz_html(s: SensorPreview) -> str:
+    """What RViz will show, for a sensor whose data is stamped with another frame."""
+    if "rviz_png" not in s.files:
+        return ""
+    e = html.escape
+    frame = s.info.get("rviz", {}).get("frame", "?")
+    caption = (
+        f"What RViz will show: {s.name}'s data placed by the frame it is stamped with, "
+        f"{frame!r} (magenta), beside where the sensor really sees it (its colour). Left: "
+        "from above; right: from the side, along the sensor's heading."
+    )
+    return (
+        f"<div class='imgs'><figure class='rviz' id='rviz-{e(s.name)}'>"
+        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{e(caption)}</figcaption></figure></div>"
+    )
+
+
+def _verdict_html(result: PreviewResult) -> str:
+    e = html.escape
+    v = result.verdict
+    kind = "never" if v.fail_on == "never" else "fail" if v.failed else "pass"
+    shown = v.reasons[:10]
+    more = (
+        f"<li>and {len(v.reasons) - len(shown)} more below</li>"
+        if len(v.reasons) > len(shown)
+        else ""
+    )
+    reasons = "".join(f"<li>{e(r)}</li>" for r in shown) + more
+    return (
+        f"<div id='verdict' class='verdict {kind}'>{e(v.text)}"
+        + (f"<ul>{reasons}</ul>" if reasons and kind != "pass" else "")
+        + f"</div>\n<p class='meta' id='counts'>{e(v.counts_text)} &middot; --fail-on {e(v.fail_on)}</p>"
+    )
+
+
 def _findings_html(result: PreviewResult) -> str:
     e = html.escape
     if result.findings is None:
@@ -270,7 +343,7 @@ def _findings_html(result: PreviewResult) -> str:
     if not result.findings:
         return "<p class='ok'>validate found nothing to report.</p>"
     rows = []
-    for f in result.findings:
+    for f in sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key())):
         where = f"{f.file}:{f.line}" if f.line else (f.file or "")
         fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
         rows.append(
@@ -298,7 +371,7 @@ def write_index(result: PreviewResult) -> None:
     base = result.out_dir
     legend = "".join(
         f"<tr><td><span class='swatch' style='background:{s.info['colour']}'></span><a href='#{e(s.name)}'>{e(s.name)}</a></td>"
-        f"<td>{e(s.type)}</td><td>{_status(s.status)}</td></tr>"
+        f"<td>{e(s.type)}</td><td>{_status(s.status)}{_counts(s)}</td></tr>"
         for s in result.sensors
         if "colour" in s.info
     )
@@ -312,18 +385,19 @@ def write_index(result: PreviewResult) -> None:
     page = f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sensorkit preview: {e(result.robot)}</title>
 <style>{_CSS}</style></head><body>
-<h1>sensorkit preview: {e(result.robot)} {_status(result.status)}</h1>
+<h1>sensorkit preview: {e(result.robot)}</h1>
+{_verdict_html(result)}
 <p class="meta">{e(str(result.source))} &middot; target {e(result.target)} ({e(result.target_reason)}) &middot; scene {e(result.scene)}
 &middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
+<h2 id="findings">validate's findings</h2>
+{_findings_html(result)}
 <h2>Overview</h2>
 <div class="imgs"><figure>{_img(result.files["overview"], "overview")}
-<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Dashed magenta: the forward axis of the frame its data is stamped with, when that differs.</figcaption></figure>
+<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Magenta, when the frame its data is stamped with differs: that frame's forward axis (dashed) and the data as RViz will place it.</figcaption></figure>
 <table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
 {_pictures_html(result)}
 <h2>Sensors</h2>
 {"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
-<h2>validate's findings</h2>
-{_findings_html(result)}
 <h2>Conventions</h2>
 <table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table>
 {f"<h2>Notes</h2><ul class='meta'>{notes}</ul>" if notes else ""}
