@@ -75,13 +75,24 @@ CASES: list[tuple[str, str, str, str, str]] = [
      robot(camera=camera_sensor(camera="<camera><horizontal_fov>2.5</horizontal_fov></camera>")), "classic", ".urdf"),
     ("SK405", robot(camera=camera_sensor(camera="<camera><clip><near>5</near><far>1</far></clip></camera>")),
      robot(camera=camera_sensor(camera="<camera><clip><near>0.05</near><far>100</far></clip></camera>")), "classic", ".urdf"),
-    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")),
-     robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.01</near><far>10</far></clip></camera>")), "classic", ".urdf"),
-    # Depth precision is a depth sensor's concern: the same clip on a colour camera is fine.
-    # (Gazebo Sim only: Gazebo Classic publishes linear float32 depth, see test_trust.py
-    # test_sk405_far_near_ratio_is_not_reported_on_classic.)
+    # Gazebo Classic resolves visibility with Ogre 1.9's 24-bit GL_DEPTH24_STENCIL8 z-buffer
+    # (OGRECave/ogre@852f847:RenderSystems/GL/src/OgreGLFBORenderTexture.cpp:112-123,468-471):
+    # at the far clip surfaces closer than far^2 (far-near)/(far near 2^24) can z-fight. Reported
+    # from 0.1% of the range, i.e. far/near > ~16777: 180/0.01 = 18000 (band 0.19 m at 180 m)
+    # triggers, 160/0.01 = 16000 (0.15 m at 160 m, under 0.16) does not.
+    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.01</near><far>180</far></clip></camera>")),
+     robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.01</near><far>160</far></clip></camera>")), "classic", ".urdf"),
+    # A tiny near alone is no finding: the published depth is gl_Position.w in float32
+    # (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:10), and
+    # near 0.001 / far 10 z-fights only within ~6 mm at 10 m (0.06%).
+    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>100</far></clip></camera>")),
+     robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")), "classic", ".urdf"),
+    # Depth-test resolution is a depth sensor's concern: the same clip on a colour camera is fine.
     ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")),
-     robot(camera=camera_sensor(camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")), "harmonic", ".urdf"),
+     robot(camera=camera_sensor(camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")), "classic", ".urdf"),
+    # ROS 1 runs Gazebo Classic: the same depth camera, the same z-buffer.
+    ("SK405", robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.02</near><far>1000</far></clip></camera>")),
+     robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.02</near><far>300</far></clip></camera>")), "ros1", ".urdf"),
     ("SK405", robot(camera=camera_sensor(stype="depth", params="<frame_name>camera_optical_frame</frame_name><min_depth>0.01</min_depth>", camera="<camera><clip><near>0.1</near><far>10</far></clip></camera>")),
      robot(camera=camera_sensor(stype="depth", params="<frame_name>camera_optical_frame</frame_name><min_depth>0.1</min_depth>", camera="<camera><clip><near>0.1</near><far>10</far></clip></camera>")), "classic", ".urdf"),
     ("SK406", robot(lidar=lidar_sensor(min_angle="1", max_angle="-1")), robot(lidar=lidar_sensor(min_angle="-1", max_angle="1")), "classic", ".urdf"),
@@ -190,10 +201,54 @@ def test_sk601_names_the_replacement(check) -> None:
 
 
 def test_severity_of_sk405_warning_vs_error(check) -> None:
-    warn = check(robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>10</far></clip></camera>")), target="classic")
+    warn = check(robot(camera=camera_sensor(stype="depth", camera="<camera><clip><near>0.001</near><far>100</far></clip></camera>")), target="classic")
     err = check(robot(camera=camera_sensor(camera="<camera><clip><near>5</near><far>1</far></clip></camera>")), target="classic")
     assert {f.severity for f in warn.findings if f.rule == "SK405"} == {Severity.WARNING}
     assert {f.severity for f in err.findings if f.rule == "SK405"} == {Severity.ERROR}
+
+
+def test_sk405_classic_message_states_the_z_fighting_band(check) -> None:
+    # near 0.001, far 100 on Gazebo Classic: 24-bit depth test (OGRECave/ogre@852f847:
+    # RenderSystems/GL/src/OgreGLFBORenderTexture.cpp:468-471, GL_DEPTH24_STENCIL8 preferred),
+    # band = 100^2 * 99.999 / (100 * 0.001) * 2^-24 = 0.596 m at the far clip; the published
+    # depth is linear float32 (gazebosim/gazebo-classic@310a1d6:media/materials/programs/
+    # depth_map.vert:10, @f62d0cd:depth_map.frag:12), so the message must not claim the values
+    # themselves lose precision.
+    clip = "<camera><clip><near>0.001</near><far>100</far></clip></camera>"
+    report = check(robot(camera=camera_sensor(stype="depth", camera=clip)), target="classic")
+    (f,) = [f for f in report.findings if f.rule == "SK405"]
+    assert f.severity is Severity.WARNING
+    assert "~0.6 m apart at the far clip (100 m)" in f.message and "z-fight" in f.message
+    assert "collapses" not in f.message and "linear float32" in f.message
+
+
+GZ_DEPTH_SOURCES = """
+Gazebo Sim's ogre2 depth camera: PFG_D32_FLOAT depth texture (gazebosim/gz-rendering@ff0c5b8
+(gz-rendering8):ogre2/src/Ogre2DepthCamera.cc:655,679; ignition-rendering6_6.6.4@9ee7e96:670,694;
+gz-rendering9@f61bf36:655,679), depth recovered as B / (z - A)
+(ogre2/src/media/materials/programs/GLSL/depth_camera_fs.glsl:107) with Ogre's
+getProjectionParamsAB (Ogre2DepthCamera.cc:470-476), and ogre-next renders reverse-Z by default
+(ignition-forks/ogre-next@40dcea7 (v2.2.4):OgreMain/src/OgreRenderSystem.cpp:96;
+RenderSystems/GL3Plus/src/OgreGL3PlusRenderSystem.cpp:3262-3270 glClipControl(GL_ZERO_TO_ONE)):
+the published depth keeps ~2^-24 of the distance for any near and far/near.
+"""
+
+
+@pytest.mark.parametrize("target", ["fortress", "harmonic", "jetty"])
+@pytest.mark.parametrize(("near", "far"), [("0.001", "10"), ("0.02", "1000"), ("0.001", "1000")])
+def test_sk405_no_depth_precision_warning_on_gazebo_sim(check, target: str, near: str, far: str) -> None:
+    # See GZ_DEPTH_SOURCES: neither a tiny near nor a huge far/near coarsens Gazebo Sim's depth.
+    assert GZ_DEPTH_SOURCES
+    clip = f"<clip><near>{near}</near><far>{far}</far></clip>"
+    desc = gz_robot(camera_type="depth_camera").replace("<clip><near>0.05</near><far>50</far></clip>", clip)
+    assert clip in desc
+    assert "SK405" not in rules_of(check(desc, target=target))
+    # The same clip is still reported on Gazebo Classic when its 24-bit z-buffer band is wide
+    # (far/near > ~16777), and a broken clip is still an error on Gazebo Sim.
+    classic = robot(camera=camera_sensor(stype="depth", camera=f"<camera>{clip}</camera>"))
+    assert ("SK405" in rules_of(check(classic, target="classic"))) == (float(far) / float(near) > 16777)
+    broken = desc.replace(clip, "<clip><near>5</near><far>1</far></clip>")
+    assert "SK405" in rules_of(check(broken, target=target))
 
 
 def test_auto_target(check) -> None:

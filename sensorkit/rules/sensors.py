@@ -240,11 +240,35 @@ def camera_fov(ctx: Context) -> Iterator[Finding]:
                 )
 
 
+# Depth-test resolution of Gazebo Classic's depth camera (SK405).
+#
+# Gazebo Classic writes the published depth as linear view depth in float32:
+# depth = gl_Position.w (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:10,
+# @f62d0cd:depth_map.frag:12) into a PF_FLOAT32_R render texture
+# (@0106de6:gazebo/rendering/DepthCamera.cc CreateDepthTexture, Ogre::PF_FLOAT32_R), so
+# the published value is not quantised by near or far. Which surface wins a pixel is
+# still decided by the render target's z-buffer: Ogre 1.9's GL FBO manager prefers
+# packed GL_DEPTH24_STENCIL8 (OGRECave/ogre@852f847:RenderSystems/GL/src/
+# OgreGLFBORenderTexture.cpp:112-123,468-471; OgreGLRenderSystem.cpp:1167-1181), a 24-bit
+# fixed-point buffer holding the standard (non-reversed) projection
+# (OgreMain/src/OgreFrustum.cpp:435-436). Its step is 2^-24 of z = f/(f-n)(1-n/d), so at
+# distance d two surfaces closer together than d^2 (f-n) / (f n 2^24) can z-fight.
+_Z24_STEP = 2.0**-24
+# Reported when that band reaches 0.1% of the distance at the far clip. This is a chosen
+# materiality floor (sensorkit's, not a simulator fact); it equals far/near > ~1.7e4.
+_ZFIGHT_REL = 1e-3
+
+
+def _classic_zfight_band(near: float, far: float, d: float) -> float:
+    """Smallest surface separation Gazebo Classic's 24-bit depth test resolves at distance d."""
+    return d * d * (far - near) / (far * near) * _Z24_STEP
+
+
 @rule(
     "SK405",
     "error/warning",
-    "clip 0 < near < far (error); near < 0.01 m, or on Gazebo Sim far/near > 1e4 (warning: depth precision); "
-    "min_depth/max_depth inside the clip range",
+    "clip 0 < near < far (error); depth cameras on Gazebo Classic with far/near > ~1.7e4 (warning: its 24-bit "
+    "depth test lets surfaces within 0.1% of the far clip z-fight); min_depth/max_depth inside the clip range",
 )
 def camera_clip(ctx: Context) -> Iterator[Finding]:
     for s in _cameras(ctx):
@@ -271,32 +295,35 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
                         fix="e.g. <clip><near>0.05</near><far>50</far></clip>",
                     )
                     continue
-                if not s.is_depth:
-                    pass  # depth precision only matters to sensors that publish depth
-                elif near < 0.01:
-                    yield ctx.finding(
-                        "SK405",
-                        Severity.WARNING,
-                        f"sensor {s.name!r}: clip near {near:g} m is below 1 cm: depth precision collapses",
-                        cam.source,
-                        sensor=s.name,
-                        fix="use near >= 0.01 m (0.05 is typical)",
-                    )
-                elif far / near > 1e4 and is_gz(ctx.target):
-                    # Not on Gazebo Classic: its depth camera writes the linear view depth
-                    # (depth = gl_Position.w) as float32, not the non-linear z-buffer value
-                    # (gazebosim/gazebo-classic@310a1d6:media/materials/programs/depth_map.vert:9,
-                    # @f62d0cd:depth_map.frag:12; gazebo/rendering/DepthCamera.cc
-                    # CreateDepthTexture, PF_FLOAT32_R with material Gazebo/DepthMap), so a
-                    # large far/near does not coarsen the published depth (seen on agilexrobotics/limo_ros2).
-                    yield ctx.finding(
-                        "SK405",
-                        Severity.WARNING,
-                        f"sensor {s.name!r}: far/near = {far / near:.0f} exceeds 1e4: depth precision collapses",
-                        cam.source,
-                        sensor=s.name,
-                        fix="raise near or lower far",
-                    )
+                # No depth-precision warning on Gazebo Sim (fortress, harmonic, jetty), for any
+                # near or far/near. Its ogre2 depth camera renders into a PFG_D32_FLOAT depth
+                # texture (gazebosim/gz-rendering@ff0c5b8 (gz-rendering8):ogre2/src/
+                # Ogre2DepthCamera.cc:655,679; same in ignition-rendering6_6.6.4@9ee7e96:670,694,
+                # gz-rendering9@f61bf36:655,679, main@dafbffa:665,689) and recovers depth as
+                # d = B / (z - A) (ogre2/src/media/materials/programs/GLSL/depth_camera_fs.glsl:107)
+                # with A, B from Ogre's getProjectionParamsAB (Ogre2DepthCamera.cc:470-476).
+                # ogre-next defaults to reverse depth (ignition-forks/ogre-next@40dcea7 (v2.2.4):
+                # OgreMain/src/OgreRenderSystem.cpp:96; @7449a36 (2.3):109), which GL3Plus keeps
+                # whenever GL 4.5 or GL_ARB_clip_control is present (glClipControl(GL_LOWER_LEFT,
+                # GL_ZERO_TO_ONE): v2.2.4 RenderSystems/GL3Plus/src/OgreGL3PlusRenderSystem.cpp:
+                # 3262-3270; 2.3 :3298-3305), and the A, B pair follows it (OgreFrustum.cpp:118-127).
+                # Reversed float32 depth keeps about 2^-24 of the distance at every distance (our
+                # float32 model of that shader: near 0.02, far 300 steps by ~2e-5 m at 100 m).
+                # Only GL3Plus without clip control (GL < 4.5, no ARB_clip_control) falls back to
+                # forward depth; the Vulkan and Metal render systems were not checked.
+                if s.is_depth and not is_gz(ctx.target):
+                    band = _classic_zfight_band(near, far, far)
+                    if band >= _ZFIGHT_REL * far:
+                        yield ctx.finding(
+                            "SK405",
+                            Severity.WARNING,
+                            f"sensor {s.name!r}: far/near = {far / near:.0f}: Gazebo Classic's 24-bit depth test "
+                            f"cannot separate surfaces less than ~{band:.2g} m apart at the far clip ({far:g} m), "
+                            "so they can z-fight (the published depth values are linear float32 and are not coarsened)",
+                            cam.source,
+                            sensor=s.name,
+                            fix="raise near or lower far: the band grows as far^2/near",
+                        )
             if not s.is_depth or near is None or far is None or not 0 < near < far:
                 continue
             lo, hi = _depth_range(s)
