@@ -132,6 +132,23 @@ class Settings:
             return display_path(self.config.path)
         return f"--{key}"
 
+    def describe(self, file: Path, overlay: dict[str, bytes], convention: Any = None) -> Any:
+        """Load ``file`` with these settings and describe its sensors under the target
+        (a ``sensorkit.sensorinfo.RobotInfo`` saying where a chosen target came from)."""
+        from sensorkit.sensorinfo import describe, load
+
+        robot = load(
+            file,
+            args=self.args,
+            package_paths=self.package_paths,
+            untrusted=self.untrusted,
+            overlay=overlay,
+        )
+        info = describe(robot, self.target, convention=convention)
+        if self.target != "auto":
+            info.target_reason = f"chosen with {self.origin('target')}"
+        return info
+
     def say_where(self, extra: tuple[str, ...] = (), *, quiet: bool = False) -> None:
         """One stderr line naming the settings taken from the file, if any (not with -q)."""
         said = self.config.describe([*self.used, *extra])

@@ -97,7 +97,6 @@ def intrinsics(
     """
     from sensorkit.errors import UsageError
     from sensorkit.exporters.robot import FORMATS, intrinsics_output
-    from sensorkit.sensorinfo import describe, load
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
@@ -115,16 +114,7 @@ def intrinsics(
         env=env,
     )
     st.say_where(quiet=quiet)
-    robot = load(
-        file,
-        args=st.args,
-        package_paths=st.package_paths,
-        untrusted=st.untrusted,
-        overlay=overlay,
-    )
-    info = describe(robot, st.target, convention=convention)  # type: ignore[arg-type]
-    if st.target != "auto":
-        info.target_reason = f"chosen with {st.origin('target')}"
+    info = st.describe(file, overlay, convention)
     text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
     sys.stdout.write(text)
     for said in notes:
@@ -167,7 +157,6 @@ def export(
     (why is on stderr, the rest is written); 2 it could not run.
     """
     from sensorkit.exporters.robot import export_files, publish_export
-    from sensorkit.sensorinfo import describe, load
 
     use_color(color)  # checked; nothing printed is coloured
     file, overlay = stdin_robot(file, stdin_filename)
@@ -181,18 +170,9 @@ def export(
         env=env,
     )
     st.say_where(quiet=quiet)
-    robot = load(
-        file,
-        args=st.args,
-        package_paths=st.package_paths,
-        untrusted=st.untrusted,
-        overlay=overlay,
-    )
-    info = describe(robot, st.target)
-    if st.target != "auto":
-        info.target_reason = f"chosen with {st.origin('target')}"
+    info = st.describe(file, overlay)
     plan = export_files(info, imu=imu)
-    inputs = [file, *(Path(f) for f in robot.document.files)]  # --force must spare them
+    inputs = [file, *(Path(f) for f in info.robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:
         typer.echo(path.as_posix())
@@ -202,7 +182,7 @@ def export(
         typer.echo(f"sensorkit: not written: {skipped}", err=True)
     note(
         f"sensorkit: wrote {len(written)} files for {len(info.sensors)} sensors of "
-        f"{robot.name} into {out} (target {info.target}, {info.target_reason})",
+        f"{info.robot.name} into {out} (target {info.target}, {info.target_reason})",
         quiet,
     )
     if plan.skipped:

@@ -78,7 +78,6 @@ def topics(
     """
     from sensorkit.errors import UsageError
     from sensorkit.model.targets import is_gz
-    from sensorkit.sensorinfo import describe, load
     from sensorkit.topics import load_bridge, robot_topics, topics_json, topics_text
 
     if fmt not in FORMATS:
@@ -95,20 +94,11 @@ def topics(
         env=env,
     )
     st.say_where(quiet=quiet)
-    robot = load(
-        file,
-        args=st.args,
-        package_paths=st.package_paths,
-        untrusted=st.untrusted,
-        overlay=overlay,
-    )
-    info = describe(robot, st.target)
-    if st.target != "auto":
-        info.target_reason = f"chosen with {st.origin('target')}"
+    info = st.describe(file, overlay)
     files = [str(b) for b in bridge or ()]
     config_read = None
     if is_gz(info.target):
-        config_read = load_bridge(robot, info.target, files)
+        config_read = load_bridge(info.robot, info.target, files)
     elif files:
         note(f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", quiet)
     result = robot_topics(info, config_read)
