@@ -64,7 +64,7 @@ def _vertical_samples(sensor: etree._Element) -> int:
         if text is not None:
             try:
                 return int(float(text))
-            except ValueError:
+            except (ValueError, OverflowError):  # not a number, or inf
                 return 1
     return 1
 
