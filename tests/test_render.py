@@ -462,6 +462,10 @@ window.addEventListener("load", async () => {
     sections: [...document.querySelectorAll("h3[id]")].map((h) => h.id),
     rviz: [...document.querySelectorAll("figure.rviz")].map((f) => f.id),
     rviz_img: [...document.querySelectorAll("figure.rviz img")].map((i) => i.naturalWidth),
+    colour_bars: [...document.querySelectorAll('figure[data-figure="depth"] svg')].map(
+      (g) => g.getBoundingClientRect().width),
+    ticks: [...document.querySelectorAll('figure[data-figure="depth"] text.tick')].map(
+      (t) => [t.getAttribute("data-end"), Number(t.getAttribute("data-value")), t.getBBox().width]),
     verdict: verdict ? verdict.firstChild.textContent : null,
     verdict_class: verdict ? verdict.className : null,
     verdict_first: !!(verdict && overview && (verdict.compareDocumentPosition(overview) & 4)),
@@ -474,10 +478,8 @@ window.addEventListener("load", async () => {
 
 def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Path) -> None:
     """The page as a browser shows it: every sensor's section, the verdict at the top, the
-    RViz view for the mis-stamped camera only, every picture decoded, no console error."""
-    import html as html_lib
-    import re
-
+    RViz view for the mis-stamped camera only, the depth colour bar, every picture decoded,
+    no console error."""
     browser = _chromium()
     shot = tmp_path / "shot.png"
     subprocess.run(
@@ -499,7 +501,38 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     # a blank page compresses to a few kilobytes; the preview's pictures do not
     assert len(data) > 50_000
 
+    seen = _probe(browser, mounts, tmp_path)
     page = (mounts / "index.html").read_text()
+    assert len(seen["widths"]) == page.count("data:image/png;base64,") >= 6
+    assert all(w > 0 for w in seen["widths"]), seen["widths"]
+    assert seen["sections"] == [s["name"] for s in summary(mounts)["sensors"]]
+    assert seen["sections"] == ["pitch_cam", "yaw_cam", "body_cam"]
+    assert seen["rviz"] == ["rviz-body_cam"] and seen["rviz_img"][0] > 0  # not pitch_cam's
+    assert seen["verdict"] == "FAIL: 1 error (SK502 body_cam)", seen["verdict"]
+    assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
+    depths = [s for s in summary(mounts)["sensors"] if "depth" in s.get("pictures", {})]
+    assert len(seen["colour_bars"]) == len(depths) and all(w > 0 for w in seen["colour_bars"])
+
+    # the depth camera's colour bar, drawn with its ends at the range summary.json gives;
+    # a correctly stamped robot gets no RViz view
+    seen = _probe(browser, wall, tmp_path)
+    page = (wall / "index.html").read_text()
+    assert all(w > 0 for w in seen["widths"]) and len(seen["widths"]) >= 2, seen["widths"]
+    assert seen["sections"] == ["depth_cam", "laser"] and seen["rviz"] == []
+    assert len(seen["colour_bars"]) == 1 and seen["colour_bars"][0] > 100
+    facts = sensor(summary(wall), "depth_cam")["pictures"]["depth"]
+    ends = {end: value for end, value, _ in seen["ticks"] if end}
+    assert ends == {"min": facts["colour_min_m"], "max": facts["colour_max_m"]}
+    assert ends["min"] < 2.75 < ends["max"]  # the wall, 2.75 m from the lens, is inside the range
+    assert all(w > 0 for _, _, w in seen["ticks"])  # the labels are laid out, not empty
+
+
+def _probe(browser: str, preview: Path, tmp_path: Path) -> dict[str, Any]:
+    """Load ``preview``'s index.html in headless Chromium with the probe; what it saw."""
+    import html as html_lib
+    import re
+
+    page = (preview / "index.html").read_text()
     control = '<img id="probe-control" alt="control" src="data:image/png;base64,AAAA">'
     probed = tmp_path / "probed.html"
     probed.write_text(
@@ -522,18 +555,12 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     )
     found = re.search(r'<pre id="probe-result">(.*?)</pre>', proc.stdout, re.S)
     assert found, proc.stdout[-2000:] + proc.stderr[-2000:]
-    seen = json.loads(html_lib.unescape(found.group(1)))
+    seen: dict[str, Any] = json.loads(html_lib.unescape(found.group(1)))
     # the control: a broken picture and a console error are caught here
     assert seen["control"] == 0
     assert {"load-failed: probe-control", "console: probe-control"} <= set(seen["seen"])
     assert [s for s in seen["seen"] if "probe-control" not in s] == []  # the page's own: none
-    assert len(seen["widths"]) == page.count("data:image/png;base64,") >= 6
-    assert all(w > 0 for w in seen["widths"]), seen["widths"]
-    assert seen["sections"] == [s["name"] for s in summary(mounts)["sensors"]]
-    assert seen["sections"] == ["pitch_cam", "yaw_cam", "body_cam"]
-    assert seen["rviz"] == ["rviz-body_cam"] and seen["rviz_img"][0] > 0  # not pitch_cam's
-    assert seen["verdict"] == "FAIL: 1 error (SK502 body_cam)", seen["verdict"]
-    assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
+    return seen
 
 
 def test_forked_cameras_give_the_same_files(
