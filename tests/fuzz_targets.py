@@ -312,6 +312,12 @@ def check_add(
             return Outcome(inp.target, f"add left an unexpected file {rel}")
     for rel in set(before) & set(after):
         if rel not in (main, out_rel) and after[rel] != before[rel]:
+            # add-* keeps a package in step (issue 12): the bridge YAML, robot.yaml and a
+            # generated README gain the sensor; never with -o, and only by insertion
+            if not k.get("output") and _package_file(rel):
+                if only_insertions(before[rel], after[rel]):
+                    continue
+                return Outcome(inp.target, f"add changed bytes of {rel} outside an insertion")
             return Outcome(inp.target, f"add changed another file {rel}")
     from sensorkit.engine import Options, validate_file
 
@@ -327,6 +333,12 @@ def check_add(
         )
         return Outcome(inp.target, f"the added file no longer validates: {detail[:300]}")
     return Outcome(inp.target, note="added")
+
+
+def _package_file(rel: str) -> bool:
+    """A file of a package that add-* may extend: a YAML (bridge, robot.yaml) or a README."""
+    name = Path(rel).name
+    return name == "README.md" or name.endswith((".yaml", ".yml"))
 
 
 def _output(main: Path) -> Path:
