@@ -21,12 +21,12 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from sensorkit.edit.kinds import XACRO_NS
+from sensorkit.model.targets import GZ_TARGETS as GZ_VERSIONS
 
 if TYPE_CHECKING:
     from sensorkit.model import Robot
 
-SIMS = ("classic", "gz", "none")
-GZ_VERSIONS = ("fortress", "harmonic", "jetty")
+SIMS = ("classic", "gz", "none")  # the macros' sim values (sensorkit.generate.spec.SIMS)
 # xacro's own elements: never a call of a user's macro.
 _XACRO_BUILTINS = frozenset(
     {"include", "arg", "property", "macro", "if", "unless", "insert_block", "element", "attribute"}

@@ -47,9 +47,10 @@ from sensorkit.generate.catalog import (
     base_templates,
     sensor_macros,
 )
+from sensorkit.model.targets import GZ_TARGETS
 
 SIMS = ("classic", "gz", "none")
-GZ_VERSIONS = ("fortress", "harmonic", "jetty")
+GZ_VERSIONS = GZ_TARGETS
 
 TOP_KEYS = (
     "name",
