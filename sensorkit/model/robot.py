@@ -520,6 +520,9 @@ class Robot:
 
             pj = self.parent_joint
             links = self.link_map
+            # Origins read from the same text share their xyz and rpy tuples (the reader's
+            # memo): their poses are computed once. Keyed by identity, so -0.0 stays apart.
+            shared: dict[tuple[int, int], Pose] = {}
             for lk in self.links:
                 name = lk.name
                 if name in cache:
@@ -528,7 +531,19 @@ class Robot:
                 parent = joint.parent if joint is not None else None
                 if joint is not None and parent in cache and parent in links:
                     base = cache[parent]  # the usual case: parents come first
-                    cache[name] = None if base is None else compose(base, joint.origin.pose())
+                    if base is None:
+                        cache[name] = None
+                        continue
+                    origin = joint.origin
+                    p = origin._pose
+                    if p is None:
+                        key = (id(origin.xyz), id(origin.rpy))
+                        p = shared.get(key)
+                        if p is None:
+                            p = shared[key] = origin.pose()
+                        else:
+                            origin._pose = p
+                    cache[name] = compose(base, p)
                 else:
                     self.world_pose(name)
             self._all_posed = True
