@@ -26,6 +26,8 @@ from sensorkit.cli.common import (
     use_color,
 )
 
+_KEPT: list[object] = []  # see validate(): models left for the process exit to drop
+
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
 
 
@@ -190,7 +192,10 @@ def validate(
         from sensorkit.fleet import cpu_count
 
         jobs = cpu_count()
-    report = validate_paths(inputs, options, jobs=jobs)
+    # The last model stays referenced until the process ends without teardown: freeing
+    # it would only cost time.
+    _KEPT.clear()  # one model at most (in-process callers run validate more than once)
+    report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
     from sensorkit.cli import leave_quickly
 
     leave_quickly()  # only reading was done: nothing to clean up
