@@ -314,6 +314,9 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
 
 
 def _suppress(report: FileReport, overlay: dict[str, bytes] | None = None) -> None:
+    if not report.findings:  # nothing to suppress: the files need not be read
+        report.suppressed = 0
+        return
     files: list[tuple[str, Path]] = []
     if report.robot is not None:
         for f in report.robot.document.source_files():

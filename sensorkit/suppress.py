@@ -64,6 +64,10 @@ def collect(
     for display, path in files:
         data = overlay.get(os.path.abspath(path)) if overlay else None
         try:
+            # "sensorkit" is ASCII: in the text exactly when in the bytes, which are
+            # searched before anything is decoded (most files hold no directive)
+            if b"sensorkit" not in (data if data is not None else path.read_bytes()):
+                continue
             text = (
                 data.decode("utf-8", "replace")
                 if data is not None
@@ -71,6 +75,5 @@ def collect(
             )
         except OSError:
             continue
-        if "sensorkit" in text:
-            sup.add_text(display, text)
+        sup.add_text(display, text)
     return sup

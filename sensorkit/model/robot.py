@@ -856,24 +856,42 @@ def _build_robot(doc: Document) -> Robot:
 
     root = doc.root
     robot = Robot(name=root.get("name", ""), document=doc)
+    links, joints, strays = robot.links, robot.joints, robot.strays
+    add_link, add_joint = links.append, joints.append
     for el in root:
         tag = el.tag
-        name = tag if tag in {"link", "joint"} else local(el)
+        if tag == "link":
+            add_link(_read_link(el, doc, strays))
+            continue
+        if tag == "joint":
+            add_joint(_read_joint(el, doc, strays))
+            continue
+        name = local(el)
         if name == "link":
-            robot.links.append(_read_link(el, doc, robot.strays))
+            add_link(_read_link(el, doc, strays))
         elif name == "joint":
-            robot.joints.append(_read_joint(el, doc, robot.strays))
+            add_joint(_read_joint(el, doc, strays))
         elif name == "gazebo":
             robot.gazebo.append(GazeboBlock(el.get("reference"), el, doc.locate(el)))
         elif name and name not in ROBOT_CHILDREN and _own_namespace(el, root):
-            robot.strays.append(Stray(el, "robot", None, None))
-    for lk in robot.links:
-        robot.link_map.setdefault(lk.name, lk)
-    for j in robot.joints:
-        robot.joint_map.setdefault(j.name, j)
-        if j.child is not None and j.child not in robot.parent_joint:
-            robot.parent_joint[j.child] = j
-        if j.parent is not None:
-            robot.child_joints.setdefault(j.parent, []).append(j)
+            strays.append(Stray(el, "robot", None, None))
+    link_map, joint_map = robot.link_map, robot.joint_map
+    parent_joint, child_joints = robot.parent_joint, robot.child_joints
+    for lk in links:
+        if lk.name not in link_map:
+            link_map[lk.name] = lk
+    for j in joints:
+        if j.name not in joint_map:
+            joint_map[j.name] = j
+        c = j.child
+        if c is not None and c not in parent_joint:
+            parent_joint[c] = j
+        p = j.parent
+        if p is not None:
+            kids = child_joints.get(p)
+            if kids is None:
+                child_joints[p] = [j]
+            else:
+                kids.append(j)
     read_gazebo(robot)
     return robot
