@@ -97,6 +97,8 @@ class FileReport:
 
 @dataclass
 class Report:
+    """The reports of the files one run validated, in input order."""
+
     files: list[FileReport] = field(default_factory=list)
 
     @property

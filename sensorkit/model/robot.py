@@ -135,11 +135,19 @@ def local(el: etree._Element) -> str:
 
 def children(el: etree._Element, name: str) -> list[etree._Element]:
     """Child elements called ``name`` (documents are namespace-free after loading)."""
+    if name.isidentifier():  # a plain tag name: a loop costs less than lxml's findall()
+        return [c for c in el if c.tag == name]
     return list(el.findall(name))
 
 
 def child(el: etree._Element | None, name: str) -> etree._Element | None:
+    """The first child element called ``name`` (or matching an ElementPath), or None."""
     if el is None:
+        return None
+    if name.isidentifier():  # a plain tag name: a loop costs less than lxml's find()
+        for c in el:
+            if c.tag == name:
+                return c
         return None
     return el.find(name)
 
@@ -224,6 +232,8 @@ class _Located:
 
 @dataclass(slots=True)
 class Inertial(_Located):
+    """A link's ``<inertial>``: mass, inertia and origin (None where unreadable; see problems)."""
+
     mass: float | None
     inertia: dict[str, float | None]
     origin: Origin
@@ -234,6 +244,8 @@ class Inertial(_Located):
 
 @dataclass(slots=True)
 class Link(_Located):
+    """A ``<link>``: its first inertial and the mesh files its visuals and collisions name."""
+
     name: str
     element: etree._Element
     doc: Document
@@ -250,6 +262,8 @@ class Link(_Located):
 
 @dataclass(slots=True)
 class Joint(_Located):
+    """A ``<joint>`` as urdfdom reads it (the first of each child element counts)."""
+
     name: str
     type: str
     parent: str | None
