@@ -218,6 +218,24 @@ class Origin:
         return transform(self.xyz, self.rpy)
 
 
+def _shared_pose(origin: Origin, shared: dict[tuple[int, int], Pose]) -> Pose:
+    """``origin.pose()``, computed once per xyz and rpy pair in ``shared`` (one walk's).
+
+    Origins read from the same text share their xyz and rpy tuples (the reader's memo).
+    Keyed by identity, so equal values that differ in sign (0.0, -0.0) stay apart; the
+    tuples outlive the walk, so no identity is reused during it.
+    """
+    p = origin._pose
+    if p is None:
+        key = (id(origin.xyz), id(origin.rpy))
+        p = shared.get(key)
+        if p is None:
+            p = shared[key] = origin.pose()
+        else:
+            origin._pose = p
+    return p
+
+
 class _Located:
     """Mixin: ``source`` is computed on first use (most elements never need it)."""
 
@@ -521,8 +539,9 @@ class Robot:
                 break
         T = base
         pj = self.parent_joint
+        shared: dict[tuple[int, int], Pose] = {}
         for name in reversed(chain):
-            T = None if T is None else compose(T, pj[name].origin.pose())
+            T = None if T is None else compose(T, _shared_pose(pj[name].origin, shared))
             cache[name] = T
         return cache[link]
 
@@ -534,8 +553,6 @@ class Robot:
 
             pj = self.parent_joint
             links = self.link_map
-            # Origins read from the same text share their xyz and rpy tuples (the reader's
-            # memo): their poses are computed once. Keyed by identity, so -0.0 stays apart.
             shared: dict[tuple[int, int], Pose] = {}
             for lk in self.links:
                 name = lk.name
@@ -548,16 +565,7 @@ class Robot:
                     if base is None:
                         cache[name] = None
                         continue
-                    origin = joint.origin
-                    p = origin._pose
-                    if p is None:
-                        key = (id(origin.xyz), id(origin.rpy))
-                        p = shared.get(key)
-                        if p is None:
-                            p = shared[key] = origin.pose()
-                        else:
-                            origin._pose = p
-                    cache[name] = compose(base, p)
+                    cache[name] = compose(base, _shared_pose(joint.origin, shared))
                 else:
                     self.world_pose(name)
             self._all_posed = True
