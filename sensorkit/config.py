@@ -29,6 +29,8 @@ KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
 
 @dataclass
 class Config:
+    """Settings read from a configuration file (``path``; None when there is none)."""
+
     path: Path | None = None
     target: str | None = None
     select: list[str] = field(default_factory=list)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections import defaultdict
 from typing import Any
 
@@ -97,6 +96,8 @@ def to_json(report: Report) -> dict[str, Any]:
 
 
 def format_json(report: Report) -> str:
+    import json  # only the json and sarif formats: not on the common path
+
     return json.dumps(to_json(report), indent=2) + "\n"
 
 
@@ -186,6 +187,8 @@ def _invocation(report: Report) -> dict[str, Any]:
 
 
 def format_sarif(report: Report) -> str:
+    import json
+
     return json.dumps(to_sarif(report), indent=2) + "\n"
 
 

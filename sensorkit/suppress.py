@@ -16,24 +16,27 @@ from pathlib import Path
 
 from sensorkit.findings import Finding
 
-_COMMENT = re.compile(r"<!--(.*?)-->", re.S)
-_DIRECTIVE = re.compile(r"sensorkit\s*:\s*(ignore-file|ignore)\b([^>]*)", re.I)
-_ID = re.compile(r"SK\d{3}")
+# Compiled on first use (by re's cache): only files that mention sensorkit are searched.
+_COMMENT = r"<!--(.*?)-->"
+_DIRECTIVE = r"sensorkit\s*:\s*(ignore-file|ignore)\b([^>]*)"
+_ID = r"SK\d{3}"
 ALL = "*"
 
 
 @dataclass
 class Suppressions:
+    """The rules suppressed by line and by file."""
+
     by_line: dict[tuple[str, int], set[str]] = field(default_factory=dict)
     by_file: dict[str, set[str]] = field(default_factory=dict)
 
     def add_text(self, file: str, text: str) -> None:
         pos, pos_line = 0, 1  # count lines from the previous comment on: linear in the file
-        for m in _COMMENT.finditer(text):
-            d = _DIRECTIVE.search(m.group(1))
+        for m in re.finditer(_COMMENT, text, re.S):
+            d = re.search(_DIRECTIVE, m.group(1), re.I)
             if not d:
                 continue
-            ids = set(_ID.findall(d.group(2))) or {ALL}
+            ids = set(re.findall(_ID, d.group(2))) or {ALL}
             if d.group(1).lower() == "ignore-file":
                 self.by_file.setdefault(file, set()).update(ids)
                 continue
@@ -64,6 +67,10 @@ def collect(
     for display, path in files:
         data = overlay.get(os.path.abspath(path)) if overlay else None
         try:
+            # "sensorkit" is ASCII: in the text exactly when in the bytes, which are
+            # searched before anything is decoded (most files hold no directive)
+            if b"sensorkit" not in (data if data is not None else path.read_bytes()):
+                continue
             text = (
                 data.decode("utf-8", "replace")
                 if data is not None
@@ -71,6 +78,5 @@ def collect(
             )
         except OSError:
             continue
-        if "sensorkit" in text:
-            sup.add_text(display, text)
+        sup.add_text(display, text)
     return sup

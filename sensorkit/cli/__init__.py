@@ -78,7 +78,7 @@ def _register() -> None:
 _register()
 
 
-_XACRO_ARG = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*:=")
+_XACRO_ARG = r"^[A-Za-z_][A-Za-z0-9_]*:="  # compiled on first use: only for NAME:=VALUE
 
 
 def xacro_args_as_options(argv: list[str]) -> list[str]:
@@ -86,7 +86,7 @@ def xacro_args_as_options(argv: list[str]) -> list[str]:
     ``NAME:=VALUE`` becomes ``--arg NAME:=VALUE`` (a value already after ``--arg`` stays)."""
     out: list[str] = []
     for i, token in enumerate(argv):
-        if _XACRO_ARG.match(token) and (i == 0 or argv[i - 1] != "--arg"):
+        if ":=" in token and re.match(_XACRO_ARG, token) and (i == 0 or argv[i - 1] != "--arg"):
             out += ["--arg", token]
         else:
             out.append(token)

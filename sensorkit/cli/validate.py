@@ -1,7 +1,5 @@
 """``sensorkit validate`` and ``sensorkit rules``."""
 
-from __future__ import annotations
-
 import sys
 from pathlib import Path
 from typing import Annotated
@@ -27,6 +25,8 @@ from sensorkit.cli.common import (
     stdin_robots,
     use_color,
 )
+
+_KEPT: list[object] = []  # see validate(): models left for the process exit to drop
 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
 
@@ -188,9 +188,14 @@ def validate(
             color=colored,
             exit_zero=exit_zero,
         )
-    from sensorkit.fleet import cpu_count
+    if not jobs:
+        from sensorkit.fleet import cpu_count
 
-    report = validate_paths(inputs, options, jobs=jobs or cpu_count())
+        jobs = cpu_count()
+    # The last model stays referenced until the process ends without teardown: freeing
+    # it would only cost time.
+    _KEPT.clear()  # one model at most (in-process callers run validate more than once)
+    report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
     from sensorkit.cli import leave_quickly
 
     leave_quickly()  # only reading was done: nothing to clean up
@@ -205,15 +210,15 @@ def validate(
 
 def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
     """Files as given; each folder replaced by the robot descriptions found below it."""
-    from sensorkit.cli.common import die
-    from sensorkit.fleet import find_robots
-    from sensorkit.loading.document import display_path
-
     out: list[Path] = []
     for item in items:
         if not item.is_dir():
             out.append(item)
             continue
+        from sensorkit.cli.common import die
+        from sensorkit.fleet import find_robots  # folders only: not on the common path
+        from sensorkit.loading.document import display_path
+
         found = find_robots(item)
         where = display_path(item)
         skipped = (

@@ -25,7 +25,8 @@ if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
-_XACRO_MARKERS = re.compile(rb"xmlns:xacro\s*=|<xacro:|\$\{|\$\(")
+# compiled on first use (by re's cache): a plain URDF never needs it
+_XACRO_MARKERS = rb"xmlns:xacro\s*=|<xacro:|\$\{|\$\("
 
 
 def display_path(path: str | Path) -> str:
@@ -114,7 +115,7 @@ def looks_like_xacro(path: Path, data: bytes) -> bool:
         return True
     if b"${" in data or b"$(" in data:  # plain substring tests: much faster than a regex on MBs
         return True
-    return b"xacro" in data and bool(_XACRO_MARKERS.search(data))
+    return b"xacro" in data and bool(re.search(_XACRO_MARKERS, data))
 
 
 def read_input(path: Path) -> bytes:

@@ -7,7 +7,7 @@ import re
 
 LOC_ATTR = "sk_loc_"  # "FILE_INDEX:LINE" on elements xacro expanded, for their source line
 
-_ENTITY_RE = re.compile(rb"<!ENTITY", re.IGNORECASE)
+_ENTITY_RE = rb"<!ENTITY"  # compiled on first use: only files with a DOCTYPE
 
 
 def forbid_entities(data: bytes) -> str | None:
@@ -15,7 +15,7 @@ def forbid_entities(data: bytes) -> str | None:
 
     The whole file is searched: a DOCTYPE may follow any amount of comment.
     """
-    if b"<!DOCTYPE" in data and _ENTITY_RE.search(data):
+    if b"<!DOCTYPE" in data and re.search(_ENTITY_RE, data, re.IGNORECASE):
         return (
             "DTD entity declarations are not allowed (entity expansion and external "
             "entities are refused for safety); remove the <!DOCTYPE ...> block"

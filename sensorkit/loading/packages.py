@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
-_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use
 MAX_SCAN_DIRS = 5000
 MAX_SCAN_DEPTH = 5
 
@@ -32,7 +32,7 @@ def package_name(package_xml: Path) -> str | None:
         data = package_xml.read_bytes()[:65536]
     except OSError:
         return None
-    m = _NAME_RE.search(data)
+    m = re.search(_NAME_RE, data)
     return m.group(1).decode("utf-8", "replace") if m else None
 
 

@@ -135,11 +135,19 @@ def local(el: etree._Element) -> str:
 
 def children(el: etree._Element, name: str) -> list[etree._Element]:
     """Child elements called ``name`` (documents are namespace-free after loading)."""
+    if name.isidentifier():  # a plain tag name: a loop costs less than lxml's findall()
+        return [c for c in el if c.tag == name]
     return list(el.findall(name))
 
 
 def child(el: etree._Element | None, name: str) -> etree._Element | None:
+    """The first child element called ``name`` (or matching an ElementPath), or None."""
     if el is None:
+        return None
+    if name.isidentifier():  # a plain tag name: a loop costs less than lxml's find()
+        for c in el:
+            if c.tag == name:
+                return c
         return None
     return el.find(name)
 
@@ -210,6 +218,24 @@ class Origin:
         return transform(self.xyz, self.rpy)
 
 
+def _shared_pose(origin: Origin, shared: dict[tuple[int, int], Pose]) -> Pose:
+    """``origin.pose()``, computed once per xyz and rpy pair in ``shared`` (one walk's).
+
+    Origins read from the same text share their xyz and rpy tuples (the reader's memo).
+    Keyed by identity, so equal values that differ in sign (0.0, -0.0) stay apart; the
+    tuples outlive the walk, so no identity is reused during it.
+    """
+    p = origin._pose
+    if p is None:
+        key = (id(origin.xyz), id(origin.rpy))
+        p = shared.get(key)
+        if p is None:
+            p = shared[key] = origin.pose()
+        else:
+            origin._pose = p
+    return p
+
+
 class _Located:
     """Mixin: ``source`` is computed on first use (most elements never need it)."""
 
@@ -224,6 +250,8 @@ class _Located:
 
 @dataclass(slots=True)
 class Inertial(_Located):
+    """A link's ``<inertial>``: mass, inertia and origin (None where unreadable; see problems)."""
+
     mass: float | None
     inertia: dict[str, float | None]
     origin: Origin
@@ -234,6 +262,8 @@ class Inertial(_Located):
 
 @dataclass(slots=True)
 class Link(_Located):
+    """A ``<link>``: its first inertial and the mesh files its visuals and collisions name."""
+
     name: str
     element: etree._Element
     doc: Document
@@ -250,6 +280,8 @@ class Link(_Located):
 
 @dataclass(slots=True)
 class Joint(_Located):
+    """A ``<joint>`` as urdfdom reads it (the first of each child element counts)."""
+
     name: str
     type: str
     parent: str | None
@@ -507,8 +539,9 @@ class Robot:
                 break
         T = base
         pj = self.parent_joint
+        shared: dict[tuple[int, int], Pose] = {}
         for name in reversed(chain):
-            T = None if T is None else compose(T, pj[name].origin.pose())
+            T = None if T is None else compose(T, _shared_pose(pj[name].origin, shared))
             cache[name] = T
         return cache[link]
 
@@ -520,6 +553,7 @@ class Robot:
 
             pj = self.parent_joint
             links = self.link_map
+            shared: dict[tuple[int, int], Pose] = {}
             for lk in self.links:
                 name = lk.name
                 if name in cache:
@@ -528,7 +562,10 @@ class Robot:
                 parent = joint.parent if joint is not None else None
                 if joint is not None and parent in cache and parent in links:
                     base = cache[parent]  # the usual case: parents come first
-                    cache[name] = None if base is None else compose(base, joint.origin.pose())
+                    if base is None:
+                        cache[name] = None
+                        continue
+                    cache[name] = compose(base, _shared_pose(joint.origin, shared))
                 else:
                     self.world_pose(name)
             self._all_posed = True
@@ -558,48 +595,77 @@ _MASS_ATTRS = URDF_ATTRS["mass"] | {LOC_ATTR}
 _INERTIA_ATTRS = URDF_ATTRS["inertia"] | {LOC_ATTR}
 _ORIGIN_ATTRS = URDF_ATTRS["origin"] | {LOC_ATTR}
 _LINK_ATTRS = URDF_ATTRS["link"] | {LOC_ATTR}
+_JOINT_ATTRS = URDF_ATTRS["joint"] | {LOC_ATTR}
 _LIMIT_KEYS = ("lower", "upper", "effort", "velocity")
 _JOINT_CHILD_ATTRS = {tag: URDF_ATTRS[tag] | {LOC_ATTR} for tag in URDF_CHILDREN["joint"]}
+_NO_PROBLEMS: tuple[str, ...] = ()
+
+# What the attributes of an <origin>, <mass>, <inertia> or <limit> read as, by their
+# (name, text) pairs: robots repeat a few values ("0 0 0", one inertia per link type)
+# thousands of times. Pure functions of the key, emptied by each build_robot.
+_Items = tuple[tuple[str, str], ...]
+_ORIGIN_MEMO: dict[_Items, tuple[Vec3, Vec3, tuple[str, ...], str | None, bool]] = {}
+_MASS_MEMO: dict[_Items, tuple[float | None, tuple[str, ...], bool]] = {}
+_INERTIA_MEMO: dict[_Items, tuple[dict[str, float | None], tuple[str, ...], bool]] = {}
+_LIMIT_MEMO: dict[_Items, tuple[dict[str, float | None], tuple[str, ...], bool]] = {}
+_AXIS_MEMO: dict[str, tuple[Vec3 | None, str | None]] = {}
 
 
-def _no_attr(_key: str) -> None:
-    return None
+def _items(el: etree._Element) -> _Items:
+    """``el``'s attributes as a memo key: the source mark xacro stamps last is left out."""
+    items = el.items()
+    if items and items[-1][0] == LOC_ATTR:
+        del items[-1]
+    return tuple(items)
 
 
-def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[Stray]) -> Inertial:
+def _origin_parts(items: _Items) -> tuple[Vec3, Vec3, tuple[str, ...], str | None, bool]:
+    attrs = dict(items)
+    xyz_text, rpy_text = attrs.get("xyz"), attrs.get("rpy")
+    xyz: Vec3 | None = _ZERO
+    rpy: Vec3 | None = _ZERO
     problems: list[str] = []
-    mass_el = in_el = origin_el = None
-    for c in el:  # one pass: lxml's find() costs more per call than this loop
-        tag = c.tag
-        if tag == "mass":
-            mass_el = c if mass_el is None else mass_el
-            if not _MASS_ATTRS.issuperset(c.keys()):
-                _check_attrs(c, "mass", link, strays)
-        elif tag == "inertia":
-            in_el = c if in_el is None else in_el
-            if not _INERTIA_ATTRS.issuperset(c.keys()):
-                _check_attrs(c, "inertia", link, strays)
-        elif tag == "origin":
-            origin_el = c if origin_el is None else origin_el
-            if not _ORIGIN_ATTRS.issuperset(c.keys()):
-                _check_attrs(c, "origin", link, strays)
-        else:
-            _stray_child(c, "inertial", link, strays)
+    if xyz_text is not None:
+        xyz, why = parse_vec3(xyz_text)
+        if why:
+            problems.append(f"xyz {why}")
+    if rpy_text is not None:
+        rpy, why = parse_vec3(rpy_text)
+        if why:
+            problems.append(f"rpy {why}")
+    clean = _ORIGIN_ATTRS.issuperset(attrs)
+    return xyz or _ZERO, rpy or _ZERO, tuple(problems), rpy_text, clean
+
+
+def _read_origin(el: etree._Element, link: str | None, strays: list[Stray]) -> Origin:
+    """``Origin.read(el)``, checking its attributes for strays on the way."""
+    key = _items(el)
+    hit = _ORIGIN_MEMO.get(key)
+    if hit is None:
+        hit = _ORIGIN_MEMO[key] = _origin_parts(key)
+    if not hit[4]:
+        _check_attrs(el, "origin", link, strays)
+    return Origin(hit[0], hit[1], list(hit[2]) if hit[2] else [], hit[3])
+
+
+def _mass_parts(items: _Items) -> tuple[float | None, tuple[str, ...], bool]:
+    attrs = dict(items)
+    text = attrs.get("value")
     mass: float | None = None
-    if mass_el is None:
-        problems.append("no <mass>")
+    if text is None:
+        problems: tuple[str, ...] = ("<mass> has no value attribute",)
     else:
-        text = mass_el.get("value")
-        if text is None:
-            problems.append("<mass> has no value attribute")
-        else:
-            mass, why = parse_float(text)
-            if why:
-                problems.append(f"mass {why}")
+        mass, why = parse_float(text)
+        problems = (f"mass {why}",) if why else ()
+    return mass, problems, _MASS_ATTRS.issuperset(attrs)
+
+
+def _inertia_parts(items: _Items) -> tuple[dict[str, float | None], tuple[str, ...], bool]:
+    attrs = dict(items)
+    problems: list[str] = []
     inertia: dict[str, float | None] = {}
-    get = in_el.get if in_el is not None else _no_attr
     for key in _INERTIA_KEYS:
-        text = get(key)
+        text = attrs.get(key)
         if text is None:
             inertia[key] = None
             continue
@@ -611,10 +677,65 @@ def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[St
             problems.append(f"{key} {text!r} is not a finite number")
             value = None
         inertia[key] = value
-    origin = Origin.read(origin_el) if origin_el is not None else Origin()
+    return inertia, tuple(problems), _INERTIA_ATTRS.issuperset(attrs)
+
+
+_NO_INERTIA = _inertia_parts(())
+
+
+def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[Stray]) -> Inertial:
+    mass_hit = inertia_hit = None
+    origin: Origin | None = None
+    for c in el:  # one pass: lxml's find() costs more per call than this loop
+        tag = c.tag
+        if tag == "mass":
+            if mass_hit is None:
+                key = _items(c)
+                mass_hit = _MASS_MEMO.get(key)
+                if mass_hit is None:
+                    mass_hit = _MASS_MEMO[key] = _mass_parts(key)
+                if not mass_hit[2]:
+                    _check_attrs(c, "mass", link, strays)
+            elif not _MASS_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "mass", link, strays)
+        elif tag == "inertia":
+            if inertia_hit is None:
+                key = _items(c)
+                inertia_hit = _INERTIA_MEMO.get(key)
+                if inertia_hit is None:
+                    inertia_hit = _INERTIA_MEMO[key] = _inertia_parts(key)
+                if not inertia_hit[2]:
+                    _check_attrs(c, "inertia", link, strays)
+            elif not _INERTIA_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "inertia", link, strays)
+        elif tag == "origin":
+            if origin is None:
+                origin = _read_origin(c, link, strays)
+            elif not _ORIGIN_ATTRS.issuperset(c.keys()):
+                _check_attrs(c, "origin", link, strays)
+        else:
+            _stray_child(c, "inertial", link, strays)
+    if mass_hit is None:
+        mass: float | None = None
+        problems = ["no <mass>"]
+    else:
+        mass = mass_hit[0]
+        problems = list(mass_hit[1]) if mass_hit[1] else []
+    if inertia_hit is None:
+        inertia_hit = _NO_INERTIA
+    if inertia_hit[1]:
+        problems.extend(inertia_hit[1])
     return Inertial(
-        mass=mass, inertia=inertia, origin=origin, element=el, doc=doc, problems=problems
+        mass,
+        dict(inertia_hit[0]),
+        origin if origin is not None else Origin(),
+        el,
+        doc,
+        problems,
     )
+
+
+_VISUAL = frozenset({"visual", "collision"})
 
 
 def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
@@ -627,7 +748,7 @@ def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
         if tag == "inertial":
             if link.inertial is None:
                 link.inertial = _read_inertial(part, doc, name, strays)
-        elif tag in {"visual", "collision"}:
+        elif tag in _VISUAL:
             allowed = URDF_CHILDREN[tag]
             for c in part:
                 ctag = c.tag
@@ -645,58 +766,89 @@ def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
     return link
 
 
+def _limit_parts(items: _Items) -> tuple[dict[str, float | None], tuple[str, ...], bool]:
+    attrs = dict(items)
+    limit: dict[str, float | None] = {}
+    problems: list[str] = []
+    for key in _LIMIT_KEYS:
+        value, why = parse_float(attrs.get(key))
+        if why:
+            problems.append(f"{key} {why}")
+        limit[key] = value
+    return limit, tuple(problems), _JOINT_CHILD_ATTRS["limit"].issuperset(attrs)
+
+
 def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint:
-    parent_el = child_el = origin_el = axis_el = limit_el = mimic_el = None
-    _check_attrs(el, "joint", None, strays)
+    parent = child = mimic_el = None
+    origin: Origin | None = None
+    axis_text: str | None = None
+    has_axis = False
+    limit_hit = None
+    keys = el.keys()
+    if not _JOINT_ATTRS.issuperset(keys):
+        _stray_attrs(el, "joint", keys, URDF_ATTRS["joint"], None, strays)
     for c in el:
         tag = c.tag
+        if tag == "parent":
+            if parent is None:
+                parent = c
+        elif tag == "child":
+            if child is None:
+                child = c
+        elif tag == "origin":
+            if origin is None:
+                origin = _read_origin(c, None, strays)
+                continue  # its attributes are checked
+        elif tag == "limit":
+            if limit_hit is None:
+                key = _items(c)
+                limit_hit = _LIMIT_MEMO.get(key)
+                if limit_hit is None:
+                    limit_hit = _LIMIT_MEMO[key] = _limit_parts(key)
+                if not limit_hit[2]:
+                    _check_attrs(c, "limit", None, strays)
+                continue
+        elif tag == "axis":
+            if not has_axis:
+                has_axis = True
+                axis_text = c.get("xyz")
+        elif tag == "mimic" and mimic_el is None:
+            mimic_el = c
         attrs = _JOINT_CHILD_ATTRS.get(tag)
         if attrs is None:
             _stray_child(c, "joint", None, strays)
-            continue
-        if not attrs.issuperset(c.keys()):
+        elif not attrs.issuperset(c.keys()):
             _check_attrs(c, tag, None, strays)
-        if tag == "parent":
-            parent_el = parent_el if parent_el is not None else c
-        elif tag == "child":
-            child_el = child_el if child_el is not None else c
-        elif tag == "origin":
-            origin_el = origin_el if origin_el is not None else c
-        elif tag == "axis":
-            axis_el = axis_el if axis_el is not None else c
-        elif tag == "limit":
-            limit_el = limit_el if limit_el is not None else c
-        elif tag == "mimic":
-            mimic_el = mimic_el if mimic_el is not None else c
     joint = Joint(
-        name=el.get("name", ""),
-        type=el.get("type", ""),
-        parent=parent_el.get("link") if parent_el is not None else None,
-        child=child_el.get("link") if child_el is not None else None,
-        origin=Origin.read(origin_el) if origin_el is not None else Origin(),
-        element=el,
-        doc=doc,
+        el.get("name", ""),
+        el.get("type", ""),
+        parent.get("link") if parent is not None else None,
+        child.get("link") if child is not None else None,
+        origin if origin is not None else Origin(),
+        el,
+        doc,
     )
-    if axis_el is not None:
-        axis_text = axis_el.get("xyz")
-        axis, why = parse_vec3(axis_text) if axis_text is not None else (None, None)
-        joint.axis_problem = why
-        if axis is not None:
-            joint.axis = (axis[0], axis[1], axis[2])
-            if axis[0] == 0.0 and axis[1] == 0.0 and axis[2] == 0.0:
-                joint.axis_problem = "axis is zero"
-    if limit_el is not None:
-        limit: dict[str, float | None] = {}
-        for key in _LIMIT_KEYS:
-            value, why = parse_float(limit_el.get(key))
-            if why:
-                joint.limit_problems.append(f"{key} {why}")
-            limit[key] = value
-        joint.limit = limit
+    if axis_text is not None:
+        hit = _AXIS_MEMO.get(axis_text)
+        if hit is None:
+            axis, why = parse_vec3(axis_text)
+            if axis is not None and axis[0] == 0.0 and axis[1] == 0.0 and axis[2] == 0.0:
+                why = "axis is zero"
+            hit = _AXIS_MEMO[axis_text] = (axis, why)
+        joint.axis, joint.axis_problem = hit
+    if limit_hit is not None:
+        joint.limit = dict(limit_hit[0])
+        if limit_hit[1]:
+            joint.limit_problems.extend(limit_hit[1])
     if mimic_el is not None:
         joint.has_mimic = True
         joint.mimic = mimic_el.get("joint")
     return joint
+
+
+def _clear_memos() -> None:
+    for memo in (_ORIGIN_MEMO, _MASS_MEMO, _INERTIA_MEMO, _LIMIT_MEMO, _AXIS_MEMO):
+        memo.clear()
 
 
 def build_robot(doc: Document) -> Robot:
@@ -708,6 +860,7 @@ def build_robot(doc: Document) -> Robot:
     try:
         return _build_robot(doc)
     finally:
+        _clear_memos()
         if enabled:
             gc.enable()
 
@@ -725,24 +878,42 @@ def _build_robot(doc: Document) -> Robot:
 
     root = doc.root
     robot = Robot(name=root.get("name", ""), document=doc)
+    links, joints, strays = robot.links, robot.joints, robot.strays
+    add_link, add_joint = links.append, joints.append
     for el in root:
         tag = el.tag
-        name = tag if tag in {"link", "joint"} else local(el)
+        if tag == "link":
+            add_link(_read_link(el, doc, strays))
+            continue
+        if tag == "joint":
+            add_joint(_read_joint(el, doc, strays))
+            continue
+        name = local(el)
         if name == "link":
-            robot.links.append(_read_link(el, doc, robot.strays))
+            add_link(_read_link(el, doc, strays))
         elif name == "joint":
-            robot.joints.append(_read_joint(el, doc, robot.strays))
+            add_joint(_read_joint(el, doc, strays))
         elif name == "gazebo":
             robot.gazebo.append(GazeboBlock(el.get("reference"), el, doc.locate(el)))
         elif name and name not in ROBOT_CHILDREN and _own_namespace(el, root):
-            robot.strays.append(Stray(el, "robot", None, None))
-    for lk in robot.links:
-        robot.link_map.setdefault(lk.name, lk)
-    for j in robot.joints:
-        robot.joint_map.setdefault(j.name, j)
-        if j.child is not None and j.child not in robot.parent_joint:
-            robot.parent_joint[j.child] = j
-        if j.parent is not None:
-            robot.child_joints.setdefault(j.parent, []).append(j)
+            strays.append(Stray(el, "robot", None, None))
+    link_map, joint_map = robot.link_map, robot.joint_map
+    parent_joint, child_joints = robot.parent_joint, robot.child_joints
+    for lk in links:
+        if lk.name not in link_map:
+            link_map[lk.name] = lk
+    for j in joints:
+        if j.name not in joint_map:
+            joint_map[j.name] = j
+        c = j.child
+        if c is not None and c not in parent_joint:
+            parent_joint[c] = j
+        p = j.parent
+        if p is not None:
+            kids = child_joints.get(p)
+            if kids is None:
+                child_joints[p] = [j]
+            else:
+                kids.append(j)
     read_gazebo(robot)
     return robot

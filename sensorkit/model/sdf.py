@@ -58,15 +58,22 @@ def convert(robot: Robot) -> Conversion:
     target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
     parent_joint, child_joints, link_map = robot.parent_joint, robot.child_joints, robot.link_map
     order: list[str] = []
-    seen: set[str] = set()
+    # Depth first from each root; a link's survivor is settled when it is reached, after
+    # every link above it (lumping looks only at what was reached before).
     for root in robot.roots():
         stack = [root]
         while stack:
             cur = stack.pop()
-            if cur in seen:
+            if cur in target_of:
                 continue
-            seen.add(cur)
             order.append(cur)
+            joint = parent_joint.get(cur)
+            target = cur
+            if joint is not None and joint.type == "fixed" and joint.name not in preserved:
+                up = target_of.get(joint.parent) if joint.parent is not None else None
+                if up is not None and up != "world":
+                    target = up
+            target_of[cur] = target
             kids = child_joints.get(cur)
             if kids:
                 for j in reversed(kids):
@@ -74,17 +81,6 @@ def convert(robot: Robot) -> Conversion:
                     # a joint to a missing link (SK202) adds none
                     if c is not None and c in link_map and parent_joint.get(c) is j:
                         stack.append(c)
-    for name in order:
-        joint = parent_joint.get(name)
-        lumped = (
-            joint is not None
-            and joint.type == "fixed"
-            and joint.name not in preserved
-            and joint.parent is not None
-            and joint.parent in target_of
-            and target_of[joint.parent] != "world"
-        )
-        target_of[name] = target_of[joint.parent] if lumped else name  # type: ignore[union-attr,index]
     for name in link_map:
         if name not in target_of:
             target_of[name] = name

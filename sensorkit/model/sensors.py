@@ -34,6 +34,8 @@ DEPTH_KINDS = {"depth", "rgbd"}
 
 @dataclass
 class Noise:
+    """A ``<noise>`` block as written."""
+
     type: str | None
     mean: float | None
     stddev: float | None
@@ -69,6 +71,8 @@ class CameraSpec:
 
 @dataclass
 class LidarSpec:
+    """One ``<ray>`` or ``<lidar>`` block: horizontal and vertical scan, range, as written."""
+
     element: etree._Element
     source: SourceRef
     samples: int | None = None

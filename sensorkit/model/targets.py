@@ -78,6 +78,8 @@ ROS1_MIN_EVIDENCE = (
 
 @dataclass
 class Ros1Evidence:
+    """What in a robot says ROS 1 (or ROS 2): the plugins and tags found."""
+
     plugins: list[str] = field(default_factory=list)  # ROS 1-only gazebo_ros plugins
     tags: list[str] = field(default_factory=list)  # ROS 1 parameter tags in gazebo_ros plugins
     ros2: list[str] = field(default_factory=list)  # anything only ROS 2 has

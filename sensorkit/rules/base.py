@@ -27,6 +27,8 @@ RuleFunc = Callable[["Context"], Iterable[Finding]]
 
 @dataclass(frozen=True)
 class RuleInfo:
+    """A rule in the registry: id, severity, title, the existing tool it mirrors, its check."""
+
     id: str
     severity: str  # as in the catalogue: "error", "warning", "info", "error/warning"
     title: str

@@ -148,16 +148,28 @@ def _few(names: list[str], n: int = 8) -> str:
     "gz sdf -k",
 )
 def inertia_valid(ctx: Context) -> Iterator[Finding]:
+    # Links read from the same <mass> and <inertia> text share their value objects (the
+    # reader's memo): each such combination is judged once. Keyed by identity, so values
+    # that compare equal but print differently (0.0 and -0.0) stay apart.
+    judged: dict[tuple[int, ...], str | None] = {}
     for link in ctx.robot.links:
-        if link.inertial is None:
+        inertial = link.inertial
+        if inertial is None:
             continue
-        problem = inertia_problem(link.inertial)
+        if inertial.problems:
+            problem = inertia_problem(inertial)
+        else:
+            key = (id(inertial.mass), *map(id, inertial.inertia.values()))
+            if key in judged:
+                problem = judged[key]
+            else:
+                problem = judged[key] = inertia_problem(inertial)
         if problem:
             yield ctx.finding(
                 "SK302",
                 Severity.ERROR,
                 f"link {link.name!r} inertial: {problem}",
-                link.inertial.source,
+                inertial.source,
                 link=link.name,
                 fix="compute the inertia from the link's shape and mass (box, cylinder, sphere formulas)",
             )

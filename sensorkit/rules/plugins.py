@@ -236,6 +236,8 @@ def _resolve(name: str, ns: str, node: str) -> str:
 
 @dataclass
 class Topic:
+    """A resolved topic name and the sensor and plugin that publish it."""
+
     name: str  # resolved
     sensor: Sensor | None
     plugin: Plugin | None

@@ -154,17 +154,18 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
     # Fast path: with one parent per link, a walk from the roots that reaches every child
     # proves there is no cycle.
     if not any(len(js) > 1 for js in parents.values()):
-        reached: set[str] = set()
         stack = robot.roots()
+        reached = set(stack)
+        child_joints = robot.child_joints
         while stack:
-            cur = stack.pop()
-            reached.add(cur)
-            stack.extend(
-                j.child
-                for j in robot.child_joints.get(cur, ())
-                if j.child is not None and j.child not in reached and j.parent != j.child
-            )
-        if all(c in reached for c in parents):
+            kids = child_joints.get(stack.pop())
+            if kids:
+                for j in kids:
+                    c = j.child
+                    if c is not None and c not in reached and j.parent != c:
+                        reached.add(c)
+                        stack.append(c)
+        if reached.issuperset(parents):
             return
     edges: dict[str, list[tuple[str, str]]] = {}
     for j in robot.joints:
