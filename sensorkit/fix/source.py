@@ -106,18 +106,14 @@ def _skip(text: str, needle: str, start: int) -> int:
 
 
 def _tag_end(text: str, start: int) -> int:
-    i, quote, n = start + 1, "", len(text)
-    while i < n:
-        c = text[i]
-        if quote:
-            if c == quote:
-                quote = ""
-        elif c in "\"'":
-            quote = c
-        elif c == ">":
-            return i + 1
-        i += 1
-    raise NotFixable("unterminated tag")
+    """``edit.layout``'s tag scanner, refusing as a fix does."""
+    from sensorkit.edit.layout import _tag_end as tag_end
+    from sensorkit.errors import EditRefused
+
+    try:
+        return tag_end(text, start)
+    except EditRefused as exc:
+        raise NotFixable(str(exc)) from None
 
 
 def _doctype_end(text: str, start: int) -> int:

@@ -94,51 +94,10 @@ def angle_between(Ra: Mat, Rb: Mat) -> float:
 
 
 def T_world_link_np(robot: Robot, link: str) -> Mat | None:
-    """:meth:`Robot.T_world_link <sensorkit.model.robot.Robot.T_world_link>` in numpy.
-
-    Memoised on the robot; iterative (a 10,000-link chain costs no recursion).
-    """
-    cache: dict[str, Mat | None] = robot.cache.setdefault("T_world_np", {})
-    if link in cache:
-        return cache[link]
-    if link not in robot.link_map:
-        return None
-    chain: list[str] = []
-    cur: str | None = link
-    seen: set[str] = set()
-    base: Mat | None = None
-    while cur is not None:
-        if cur in cache:
-            base = cache[cur]
-            break
-        if cur in seen:  # cycle: no defined pose
-            for c in chain:
-                cache[c] = None
-            return None
-        seen.add(cur)
-        chain.append(cur)
-        joint = robot.parent_joint.get(cur)
-        if joint is None:
-            base = np.eye(4)
-            cache[cur] = base
-            chain.pop()
-            break
-        cur = joint.parent
-        if cur is None:
-            for c in chain:
-                cache[c] = None
-            return None
-        if cur not in robot.link_map:  # cut off by a joint to a missing parent (SK202)
-            base = np.eye(4)
-            cache[chain[-1]] = base
-            chain.pop()
-            break
-    T = base
-    for name in reversed(chain):
-        joint = robot.parent_joint[name]
-        T = None if T is None else T @ joint.origin.matrix()
-        cache[name] = T
-    return cache[link]
+    """:meth:`Robot.T_world_link <sensorkit.model.robot.Robot.T_world_link>` as a numpy
+    array (the walk and its memo are the robot's own)."""
+    T = robot.T_world_link(link)
+    return None if T is None else np.array(T, dtype=np.float64)
 
 
 def render_pose_np(robot: Robot, sensor: Sensor) -> Mat | None:
