@@ -23,12 +23,13 @@ from pathlib import Path
 from typing import Any
 
 from sensorkit.errors import UsageError
+from sensorkit.record import Record
 
 KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
 
 
-@dataclass
-class Config:
+@dataclass(repr=False, eq=False)
+class Config(Record):
     """Settings read from a configuration file (``path``; None when there is none)."""
 
     path: Path | None = None

@@ -24,6 +24,7 @@ from sensorkit.model.frames import sensor_frames
 from sensorkit.model.robot import Link, Robot
 from sensorkit.model.sdf import Conversion, convert
 from sensorkit.model.targets import TARGETS, detect_target, is_gz
+from sensorkit.record import Record
 from sensorkit.rules import RULES, Context, MissingFile, RuleInfo
 from sensorkit.rules.base import Bridge
 from sensorkit.suppress import collect
@@ -33,8 +34,8 @@ if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 
-@dataclass
-class Options:
+@dataclass(repr=False, eq=False)
+class Options(Record):
     """What to check and how. ``select``/``ignore`` take ids or prefixes (``SK5``)."""
 
     target: str = "auto"
@@ -71,8 +72,8 @@ class Options:
         return not any(rule_id.startswith(i.upper()) for i in self.ignore)
 
 
-@dataclass
-class FileReport:
+@dataclass(repr=False, eq=False)
+class FileReport(Record):
     """Findings for one file, with what was validated."""
 
     path: Path
@@ -95,8 +96,8 @@ class FileReport:
         return len(self.robot.sensors) if self.robot is not None else self.sensors_checked
 
 
-@dataclass
-class Report:
+@dataclass(repr=False, eq=False)
+class Report(Record):
     """The reports of the files one run validated, in input order."""
 
     files: list[FileReport] = field(default_factory=list)
@@ -188,8 +189,8 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
     return out
 
 
-@dataclass
-class RuleRun:
+@dataclass(repr=False, eq=False)
+class RuleRun(Record):
     """What ``check_robot`` worked out for one robot, kept so that a re-check after a small
     addition (``sensorkit.edit.check``) can reuse it instead of starting over."""
 

@@ -6,6 +6,8 @@ import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from sensorkit.record import FrozenRecord
+
 
 class Severity(enum.IntEnum):
     """Ordered so that ``severity >= fail_on`` reads naturally."""
@@ -27,8 +29,8 @@ class Severity(enum.IntEnum):
             raise ValueError(msg) from None
 
 
-@dataclass(frozen=True)
-class SourceRef:
+@dataclass(frozen=True, repr=False, eq=False)
+class SourceRef(FrozenRecord):
     """Where an element came from: a file and a 1-based line (None when unknown)."""
 
     file: str | None
@@ -40,8 +42,8 @@ class SourceRef:
         return f"{self.file}:{self.line}" if self.line else self.file
 
 
-@dataclass(frozen=True)
-class Finding:
+@dataclass(frozen=True, repr=False, eq=False)
+class Finding(FrozenRecord):
     """One problem found in a robot description.
 
     ``rule`` is the public id (``SK502``); ``fix`` is a sentence or a replacement the

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sensorkit.findings import Finding
+from sensorkit.record import Record
 
 # Compiled on first use (by re's cache): only files that mention sensorkit are searched.
 _COMMENT = r"<!--(.*?)-->"
@@ -23,8 +24,8 @@ _ID = r"SK\d{3}"
 ALL = "*"
 
 
-@dataclass
-class Suppressions:
+@dataclass(repr=False, eq=False)
+class Suppressions(Record):
     """The rules suppressed by line and by file."""
 
     by_line: dict[tuple[str, int], set[str]] = field(default_factory=dict)

@@ -13,6 +13,7 @@ from typing import Annotated, Any, TypeVar
 import typer
 
 from sensorkit.errors import SensorkitError
+from sensorkit.record import Record
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -113,8 +114,8 @@ def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     return Untrusted(env=frozenset(env or ()))
 
 
-@dataclass
-class Settings:
+@dataclass(repr=False, eq=False)
+class Settings(Record):
     """What a command runs with: its flags, else the settings file, else the defaults."""
 
     target: str

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from sensorkit.record import FrozenRecord
+
 # Frame defaults (``PluginSpec.frame_default``):
 LINK = "link"  # the <gazebo reference> link, after fixed-joint lumping when ``lumped``
 WORLD = "world"  # the literal frame "world"
@@ -19,8 +21,8 @@ PARAM = "param"  # the default is another parameter's value (``frame_default_par
 LITERAL = "literal"  # a fixed string (``frame_default_value``)
 
 
-@dataclass(frozen=True)
-class PluginSpec:
+@dataclass(frozen=True, repr=False, eq=False)
+class PluginSpec(FrozenRecord):
     """What one plugin family does, as its source code says."""
 
     family: str  # a readable name: "gazebo_ros camera (ROS 2)"

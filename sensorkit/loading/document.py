@@ -20,6 +20,7 @@ from sensorkit.errors import InputError
 from sensorkit.findings import Finding, Severity, SourceRef
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
@@ -56,8 +57,8 @@ def strict_parser() -> etree.XMLParser:
     )
 
 
-@dataclass
-class Document:
+@dataclass(repr=False, eq=False)
+class Document(Record):
     """An XML robot description with a way back to the file and line of each element."""
 
     path: Path
@@ -101,8 +102,8 @@ class Document:
         return list(self.files) or [str(self.path)]
 
 
-@dataclass
-class LoadResult:
+@dataclass(repr=False, eq=False)
+class LoadResult(Record):
     """A document, or the findings that say why there is none (SK101..SK103)."""
 
     document: Document | None

@@ -20,6 +20,8 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sensorkit.record import Record
+
 _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use
 MAX_SCAN_DIRS = 5000
@@ -104,8 +106,8 @@ def workspace_roots(path: Path) -> list[Path]:
     return roots
 
 
-@dataclass
-class PackageResolver:
+@dataclass(repr=False, eq=False)
+class PackageResolver(Record):
     """Maps package names to folders; records every place it searched."""
 
     explicit: dict[str, Path] = field(default_factory=dict)

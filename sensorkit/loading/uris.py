@@ -6,10 +6,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.record import FrozenRecord
 
 
-@dataclass(frozen=True)
-class UriTarget:
+@dataclass(frozen=True, repr=False, eq=False)
+class UriTarget(FrozenRecord):
     """Where a reference points. ``path`` is None when it cannot be resolved here."""
 
     path: Path | None

@@ -10,13 +10,14 @@ from typing import TYPE_CHECKING
 from sensorkit.findings import Finding
 from sensorkit.loading import PackageResolver, load_description
 from sensorkit.model.robot import Robot, build_robot
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 
-@dataclass
-class Loaded:
+@dataclass(repr=False, eq=False)
+class Loaded(Record):
     """A robot, or the findings (SK101..SK103) that say why it could not be read."""
 
     robot: Robot | None

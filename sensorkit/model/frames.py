@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from sensorkit.knowledge import plugins as known
 from sensorkit.model.targets import is_gz
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.knowledge.plugins import PluginSpec
@@ -41,8 +42,8 @@ GZ_DEPRECATED_FRAME_TAGS: dict[str, tuple[str, ...]] = {"jetty": ("gz_frame_id",
 GZ_OPTICAL_FRAME_ID = ("fortress", "harmonic")
 
 
-@dataclass
-class SensorFrames:
+@dataclass(repr=False, eq=False)
+class SensorFrames(Record):
     """A sensor's render pose and published frame under one target."""
 
     sensor: Sensor

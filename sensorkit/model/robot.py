@@ -15,6 +15,7 @@ from lxml import etree
 from sensorkit.findings import SourceRef
 from sensorkit.loading.document import Document
 from sensorkit.loading.marks import LOC_ATTR
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor
@@ -167,8 +168,8 @@ def text_of(el: etree._Element | None, *path: str) -> str | None:
 _ZERO: Vec3 = (0.0, 0.0, 0.0)
 
 
-@dataclass(slots=True)
-class Origin:
+@dataclass(slots=True, repr=False, eq=False)
+class Origin(Record):
     """A URDF ``<origin>``: xyz and rpy, zeros when absent; notes when unreadable."""
 
     xyz: Vec3 = (0.0, 0.0, 0.0)
@@ -248,8 +249,8 @@ class _Located:
         return self.doc.locate(self.element)
 
 
-@dataclass(slots=True)
-class Inertial(_Located):
+@dataclass(slots=True, repr=False, eq=False)
+class Inertial(_Located, Record):
     """A link's ``<inertial>``: mass, inertia and origin (None where unreadable; see problems)."""
 
     mass: float | None
@@ -260,8 +261,8 @@ class Inertial(_Located):
     problems: list[str] = field(default_factory=list)
 
 
-@dataclass(slots=True)
-class Link(_Located):
+@dataclass(slots=True, repr=False, eq=False)
+class Link(_Located, Record):
     """A ``<link>``: its first inertial and the mesh files its visuals and collisions name."""
 
     name: str
@@ -278,8 +279,8 @@ class Link(_Located):
         return self.inertial.mass
 
 
-@dataclass(slots=True)
-class Joint(_Located):
+@dataclass(slots=True, repr=False, eq=False)
+class Joint(_Located, Record):
     """A ``<joint>`` as urdfdom reads it (the first of each child element counts)."""
 
     name: str
@@ -297,8 +298,8 @@ class Joint(_Located):
     has_mimic: bool = False
 
 
-@dataclass(slots=True)
-class Stray:
+@dataclass(slots=True, repr=False, eq=False)
+class Stray(Record):
     """Something urdfdom silently ignores: an unknown child element, or attribute if ``attr``."""
 
     element: etree._Element
@@ -335,8 +336,8 @@ def _stray_child(c: etree._Element, parent_tag: str, link: str | None, strays: l
         strays.append(Stray(c, parent_tag, None, link))
 
 
-@dataclass
-class GazeboBlock:
+@dataclass(repr=False, eq=False)
+class GazeboBlock(Record):
     """A ``<gazebo>`` extension; ``reference`` is None for model-level blocks."""
 
     reference: str | None
@@ -344,8 +345,8 @@ class GazeboBlock:
     source: SourceRef
 
 
-@dataclass
-class Robot:
+@dataclass(repr=False, eq=False)
+class Robot(Record):
     """The whole description, with lazy forward kinematics at zero joint positions."""
 
     name: str

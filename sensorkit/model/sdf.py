@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from sensorkit.model.robot import text_of
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
@@ -22,8 +23,8 @@ _TRUE = {"true", "1"}
 MASS_EPSILON = 1e-6  # sdformat compares the (lumped) mass with 0 by math::equal
 
 
-@dataclass
-class Conversion:
+@dataclass(repr=False, eq=False)
+class Conversion(Record):
     """Result of the conversion as far as frames and masses go."""
 
     target_of: dict[str, str] = field(default_factory=dict)  # link -> surviving link

@@ -9,6 +9,7 @@ from lxml import etree
 
 from sensorkit.findings import SourceRef
 from sensorkit.model.robot import Origin, child, children, local, parse_float, parse_vec, text_of
+from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
@@ -32,8 +33,8 @@ LIDAR_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar"}
 DEPTH_KINDS = {"depth", "rgbd"}
 
 
-@dataclass
-class Noise:
+@dataclass(repr=False, eq=False)
+class Noise(Record):
     """A ``<noise>`` block as written."""
 
     type: str | None
@@ -43,8 +44,8 @@ class Noise:
     problems: list[str] = field(default_factory=list)
 
 
-@dataclass
-class CameraSpec:
+@dataclass(repr=False, eq=False)
+class CameraSpec(Record):
     """One ``<camera>`` block: image, fov, clip, lens and distortion as written."""
 
     element: etree._Element
@@ -69,8 +70,8 @@ class CameraSpec:
     problems: list[str] = field(default_factory=list)
 
 
-@dataclass
-class LidarSpec:
+@dataclass(repr=False, eq=False)
+class LidarSpec(Record):
     """One ``<ray>`` or ``<lidar>`` block: horizontal and vertical scan, range, as written."""
 
     element: etree._Element
@@ -92,8 +93,8 @@ class LidarSpec:
     problems: list[str] = field(default_factory=list)
 
 
-@dataclass
-class Plugin:
+@dataclass(repr=False, eq=False)
+class Plugin(Record):
     """A ``<plugin>``; ``params`` maps child tag -> elements (order kept)."""
 
     filename: str
@@ -141,8 +142,8 @@ class Plugin:
         return out
 
 
-@dataclass
-class Sensor:
+@dataclass(repr=False, eq=False)
+class Sensor(Record):
     """A ``<sensor>`` in a ``<gazebo reference="...">`` block."""
 
     name: str

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from sensorkit.record import Record
+
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
 
@@ -76,8 +78,8 @@ ROS1_MIN_EVIDENCE = (
 )
 
 
-@dataclass
-class Ros1Evidence:
+@dataclass(repr=False, eq=False)
+class Ros1Evidence(Record):
     """What in a robot says ROS 1 (or ROS 2): the plugins and tags found."""
 
     plugins: list[str] = field(default_factory=list)  # ROS 1-only gazebo_ros plugins

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.record import FrozenRecord, Record
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -25,8 +26,8 @@ if TYPE_CHECKING:
 RuleFunc = Callable[["Context"], Iterable[Finding]]
 
 
-@dataclass(frozen=True)
-class RuleInfo:
+@dataclass(frozen=True, repr=False, eq=False)
+class RuleInfo(FrozenRecord):
     """A rule in the registry: id, severity, title, the existing tool it mirrors, its check."""
 
     id: str
@@ -63,8 +64,8 @@ def declare(id: str, severity: str, title: str, existing: str = "none") -> None:
     RULES[id] = RuleInfo(id, severity, title, existing, None)
 
 
-@dataclass
-class MissingFile:
+@dataclass(repr=False, eq=False)
+class MissingFile(Record):
     """A file reference (mesh, texture) that does not resolve; found before rules run."""
 
     uri: str
@@ -73,16 +74,16 @@ class MissingFile:
     link: str | None = None
 
 
-@dataclass
-class Bridge:
+@dataclass(repr=False, eq=False)
+class Bridge(Record):
     """The ros_gz_bridge configuration known for a Gazebo Sim robot (files may be none)."""
 
     files: list[str] = field(default_factory=list)
     topics: list[BridgeTopic] = field(default_factory=list)
 
 
-@dataclass
-class Context:
+@dataclass(repr=False, eq=False)
+class Context(Record):
     """Everything a rule may read. Computed once per robot by the engine."""
 
     robot: Robot

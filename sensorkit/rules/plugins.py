@@ -22,6 +22,7 @@ from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_O
 from sensorkit.model.robot import child, children, local
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
+from sensorkit.record import Record
 from sensorkit.rules.base import Context, rule
 
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
@@ -234,8 +235,8 @@ def _resolve(name: str, ns: str, node: str) -> str:
     return f"{ns}/{name.strip('/')}"
 
 
-@dataclass
-class Topic:
+@dataclass(repr=False, eq=False)
+class Topic(Record):
     """A resolved topic name and the sensor and plugin that publish it."""
 
     name: str  # resolved
