@@ -41,7 +41,7 @@ class Options(Record):
     target: str = "auto"
     select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
-    fail_on: Severity = Severity.ERROR
+    fail_on: Severity | None = Severity.ERROR  # None: never (no finding fails)
     args: dict[str, str] = field(default_factory=dict)
     package_paths: tuple[str, ...] = ()
     timeout: float = 60.0
@@ -119,9 +119,13 @@ class Report(Record):
             out[f.severity.label] += 1
         return out
 
-    def exit_code(self, fail_on: Severity) -> int:
+    def exit_code(self, fail_on: Severity | None) -> int:
+        """2 if a file could not be checked, else 1 if a finding is at ``fail_on`` or
+        above (None: never), else 0."""
         if any(fr.error or fr.internal_errors for fr in self.files):
             return 2
+        if fail_on is None:
+            return 0
         return 1 if any(f.severity >= fail_on for f in self.findings) else 0
 
 

@@ -288,6 +288,27 @@ def test_exit_zero(tmp_path: Path) -> None:
     assert res.returncode == 0 and res.stdout.startswith("---")
 
 
+
+def test_fail_on_never_from_the_shared_settings_file(tmp_path: Path) -> None:
+    """One sensorkit.toml serves validate and render preview: ``fail-on = "never"``, which
+    render took, made validate refuse to run (exit 2) before."""
+    copy = tmp_path / "bad.urdf"
+    shutil.copyfile(BAD, copy)
+    (tmp_path / "sensorkit.toml").write_text('fail-on = "never"\n')
+    res = _sk("validate", str(copy), cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    assert "SK502" in res.stdout and "fail-on never from sensorkit.toml" in res.stderr
+    assert _sk("validate", "--fail-on", "error", str(copy), cwd=tmp_path).returncode == 1  # flag wins
+    res = _sk("validate", "--fail-on", "never", str(BAD))
+    assert res.returncode == 0 and "SK502" in res.stdout
+    res = _sk("validate", "--fail-on", "never", "--diff", str(copy))  # the fix path too
+    assert res.returncode == 0 and res.stdout.startswith("---")
+    # a file that cannot be checked still fails
+    assert _sk("validate", "--fail-on", "never", str(tmp_path / "missing.urdf")).returncode == 2
+    res = _sk("validate", "--fail-on", "sometimes", str(BAD))
+    assert res.returncode == 2 and "(or never)" in res.stderr
+
+
 MACROS = (
     '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
     '  <xacro:property name="r" value="0.1"/>\n'

@@ -81,8 +81,8 @@ FailOnOpt = Annotated[
     str | None,
     typer.Option(
         "--fail-on",
-        help="lowest severity that fails: error | warning | info (default: the settings "
-        "file's, else error)",
+        help="lowest severity that fails: error | warning | info | never (default: the "
+        "settings file's, else error)",
         show_default=False,
     ),
 ]
@@ -199,21 +199,22 @@ def settings(
     return Settings(target, paths, args, trust, cfg, used)
 
 
-def fail_on_threshold(flag: str | None, cfg: Any, *, never: bool = False) -> Any:
+def fail_on_threshold(flag: str | None, cfg: Any) -> Any:
     """``--fail-on``, else the settings file's ``fail-on``, else error, as a Severity;
-    with ``never`` allowed (render preview), ``never`` is None. A bad value is a usage
-    error naming where it came from."""
+    ``never`` (no finding fails; a file that cannot be checked still does) is None. The
+    settings file is shared by validate and render preview, so both take every value.
+    A bad value is a usage error naming where it came from."""
     from sensorkit.errors import UsageError
     from sensorkit.findings import Severity
 
     text = flag or cfg.fail_on or "error"
     where = "--fail-on" if flag else f"{cfg.path}: fail-on"
-    if never and text.strip().lower() == "never":
+    if text.strip().lower() == "never":
         return None
     try:
         return Severity.parse(text)
     except ValueError as exc:
-        msg = f"{where}: {exc}" + (" (or never)" if never else "")
+        msg = f"{where}: {exc} (or never)"
         raise UsageError(msg) from None
 
 

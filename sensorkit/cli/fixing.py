@@ -30,7 +30,7 @@ def run_fix(
     files: Sequence[Path],
     options: Options,
     fmt: str,
-    threshold: Severity,
+    threshold: Severity | None,
     *,
     diff: bool,
     fix: bool,
@@ -76,7 +76,9 @@ def run_fix(
                 typer.echo(f"sensorkit: {ff.error}", err=True)
         note(f"would fix {_plural(run.fixed)} ({run.remaining} would remain)", quiet)
         failed = any(ff.error or ff.internal_errors for ff in run.files)
-        bad = any(f.severity >= threshold for ff in run.files for f in ff.after)
+        bad = threshold is not None and any(
+            f.severity >= threshold for ff in run.files for f in ff.after
+        )
         raise typer.Exit(exit_status(2 if failed else 1 if bad else 0, exit_zero=exit_zero))
     from sensorkit.engine import validate_paths
     from sensorkit.report import render

@@ -188,7 +188,7 @@ def preview(
         untrusted=untrusted,
         env=env,
     )
-    threshold = fail_on_threshold(fail_on, st.config, never=True)
+    threshold = fail_on_threshold(fail_on, st.config)
     st.say_where(() if fail_on else ("fail-on", "select", "ignore"), quiet=quiet)
     joints = parse_joints(joint)
     if scene is not None and not scene.is_file():
