@@ -23,18 +23,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sensorkit.atomic import check_editable, editing, write_bytes
-from sensorkit.engine import FileReport, Options, check_robot
+from sensorkit.engine import FileReport, Options, validate_file
 from sensorkit.errors import EditRefused, InputError
 from sensorkit.findings import Finding, Severity
 from sensorkit.fix.registry import FIXERS, Deferred, Fix, FixContext, NotFixable, subject
 from sensorkit.fix.source import Edit, apply_edits, overlaps
-from sensorkit.loading.document import display_path, load_description
-from sensorkit.loading.packages import PackageResolver, own_package, package_name, workspace_roots
-from sensorkit.model import build_robot
+from sensorkit.loading.document import display_path
+from sensorkit.loading.packages import own_package, package_name, workspace_roots
 from sensorkit.model.frames import sensor_frames
 from sensorkit.model.sdf import convert
 from sensorkit.rules.base import Context
-from sensorkit.suppress import Suppressions
 
 MAX_ROUNDS = 12
 
@@ -44,46 +42,8 @@ MAX_ROUNDS = 12
 
 def check(path: Path, options: Options, overlay: Mapping[str, bytes]) -> FileReport:
     """``validate_file`` on the text in ``overlay`` where it holds a file, else the disk."""
-    resolver = PackageResolver.from_options(list(options.package_paths), near=path)
-    try:
-        result = load_description(
-            path,
-            args=options.args,
-            resolver=resolver,
-            timeout=options.timeout,
-            untrusted=options.untrusted,
-            overlay=overlay,
-        )
-    except InputError as exc:
-        return FileReport(path=path, error=str(exc))
-    except RecursionError:
-        return FileReport(
-            path=path, error=f"{display_path(path)}: the document nests too deeply to read"
-        )
-    if result.document is None:
-        report = FileReport(path=path, findings=list(result.findings))
-    else:
-        report = check_robot(build_robot(result.document), options)
-        report.findings = result.findings + report.findings
-    report.findings = [f for f in report.findings if options.wants(f.rule)]
-    sup = Suppressions()
-    sources = report.robot.document.source_files() if report.robot is not None else [str(path)]
-    for f in sources:
-        data = overlay.get(os.path.abspath(f))
-        try:
-            text = (
-                data.decode("utf-8", "replace")
-                if data is not None
-                else Path(f).read_text("utf-8", "replace")
-            )
-        except OSError:
-            continue
-        if "sensorkit" in text:
-            sup.add_text(display_path(f), text)
-    kept = [f for f in report.findings if not sup.suppressed(f)]
-    report.suppressed = len(report.findings) - len(kept)
-    report.findings = sorted(kept, key=Finding.sort_key)
-    return report
+    merged = {**options.overlay, **overlay}
+    return validate_file(path, dataclasses.replace(options, overlay=merged))
 
 
 def context_of(report: FileReport, options: Options) -> Context:
