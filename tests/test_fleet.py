@@ -164,6 +164,27 @@ def test_ctrl_c_stops_workers_and_xacro_children(tmp_path: Path) -> None:
     assert not _descendants(proc.pid)
 
 
+def test_jobs_import_no_numpy(tmp_path: Path, mix: list[Path]) -> None:
+    """Whatever the parent imports before forking lengthens every --jobs run: validating
+    needs no numpy, so neither the parent nor the workers import it."""
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
+    assert any(p.name.endswith(".xacro") for p in files)  # the parent warms xacro up
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    run = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", "-j", "2", *files],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert run.returncode in (0, 1), run.stderr
+    imported = {line.rsplit("|", 1)[-1].strip() for line in run.stderr.splitlines() if "|" in line}
+    assert "xacro" in imported  # the log is real
+    assert not {m for m in imported if m.split(".")[0] == "numpy"}
+
+
 def _group(pgid: int) -> list[str]:
     run = subprocess.run(
         ["ps", "-eo", "pid=,pgid=,ppid="], capture_output=True, text=True, check=True
