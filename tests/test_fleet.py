@@ -115,6 +115,34 @@ def test_a_worker_that_dies_costs_only_its_file(
     assert report.exit_code(Options().fail_on) == 2
 
 
+def test_files_queued_behind_a_dying_worker_go_to_another(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A worker holds the file it validates and the next: when it dies on the first, the
+    next is validated by its replacement, not reported as the dead worker's."""
+    from sensorkit.fleet import QUEUED, run_pool
+
+    assert QUEUED >= 2
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
+    real = sensorkit.engine.validate_file
+
+    def dying(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+        if path in (files[0], files[3]):
+            os._exit(9)
+        return real(path, options)
+
+    expected = validate_paths(files, Options())
+    monkeypatch.setattr(sensorkit.engine, "validate_file", dying)
+    reports = run_pool(files, Options(), 1)  # one worker at a time: it holds files 0 and 1
+    assert [fr.path for fr in reports] == files
+    for i, (got, want) in enumerate(zip(reports, expected.files, strict=True)):
+        if i in (0, 3):
+            assert got.error is not None and "exit status 9" in got.error, got.error
+        else:
+            assert (got.findings, got.error) == (want.findings, want.error), got.path
+
+
 def test_what_validating_raises_is_raised_as_with_jobs_1(
     tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
 ) -> None:
