@@ -143,6 +143,23 @@ def test_files_queued_behind_a_dying_worker_go_to_another(
             assert (got.findings, got.error) == (want.findings, want.error), got.path
 
 
+def test_workers_start_with_what_they_inherit_frozen(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch, gc_off: None
+) -> None:
+    """A worker's collections never walk the parent's objects (each would be copied)."""
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:3]
+    inherited = len(gc.get_objects())
+
+    def frozen(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+        return sensorkit.engine.FileReport(path=path, error=str(gc.get_freeze_count()))
+
+    monkeypatch.setattr(sensorkit.engine, "validate_file", frozen)
+    reports = validate_paths(files, Options(), jobs=2).files
+    assert all(int(fr.error or 0) > inherited // 2 for fr in reports), [fr.error for fr in reports]
+    assert gc.get_freeze_count() == 0  # and the parent's collector is as it was
+
+
 def test_what_validating_raises_is_raised_as_with_jobs_1(
     tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
 ) -> None:
