@@ -230,6 +230,36 @@ def test_jobs_import_no_numpy(tmp_path: Path, mix: list[Path]) -> None:
     assert not {m for m in imported if m.split(".")[0] == "numpy"}
 
 
+def test_xacro_children_import_nothing_again(tmp_path: Path) -> None:
+    """Each xacro expansion runs in a child forked for it: whatever the child imports is
+    imported once a file. The process forking them imports it once instead."""
+    robot = (
+        f'<robot name="r" {XACRO_NS}><xacro:property name="a" value="1"/><link name="l"/></robot>\n'
+    )
+    for i in range(5):
+        (tmp_path / f"r{i}.urdf.xacro").write_text(robot)
+
+    def imports(n: int) -> list[str]:
+        files = [f"r{i}.urdf.xacro" for i in range(n)]
+        run = subprocess.run(
+            [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", *files],
+            cwd=tmp_path,
+            env=dict(os.environ, PYTHONPATH=str(ROOT)),
+            capture_output=True,
+            text=True,
+            timeout=120,
+            check=False,
+        )
+        assert run.returncode in (0, 1), run.stderr
+        return sorted(
+            line.rsplit("|", 1)[-1].strip() for line in run.stderr.splitlines() if "|" in line
+        )
+
+    two, five = imports(2), imports(5)
+    assert "xacro" in two  # the log is real
+    assert five == two
+
+
 def _group(pgid: int) -> list[str]:
     run = subprocess.run(
         ["ps", "-eo", "pid=,pgid=,ppid="], capture_output=True, text=True, check=True
