@@ -11,9 +11,9 @@ Pool: ``run_pool`` hands files to N worker processes, each holding the one it va
 and the next, and gathers the reports in input order. A worker validates, keeps only the
 findings (plain data) and sends them back; a worker that dies (a crash, the kernel's OOM
 killer) costs only the file it was validating, which becomes that file's error: a new
-worker takes its place and the file queued behind. Workers run
-in their own process group, so xacro's forked children (``loading.xacro_expand``) die with
-them when sensorkit stops early (Ctrl-C); they ignore SIGINT, which the parent handles.
+worker takes its place and the file queued behind. Workers run in their own process
+group, so xacro's forked children (``loading.xacro_expand``) die with them when sensorkit
+stops early (Ctrl-C); they ignore SIGINT, which the parent handles.
 """
 
 from __future__ import annotations
