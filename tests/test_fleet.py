@@ -143,6 +143,45 @@ def test_files_queued_behind_a_dying_worker_go_to_another(
             assert (got.findings, got.error) == (want.findings, want.error), got.path
 
 
+def test_a_worker_gone_between_files_costs_nothing(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A worker that dies after its last answer, before the parent sends it the next file
+    (the send fails): no file is reported as its, and the next goes to a new worker."""
+    import multiprocessing
+    from multiprocessing.connection import Connection
+
+    from sensorkit.fleet import run_pool
+
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:2]
+    expected = validate_paths(files, Options()).files
+    parent = os.getpid()
+    real_send = Connection.send
+    failed: list[object] = []
+
+    def send(conn: Connection, obj: object) -> None:
+        if os.getpid() == parent and obj == (1, files[1]) and not failed:
+            for child in multiprocessing.active_children():
+                os.kill(child.pid or 0, signal.SIGKILL)  # the worker, answered and idle
+            time.sleep(0.5)
+            try:
+                real_send(conn, obj)
+            except OSError as exc:
+                failed.append(exc)
+                raise
+            return
+        real_send(conn, obj)
+
+    monkeypatch.setattr(Connection, "send", send)
+    # One worker, two files: it holds one at a time (no more files left than workers).
+    reports = run_pool(files, Options(), 1)
+    assert failed  # the send did fail
+    assert [(r.path, r.findings, r.error) for r in reports] == [
+        (r.path, r.findings, r.error) for r in expected
+    ]
+
+
 def test_workers_start_with_what_they_inherit_frozen(
     tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch, gc_off: None
 ) -> None:
