@@ -7,12 +7,13 @@ more than a partial. A partial's root holds nothing but ``<xacro:macro>``,
 ``<xacro:property>``, ``<xacro:include>`` and ``<xacro:arg>``: it is included by robots,
 never validated on its own.
 
-Pool: ``run_pool`` hands one file at a time to each of N worker processes and gathers the
-reports in input order. A worker validates, keeps only the findings (plain data) and
-sends them back; a worker that dies (a crash, the kernel's OOM killer) costs only the file
-it held, which becomes that file's error, and a new worker takes its place. Workers run
-in their own process group, so xacro's forked children (``loading.xacro_expand``) die with
-them when sensorkit stops early (Ctrl-C); they ignore SIGINT, which the parent handles.
+Pool: ``run_pool`` hands files to N worker processes, each holding the one it validates
+and the next, and gathers the reports in input order. A worker validates, keeps only the
+findings (plain data) and sends them back; a worker that dies (a crash, the kernel's OOM
+killer) costs only the file it was validating, which becomes that file's error: a new
+worker takes its place and the file queued behind. Workers run in their own process
+group, so xacro's forked children (``loading.xacro_expand``) die with them when sensorkit
+stops early (Ctrl-C); they ignore SIGINT, which the parent handles.
 """
 
 from __future__ import annotations
@@ -136,9 +137,23 @@ def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a 
 
 
 def _start(ctx: Any, options: Options) -> tuple[BaseProcess, Connection]:
+    """A worker, forked with every object of this process in the collector's permanent
+    generation: its collections (a young one after each file, see ``validate_one``) then
+    never walk what it inherited. ``sensorkit validate`` disables automatic collection
+    before its last imports (about 9,000 objects): the worker's first collection walked
+    them all, writing to each one's header and so copying the pages holding them, 5 ms
+    of its first file."""
+    import gc
+
     parent_end, child_end = ctx.Pipe()
     proc = ctx.Process(target=_worker, args=(child_end, options), daemon=False)
-    proc.start()
+    ours = not gc.get_freeze_count()  # leave a caller's own freeze as it is
+    gc.freeze()
+    try:
+        proc.start()
+    finally:
+        if ours:
+            gc.unfreeze()
     child_end.close()
     with contextlib.suppress(OSError):  # its own process group (see _worker)
         os.setpgid(proc.pid, proc.pid)
@@ -168,15 +183,19 @@ def _crashed(path: Path, proc: BaseProcess) -> FileReport:
 
 
 def _preload(paths: Sequence[Path]) -> None:
-    """Import here what validating imports on first use (numpy, and xacro when a file may
-    need it), so that every forked worker starts with it instead of importing it again:
-    0.17 s of CPU a worker, against 12 ms to validate a small robot once warm."""
-    import numpy  # noqa: F401
+    """Import here what validating imports on first use (xacro, when a file may need it),
+    so that every forked worker starts with it instead of importing it again.
 
+    Only that: everything imported here is imported before any worker starts, one module
+    after the other, so it lengthens every run by its import time. Validating imports no
+    numpy (a test checks it), so neither does this."""
     from sensorkit.loading.xacro_expand import warm
 
     if any(not p.name.endswith(".urdf") for p in paths):  # .xacro, or anything else
         warm()
+
+
+QUEUED = 2  # files a worker holds at most: the one it validates and the next
 
 
 def run_pool(
@@ -185,8 +204,16 @@ def run_pool(
     jobs: int,
     on_done: Callable[[int, FileReport], None] | None = None,
 ) -> list[FileReport]:
-    """Validate ``paths`` in ``jobs`` worker processes; reports in input order."""
+    """Validate ``paths`` in ``jobs`` worker processes; reports in input order.
+
+    Each worker holds up to ``QUEUED`` files: when it has answered one, the next already
+    waits in its pipe, so it never waits for this process to be scheduled and send one
+    (with the workers keeping every core busy, that wait came after each file). While
+    there are no more files left to hand out than workers, a worker gets one at a time,
+    so that none holds a file another could validate now.
+    """
     import multiprocessing as mp
+    from collections import deque
     from multiprocessing.connection import wait
 
     method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
@@ -195,72 +222,115 @@ def run_pool(
         _preload(paths)
     results: list[FileReport | None] = [None] * len(paths)
     next_task = 0
-    busy: dict[Any, tuple[BaseProcess, int]] = {}  # connection -> (its worker, file index)
+    retry: list[int] = []  # files sent to a worker that died before it began them
+    # connection -> (its worker, the files sent to it and not answered yet, oldest first)
+    live: dict[Any, tuple[BaseProcess, deque[int]]] = {}
     raised: dict[int, Exception] = {}  # file index -> what validating it raised
     workers: list[tuple[BaseProcess, Connection]] = []
+    broken: set[Any] = set()  # connections a send failed on: their worker is gone
 
     def done(index: int, report: FileReport) -> None:
         results[index] = report
         if on_done is not None:
             on_done(index, report)
 
-    def feed(proc: BaseProcess, conn: Connection) -> None:
-        """The next file to an idle worker, or None (stop) when there is none left."""
+    def limit() -> int:
+        # validate_file raised (a usage error, a bug): --jobs 1 stops at the first such
+        # file, so no file after it is handed out; the earliest is raised at the end.
+        return min(raised) if raised else len(paths)
+
+    def left() -> int:
+        """Files not handed out yet (and to be)."""
+        end = limit()
+        return sum(1 for i in retry if i < end) + max(0, end - next_task)
+
+    def give(conn: Connection) -> bool:
+        """Send ``conn``'s worker one more file; False when it should get none now."""
         nonlocal next_task
-        if next_task >= len(paths):
+        _proc, queue = live[conn]
+        if len(queue) >= QUEUED or (queue and left() <= len(live)):
+            return False
+        end = limit()
+        if retry and retry[0] < end:
+            index = retry.pop(0)
+        elif next_task < end:
+            index = next_task
+            next_task += 1
+        else:
+            return False
+        try:
+            conn.send((index, paths[index]))
+        except OSError:  # it died: collect() sees it, and bury() takes over
+            broken.add(conn)
+            retry.append(index)
+            retry.sort()
+            return False
+        queue.append(index)
+        return True
+
+    def feed(conn: Connection) -> None:
+        """Top up a worker's files; stop it (None) when it holds none and none is left."""
+        while give(conn):
+            pass
+        if not live[conn][1] and conn not in broken:
             with contextlib.suppress(OSError):
                 conn.send(None)
-            return
-        try:
-            conn.send((next_task, paths[next_task]))
-        except OSError:  # it died after its last answer: the file goes to a new worker
-            _stop(proc)
-            start()
-            return
-        busy[conn] = (proc, next_task)
-        next_task += 1
+            del live[conn]
 
-    def start() -> None:
+    def start() -> Connection:
         proc, conn = _start(ctx, options)
         workers.append((proc, conn))
-        feed(proc, conn)
+        live[conn] = (proc, deque())
+        return conn
+
+    def collect(conn: Connection) -> bool:
+        """Take every answer ``conn`` holds; False when its worker is gone."""
+        proc, queue = live[conn]
+        try:
+            while conn.poll():  # a worker speaks only to answer: else it is gone (EOF)
+                got, answer = conn.recv()
+                if not queue or got != queue[0]:
+                    return False
+                index = queue.popleft()
+                if isinstance(answer, Exception):
+                    raised[index] = answer
+                else:
+                    done(index, answer)
+        except (EOFError, OSError):
+            return False
+        return proc.exitcode is None
+
+    def bury(conn: Connection) -> None:
+        """A worker died: the file it held becomes that file's error, the files queued
+        behind it go to other workers, and a new worker takes its place."""
+        proc, queue = live.pop(conn)
+        _stop(proc)
+        if queue:
+            index = queue.popleft()
+            done(index, _crashed(paths[index], proc))
+            retry.extend(queue)
+            retry.sort()
+        if left():
+            feed(start())
 
     try:
         for _ in range(max(1, min(jobs, len(paths)))):
             start()
-        while busy:
-            by_sentinel: dict[Any, Any] = {p.sentinel: c for c, (p, _) in busy.items()}
-            for item in wait([*busy, *by_sentinel]):
+        for _ in range(QUEUED):  # one file each first, then the next ones
+            for conn in list(live):
+                give(conn)
+        for conn in list(live):
+            feed(conn)
+        while live:
+            by_sentinel: dict[Any, Any] = {p.sentinel: c for c, (p, _) in live.items()}
+            for item in wait([*live, *by_sentinel]):
                 conn = by_sentinel.get(item, item)
-                if conn not in busy:
+                if conn not in live:
                     continue  # already handled through its other handle
-                proc, index = busy.pop(conn)
-                report: FileReport | None = None
-                try:
-                    if conn.poll():
-                        got, answer = conn.recv()
-                        if got != index:
-                            answer = None
-                        elif isinstance(answer, Exception):
-                            # validate_file raised (a usage error, a bug): --jobs 1 stops
-                            # at the first such file, so raise the earliest one once the
-                            # files before it are done, and start no new one meanwhile.
-                            raised[index] = answer
-                            next_task = len(paths)
-                            feed(proc, conn)
-                            continue
-                        report = answer
-                except (EOFError, OSError):
-                    report = None
-                if report is not None:
-                    done(index, report)
-                    feed(proc, conn)
-                    continue
-                # The worker died holding this file: say so, and replace the worker.
-                _stop(proc)
-                done(index, _crashed(paths[index], proc))
-                if next_task < len(paths):
-                    start()
+                if collect(conn):
+                    feed(conn)
+                else:
+                    bury(conn)
         if raised:
             raise raised[min(raised)]
         for proc, _conn in workers:

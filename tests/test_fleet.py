@@ -115,6 +115,90 @@ def test_a_worker_that_dies_costs_only_its_file(
     assert report.exit_code(Options().fail_on) == 2
 
 
+def test_files_queued_behind_a_dying_worker_go_to_another(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A worker holds the file it validates and the next: when it dies on the first, the
+    next is validated by its replacement, not reported as the dead worker's."""
+    from sensorkit.fleet import QUEUED, run_pool
+
+    assert QUEUED >= 2
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
+    real = sensorkit.engine.validate_file
+
+    def dying(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+        if path in (files[0], files[3]):
+            os._exit(9)
+        return real(path, options)
+
+    expected = validate_paths(files, Options())
+    monkeypatch.setattr(sensorkit.engine, "validate_file", dying)
+    reports = run_pool(files, Options(), 1)  # one worker at a time: it holds files 0 and 1
+    assert [fr.path for fr in reports] == files
+    for i, (got, want) in enumerate(zip(reports, expected.files, strict=True)):
+        if i in (0, 3):
+            assert got.error is not None and "exit status 9" in got.error, got.error
+        else:
+            assert (got.findings, got.error) == (want.findings, want.error), got.path
+
+
+def test_a_worker_gone_between_files_costs_nothing(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A worker that dies after its last answer, before the parent sends it the next file
+    (the send fails): no file is reported as its, and the next goes to a new worker."""
+    import multiprocessing
+    from multiprocessing.connection import Connection
+
+    from sensorkit.fleet import run_pool
+
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:2]
+    expected = validate_paths(files, Options()).files
+    parent = os.getpid()
+    real_send = Connection.send
+    failed: list[object] = []
+
+    def send(conn: Connection, obj: object) -> None:
+        if os.getpid() == parent and obj == (1, files[1]) and not failed:
+            for child in multiprocessing.active_children():
+                os.kill(child.pid or 0, signal.SIGKILL)  # the worker, answered and idle
+            time.sleep(0.5)
+            try:
+                real_send(conn, obj)
+            except OSError as exc:
+                failed.append(exc)
+                raise
+            return
+        real_send(conn, obj)
+
+    monkeypatch.setattr(Connection, "send", send)
+    # One worker, two files: it holds one at a time (no more files left than workers).
+    reports = run_pool(files, Options(), 1)
+    assert failed  # the send did fail
+    assert [(r.path, r.findings, r.error) for r in reports] == [
+        (r.path, r.findings, r.error) for r in expected
+    ]
+
+
+def test_workers_start_with_what_they_inherit_frozen(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch, gc_off: None
+) -> None:
+    """A worker's collections never walk the parent's objects (each would be copied)."""
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:3]
+    inherited = len(gc.get_objects())
+
+    def frozen(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+        return sensorkit.engine.FileReport(path=path, error=str(gc.get_freeze_count()))
+
+    monkeypatch.setattr(sensorkit.engine, "validate_file", frozen)
+    reports = validate_paths(files, Options(), jobs=2).files
+    assert all(int(fr.error or 0) > inherited // 2 for fr in reports), [fr.error for fr in reports]
+    assert gc.get_freeze_count() == 0  # and the parent's collector is as it was
+
+
 def test_what_validating_raises_is_raised_as_with_jobs_1(
     tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -162,6 +246,57 @@ def test_ctrl_c_stops_workers_and_xacro_children(tmp_path: Path) -> None:
     assert err.strip().splitlines()[-1] == "sensorkit: interrupted"
     time.sleep(0.5)
     assert not _descendants(proc.pid)
+
+
+def test_jobs_import_no_numpy(tmp_path: Path, mix: list[Path]) -> None:
+    """Whatever the parent imports before forking lengthens every --jobs run: validating
+    needs no numpy, so neither the parent nor the workers import it."""
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
+    assert any(p.name.endswith(".xacro") for p in files)  # the parent warms xacro up
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    run = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", "-j", "2", *files],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert run.returncode in (0, 1), run.stderr
+    imported = {line.rsplit("|", 1)[-1].strip() for line in run.stderr.splitlines() if "|" in line}
+    assert "xacro" in imported  # the log is real
+    assert not {m for m in imported if m.split(".")[0] == "numpy"}
+
+
+def test_xacro_children_import_nothing_again(tmp_path: Path) -> None:
+    """Each xacro expansion runs in a child forked for it: whatever the child imports is
+    imported once a file. The process forking them imports it once instead."""
+    robot = (
+        f'<robot name="r" {XACRO_NS}><xacro:property name="a" value="1"/><link name="l"/></robot>\n'
+    )
+    for i in range(5):
+        (tmp_path / f"r{i}.urdf.xacro").write_text(robot)
+
+    def imports(n: int) -> list[str]:
+        files = [f"r{i}.urdf.xacro" for i in range(n)]
+        run = subprocess.run(
+            [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", *files],
+            cwd=tmp_path,
+            env=dict(os.environ, PYTHONPATH=str(ROOT)),
+            capture_output=True,
+            text=True,
+            timeout=120,
+            check=False,
+        )
+        assert run.returncode in (0, 1), run.stderr
+        return sorted(
+            line.rsplit("|", 1)[-1].strip() for line in run.stderr.splitlines() if "|" in line
+        )
+
+    two, five = imports(2), imports(5)
+    assert "xacro" in two  # the log is real
+    assert five == two
 
 
 def _group(pgid: int) -> list[str]:
