@@ -25,6 +25,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_validate import big_urdf
 
+ROOT = Path(__file__).resolve().parent.parent
+
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 MACROS = f"""<?xml version="1.0"?>
 <robot {XACRO_NS}>
@@ -150,10 +152,12 @@ def scaling(tmp: Path, env: dict[str, str], files: int, runs: int) -> None:
             codes.add(rc)
     med = statistics.median
     print(f"{files} xacro robots, {runs} interleaved runs each (median), exit codes {sorted(codes)}")
-    print("jobs   wall s    CPU s    wall / wall(jobs 1)")
+    print("jobs   wall s    CPU s    wall / wall(jobs 1)   per-run ratios (median)")
     for j in jobs:
+        pairs = [w / w1 for w, w1 in zip(walls[j], walls["1"], strict=True)]  # same run: same machine state
         print(
             f"{j:>4} {med(walls[j]):8.2f} {med(cpus[j]):8.2f}    {med(walls[j]) / med(walls['1']):.2f}"
+            f"                  {med(pairs):.2f}"
         )
     print(f"target: wall(jobs 2) <= 0.55 x wall(jobs 1) on 2 cores (cores here: {os.cpu_count()})")
     print(
@@ -194,6 +198,8 @@ def main() -> None:
         tmp = Path(t)
         env = dict(os.environ, PYTHONPYCACHEPREFIX=str(tmp / "pycache"))
         env.pop("PYTHONDONTWRITEBYTECODE", None)
+        # the checkout this script lives in, whatever is installed (the runs' cwd is tmp)
+        env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
         if not a.skip_scaling:
             scaling(tmp, env, a.files, a.runs)
         if not a.skip_memory:
