@@ -12,7 +12,8 @@ stands on. The robots:
 
 The raw script builds the same world (ground, four textured walls, four textured crates,
 72 marker spheres, the robot's URDF), then renders the frames with TinyRenderer and casts
-the beams with rayTestBatch in batches of 16,383 rays, as the preview does.
+the beams with rayTestBatch in batches of 16,383 rays, as the preview does. Textures are
+loaded only when a camera renders: rays never see them, and the preview skips them too.
 
 Both sides run as whole processes (interpreter start, imports, everything), paired and
 interleaved: run k previews every robot and runs its raw script back to back, the order
@@ -129,6 +130,9 @@ import numpy as np
 import pybullet as p
 
 robot, textures, work = sys.argv[1], sys.argv[2], sys.argv[3:]
+# Rays meet collision shapes, never a texture: without a camera to render, none is loaded
+# (as the preview does).
+cams = any(job.startswith("cam:") for job in work)
 p.connect(p.DIRECT)
 
 def box_mesh(h, k):
@@ -151,13 +155,15 @@ def textured_box(h, pos, yaw, tex, k):
     vis = p.createVisualShape(p.GEOM_MESH, vertices=v, indices=i, uvs=uv, normals=n)
     col = p.createCollisionShape(p.GEOM_BOX, halfExtents=h)
     body = p.createMultiBody(0, col, vis, pos, p.getQuaternionFromEuler([0, 0, yaw]))
-    p.changeVisualShape(body, -1, textureUniqueId=p.loadTexture(f"{textures}/{tex}.png"), rgbaColor=[1, 1, 1, 1])
+    if cams:
+        p.changeVisualShape(body, -1, textureUniqueId=p.loadTexture(f"{textures}/{tex}.png"), rgbaColor=[1, 1, 1, 1])
 
 L = 3.0
 v, i, uv, n = box_mesh([L + 0.2, L + 0.2, 0.01], 1.0)
 floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE),
     p.createVisualShape(p.GEOM_MESH, vertices=v, indices=i, uvs=uv, normals=n, visualFramePosition=[0, 0, -0.01]))
-p.changeVisualShape(floor, -1, textureUniqueId=p.loadTexture(f"{textures}/floor.png"), rgbaColor=[1, 1, 1, 1])
+if cams:
+    p.changeVisualShape(floor, -1, textureUniqueId=p.loadTexture(f"{textures}/floor.png"), rgbaColor=[1, 1, 1, 1])
 for k, (x, y, h) in enumerate([(L + 0.1, 0, (0.1, L + 0.2, 1.25)), (-L - 0.1, 0, (0.1, L + 0.2, 1.25)),
                                (0, L + 0.1, (L + 0.2, 0.1, 1.25)), (0, -L - 0.1, (L + 0.2, 0.1, 1.25))]):
     textured_box(list(h), [x, y, 1.25], 0.0, f"wall{k}", 0.5)
