@@ -490,6 +490,11 @@ def _show_misplaced(out: SensorPreview, drawing: SensorDrawing, seen: Misplaced)
     )
 
 
+def _wanted(sensor: Sensor, only: Sequence[str]) -> bool:
+    """Is ``sensor`` previewed (``only``: the sensors asked for; all when empty)?"""
+    return not only or sensor.name in only
+
+
 def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | SensorPreview]:
     """What to render, in document order, with folders and colours fixed up front."""
     from sensorkit.render.overview import PALETTE
@@ -498,7 +503,7 @@ def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | Senso
     taken: set[str] = set()
     drawn = 0
     for sensor in robot.sensors:
-        if only and sensor.name not in only:
+        if not _wanted(sensor, only):
             continue
         if sensor.is_camera and sensor.cameras:
             folder = out_dir / _folder_name(sensor.name, taken)
@@ -962,7 +967,8 @@ def render_preview(
             shapes, str(scene), max(extent, _reach(robot_shapes, poses)) + 0.5, scene
         )
     else:
-        world_scene = default_scene(_reach(robot_shapes, poses))
+        cameras = any(s.is_camera and s.cameras for s in robot.sensors if _wanted(s, sensors))
+        world_scene = default_scene(_reach(robot_shapes, poses), textured=cameras)
 
     from sensorkit.atomic import staged_folder
 

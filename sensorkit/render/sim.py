@@ -256,7 +256,8 @@ class World:
                 continue
             half = tuple(float(v) for v in shape.size)
             col = self._call("createCollisionShape", self.p.GEOM_BOX, halfExtents=list(half))
-            if shape.texture is not None:
+            texture = shape.texture if shape.texture in scene.textures else None
+            if texture is not None:
                 v, i, uv, n = box_mesh((half[0], half[1], half[2]), shape.uv_per_m)
                 vis = self._call(
                     "createVisualShape", self.p.GEOM_MESH, vertices=v, indices=i, uvs=uv, normals=n
@@ -269,8 +270,8 @@ class World:
                     rgbaColor=list(shape.rgba),
                 )
             body = self._create(col, vis, shape.T_world)
-            if shape.texture is not None:
-                tex = self._texture(shape.texture, scene, cache)
+            if texture is not None:
+                tex = self._texture(texture, scene, cache)
                 self._call(
                     "changeVisualShape", body, -1, textureUniqueId=tex, rgbaColor=[1, 1, 1, 1]
                 )
