@@ -300,9 +300,9 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
     if textured:
         from sensorkit.render.textures import feature_texture, floor_texture
 
-        for key, (seed, size) in seeds.items():
+        for key, (seed, pixels) in seeds.items():
             make = floor_texture if key == "floor" else feature_texture
-            textures[key] = make(seed, size)
+            textures[key] = make(seed, pixels)
     return Scene(shapes, "default", half + thick, None, textures)
 
 
