@@ -20,6 +20,7 @@ import numpy.typing as npt
 
 from sensorkit.intrinsics import LaserScanParams
 from sensorkit.model.transforms_np import Mat
+from sensorkit.render._stats import median, unique
 from sensorkit.render.checks import Check
 
 if TYPE_CHECKING:
@@ -129,7 +130,7 @@ def check_sample(rows: int, cols: int, limit: int = SAMPLE_BEAMS) -> npt.NDArray
     if rows <= limit:
         picked = np.arange(rows, dtype=np.intp)
     else:
-        picked = np.unique(np.linspace(0, rows - 1, limit).round().astype(np.intp))
+        picked = unique(np.linspace(0, rows - 1, limit).round().astype(np.intp))
     k = min(cols, max(1, limit // len(picked)))
     shift = (picked * _GOLDEN) % 1.0
     at = np.floor((np.arange(k)[None, :] + shift[:, None]) * (cols / k)).astype(np.intp)
@@ -167,12 +168,13 @@ def _first_hits(
             rho = math.hypot(float(p[0]), float(p[1]))
             if rho > pad:  # the sphere's shadow on the ground plane is a wedge of azimuths
                 mid, half = math.atan2(float(p[1]), float(p[0])), math.asin(pad / rho) + 1e-9
-                parts = []
+                inside = np.zeros(n, dtype=bool)  # the rays in the wedge, in index order
                 for lo, hi in _wrapped(mid - half, mid + half):
                     j0 = int(np.searchsorted(sorted_az, lo, side="left"))
                     j1 = int(np.searchsorted(sorted_az, hi, side="right"))
-                    parts.append(order[j0:j1])
-                idx = np.unique(np.concatenate([*parts, vertical]))
+                    inside[order[j0:j1]] = True
+                inside[vertical] = True
+                idx = np.flatnonzero(inside)
             # then the line test: w = centre - start, along the ray w.d, off it |w|^2 - (w.d)^2
             w = shape.T_world[:3, 3] - starts[idx]
             along = np.einsum("ij,ij->i", w, dirs[idx])
@@ -313,7 +315,7 @@ def range_check(
     details = {
         "beams": n,
         "max_m": worst_m,
-        "median_m": float(np.median(errs)),
+        "median_m": median(errs),
         "missed": missed,
         # pybullet hit another shape than the exact first hit: at a range outside the
         # footprint (counted in max_m) or, at an edge, within it (fine)

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sensorkit.render._stats import percentile, unique
 from sensorkit.render.overview import SELF_HIT, ScanView, row_palette
 from sensorkit.render.raster import DEPTH_STOPS, Canvas, convex_hull
 
@@ -213,7 +214,7 @@ def depth_colour_range(
     if values.size == 0:
         hi = far if math.isfinite(far) else near + 1.0
         return float(near), float(hi)
-    lo, hi = (float(v) for v in np.percentile(values, [2.0, 98.0]))
+    lo, hi = percentile(values, 2.0), percentile(values, 98.0)
     step = nice_step(hi - lo, 10) if hi > lo else nice_step(max(abs(hi), 1e-3), 10)
     lo = math.floor(lo / step + 1e-9) * step
     hi = math.ceil(hi / step - 1e-9) * step
@@ -346,7 +347,7 @@ def scan_figure(
     y = display + 16
     if rows > 1:
         palette = row_palette(rows)
-        shown = np.unique(np.linspace(0, rows - 1, min(rows, 60)).round().astype(int))
+        shown = unique(np.linspace(0, rows - 1, min(rows, 60)).round().astype(int))
         for i, row in enumerate(shown):
             svg.add(
                 "rect",

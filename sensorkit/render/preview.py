@@ -375,6 +375,7 @@ def _lidar(
     from sensorkit.exporters import laser_scan_dict
     from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
+    from sensorkit.render._stats import median
     from sensorkit.render.lidar import cast, lidar_beams, range_check
     from sensorkit.render.overview import SensorDrawing, draw_scan
     from sensorkit.render.png import write_png
@@ -446,11 +447,7 @@ def _lidar(
     pts = scan.points.reshape(-1, 3).astype(np.float64)
     world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
     finite = np.isfinite(scan.ranges.reshape(-1))
-    fwd = (
-        float(np.nanmedian(scan.ranges[np.isfinite(scan.ranges)]))
-        if finite.any()
-        else beams.range_max
-    )
+    fwd = median(scan.ranges[np.isfinite(scan.ranges)]) if finite.any() else beams.range_max
     origin = T_render[:3, 3].copy()
     drawing = SensorDrawing(
         sensor.name,
@@ -587,7 +584,6 @@ def _preload(jobs: list[_Job], target: str) -> None:
     from sensorkit.model.targets import is_gz
 
     names = [
-        "numpy.ma",  # np.percentile and np.median import it on first use
         "sensorkit.atomic",
         "sensorkit.exporters",
         "sensorkit.intrinsics",

@@ -183,7 +183,12 @@ class Canvas:
 
 def convex_hull(points: Points) -> Points:
     """The 2D convex hull (Andrew's monotone chain), counter-clockwise."""
-    pts = np.unique(np.asarray(points, dtype=np.float64).round(9), axis=0)
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2).round(9)
+    # np.unique(pts, axis=0) without numpy.ma (see sensorkit.render._stats): the rows
+    # sorted by x, then y, each once
+    pts = pts[np.lexsort((pts[:, 1], pts[:, 0]))]
+    if len(pts) > 1:
+        pts = pts[np.concatenate([[True], (pts[1:] != pts[:-1]).any(axis=1)])]
     if len(pts) < 3:
         return pts
 
