@@ -341,6 +341,30 @@ def test_stats_give_numpys_numbers_bit_for_bit(seed: int, n: int, dtype: type, k
     assert unique(ints).dtype == np.unique(ints).dtype
 
 
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 400), st.integers(-3, 3))
+def test_picture_helpers_equal_the_numpy_they_replace(seed: int, n: int, scale: int) -> None:
+    """finite_rows, take_rows and the furthest return of scan_view are the plain numpy
+    expressions they stand for, exactly."""
+    from sensorkit.render.overview import _furthest
+    from sensorkit.render.raster import finite_rows, take_rows
+
+    rng = np.random.default_rng(seed)
+    points = rng.normal(size=(n, 3)) * 10.0**scale
+    if seed % 3 == 0:
+        points[rng.random(n) < 0.3] = np.nan
+    if seed % 5 == 0:
+        points[rng.integers(0, n), rng.integers(0, 3)] = np.inf
+    if seed % 7 == 0:
+        points[:] = 0.0
+    finite = np.isfinite(points).all(axis=1)
+    np.testing.assert_array_equal(finite_rows(points), finite)
+    np.testing.assert_array_equal(take_rows(points, finite), points[finite])
+    if finite.any():
+        exact = float(np.max(np.hypot(points[finite, 0], points[finite, 1])))
+        assert _furthest(points, finite) == exact
+
+
 def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, dict]:
     from sensorkit.render.sim import World
 

@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
     from sensorkit.render.lidar import LidarScan
-    from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.overview import ScanView, SensorDrawing
     from sensorkit.render.pictures import Figure
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
@@ -377,8 +377,9 @@ def _lidar(
     from sensorkit.render._files import save_npy
     from sensorkit.render._stats import median
     from sensorkit.render.lidar import cast, lidar_beams, range_check
-    from sensorkit.render.overview import SensorDrawing, draw_scan
+    from sensorkit.render.overview import SensorDrawing, draw_scan, scan_view
     from sensorkit.render.png import write_png
+    from sensorkit.render.raster import take_rows
 
     sensor = job.sensor
     out = SensorPreview(sensor.name, sensor.name, sensor.type, sensor.kind, sensor.reference)
@@ -414,17 +415,16 @@ def _lidar(
     self_hit = np.isin(scan.hits.body, run.world.robot_bodies)
     out.files["scan_png"] = folder / "scan.png"
     sectors = _self_occluded(scan, self_hit)
+    # the points in the sensor's frame and in the world, and the view of scan.png: once,
+    # for every picture
+    pts = scan.points.reshape(-1, 3).astype(np.float64)
+    world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
+    view = scan_view(pts, beams.range_max)
     png = write_png(
         out.files["scan_png"],
-        draw_scan(
-            scan.points.reshape(-1, 3).astype(np.float64),
-            rows,
-            self_hit,
-            beams.range_max,
-            sectors=sectors,
-        ),
+        draw_scan(pts, rows, self_hit, beams.range_max, sectors=sectors, view=view),
     )
-    _lidar_figures(run, out, scan, png, rows, self_hit, sectors)
+    _lidar_figures(run, out, scan, png, view, world_pts, rows, self_hit, sectors)
 
     frames = run.frames(sensor)
     out.info["frames"] = run.frame_info(frames, T_render)
@@ -444,8 +444,6 @@ def _lidar(
     fcheck = frame_check(T_render, T_frame, frame, frames.how, optical=False)
     out.checks.append(fcheck)
 
-    pts = scan.points.reshape(-1, 3).astype(np.float64)
-    world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
     finite = np.isfinite(scan.ranges.reshape(-1))
     fwd = median(scan.ranges[np.isfinite(scan.ranges)]) if finite.any() else beams.range_max
     origin = T_render[:3, 3].copy()
@@ -455,7 +453,7 @@ def _lidar(
         origin,
         origin + T_render[:3, 0] * min(fwd, 1.0),
         [],
-        world_pts[finite],
+        take_rows(world_pts, finite),
     )
     if fcheck.status == "warn" and T_frame is not None and frame is not None:
         from sensorkit.render.rviz import Misplaced, lidar_points
@@ -1079,32 +1077,29 @@ def _lidar_figures(
     out: SensorPreview,
     scan: LidarScan,
     scan_png: bytes,
+    view: ScanView,
+    world_pts: np.ndarray,
     rows: np.ndarray,
     self_hit: np.ndarray,
     sectors: list[tuple[float, float]],
 ) -> None:
-    """scan.png labelled; for a 3D lidar or a tilted 2D one, side.png and its labels."""
-    from sensorkit.render.overview import scan_view
+    """scan.png labelled (``view``: where draw_scan put things); for a 3D lidar or a
+    tilted 2D one, side.png (of ``world_pts``, every beam's point in the world) and its
+    labels."""
     from sensorkit.render.pictures import draw_side, scan_figure, side_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.scene import GROUND
 
     beams = scan.beams
     V = beams.shape[0]
-    points = scan.points.reshape(-1, 3).astype(np.float64)
-    view = scan_view(points, beams.range_max)
     _add_figure(out, scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
     if (V <= 1 and tilt <= 1.0) or out.directory is None:
         return
-    ground_keys = [
-        (body + 1) * 2**32 + (link + 1)
-        for (body, link), shapes in run.world.shape_of.items()
-        if any(x.kind == GROUND for x in shapes)
-    ]
-    hit_keys = (scan.hits.body.astype(np.int64) + 1) * 2**32 + (scan.hits.link.astype(np.int64) + 1)
-    ground = np.isin(hit_keys, ground_keys)
-    world_pts = points @ scan.rotation.T + scan.origin
+    ground = np.zeros(len(world_pts), dtype=bool)
+    for (body, link), shapes in run.world.shape_of.items():
+        if any(x.kind == GROUND for x in shapes):
+            ground |= (scan.hits.body == body) & (scan.hits.link == link)
     image, side, facts = draw_side(
         world_pts, scan.origin, scan.rotation[:, 0], rows, V, ground, self_hit
     )

@@ -7,11 +7,14 @@ are clipped. Nothing here knows about robots.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["DEPTH_STOPS", "Canvas", "colourise_depth", "convex_hull"]
+_T = TypeVar("_T", bound="np.generic[Any]")
+
+__all__ = ["DEPTH_STOPS", "Canvas", "colourise_depth", "convex_hull", "finite_rows", "take_rows"]
 
 Colour = tuple[int, int, int]
 # Dots past this count are drawn by pixel rather than one by one (same picture).
@@ -31,6 +34,27 @@ DEPTH_STOPS = np.array(
     ],
     dtype=np.float64,
 )
+
+
+def finite_rows(points: npt.NDArray[np.floating]) -> npt.NDArray[np.bool_]:
+    """Which rows of ``points`` (``(N, k)``) are finite throughout, as
+    ``np.isfinite(points).all(axis=1)`` says, column by column: numpy reduces along a
+    short last axis some ten times slower (5 ms for a 128 x 2048 scan's points)."""
+    finite = np.isfinite(points)
+    out = np.ones(finite.shape[0], dtype=bool)
+    for k in range(finite.shape[1]):
+        out &= finite[:, k]
+    return out
+
+
+def take_rows(a: npt.NDArray[_T], rows: npt.NDArray[np.bool_]) -> npt.NDArray[_T]:
+    """``a[rows]`` for a boolean ``rows``: ``a`` itself (not a copy) when that is every
+    row, else ``a.take`` of their indices (numpy masks the rows of a 2-D array some four
+    times slower)."""
+    if rows.all():
+        return a
+    out: npt.NDArray[_T] = a.take(np.flatnonzero(rows), axis=0)
+    return out
 
 
 class Canvas:
@@ -60,8 +84,10 @@ class Canvas:
         ] or [(0, 0)]
         if len(ix) > _MANY:  # one colour: mark the centres once, then paint each offset
             near = (ix >= -r) & (ix < self.width + r) & (iy >= -r) & (iy < self.height + r)
+            if not near.all():
+                ix, iy = ix[near], iy[near]
             centres = np.zeros((self.height + 2 * r, self.width + 2 * r), dtype=bool)
-            centres[iy[near] + r, ix[near] + r] = True
+            centres[iy + r, ix + r] = True
             paint = np.zeros((self.height, self.width), dtype=bool)
             for dx, dy in offsets:
                 paint |= centres[r - dy : r - dy + self.height, r - dx : r - dx + self.width]
@@ -156,10 +182,10 @@ class Canvas:
         pts = np.asarray(pts, dtype=np.float64)
         if len(pts) == 0:
             return
-        ok = np.isfinite(pts).all(axis=1)
-        pts = pts[ok]
+        ok = finite_rows(pts)
+        pts = take_rows(pts, ok)
         if isinstance(colour, np.ndarray) and colour.ndim == 2:
-            cols = colour[ok]
+            cols = take_rows(colour, ok)
             ix = np.rint(pts[:, 0]).astype(np.int64)
             iy = np.rint(pts[:, 1]).astype(np.int64)
             r = max(0, int(np.ceil(radius - 0.5)))
