@@ -176,13 +176,14 @@ def _first_hits(
                 inside[vertical] = True
                 idx = np.flatnonzero(inside)
             # then the line test: w = centre - start, along the ray w.d, off it |w|^2 - (w.d)^2
-            w = shape.T_world[:3, 3] - starts[idx]
-            along = np.einsum("ij,ij->i", w, dirs[idx])
+            # (take: the same rows as starts[idx], a few times faster)
+            w = shape.T_world[:3, 3] - starts.take(idx, axis=0)
+            along = np.einsum("ij,ij->i", w, dirs.take(idx, axis=0))
             ww = np.einsum("ij,ij->i", w, w)
             idx = idx[(ww - along * along <= pad * pad) & ((along >= 0) | (ww <= pad * pad))]
             if len(idx) == 0:
                 continue
-        t_i, normal = shape.hit(starts[idx], dirs[idx])
+        t_i, normal = shape.hit(starts.take(idx, axis=0), dirs.take(idx, axis=0))
         closer = np.isfinite(t_i) & (t_i < best_t[idx])
         at = idx[closer]
         best_t[at] = t_i[closer]
@@ -251,11 +252,11 @@ def range_check(
     rmin, rmax = scan.beams.range_min, scan.beams.range_max
     V, H = scan.beams.shape
     known: list[Shape] = []
-    owner: dict[tuple[int, int], set[int]] = {}
+    owner: list[tuple[int, int]] = []  # the (body, link) of each known shape
     for key, shapes in shapes_of.items():
         for shape in shapes:
             if shape.collision and shape.kind != "mesh":
-                owner.setdefault(key, set()).add(len(known))
+                owner.append(key)
                 known.append(shape)
     if not known:
         return Check("ranges", "skipped", "the scene has no known shapes")
@@ -280,11 +281,13 @@ def range_check(
     grazing = in_range & (np.abs(np.einsum("ij,ij->i", best_n, dirs)) < GRAZING_COS)
     interior = (beside == label).all(axis=0) & ~grazing
     on_known = np.zeros(len(sample), dtype=bool)
-    same = np.zeros(len(sample), dtype=bool)  # pybullet hit the exact first hit's shape
-    for key, indices in owner.items():
-        sel = (body == key[0]) & (link == key[1])
-        on_known |= sel
-        same |= sel & np.isin(best_i, list(indices))
+    for key in dict.fromkeys(owner):
+        on_known |= (body == key[0]) & (link == key[1])
+    # pybullet hit the exact first hit's shape: the (body, link) that shape belongs to
+    owner_body = np.array([key[0] for key in owner], dtype=np.int64)
+    owner_link = np.array([key[1] for key in owner], dtype=np.int64)
+    first = np.maximum(best_i, 0)
+    same = (best_i >= 0) & (owner_body[first] == body) & (owner_link[first] == link)
     looked = (on_known | (body < 0)) & (np.isfinite(ranges) | in_range)
     with np.errstate(invalid="ignore"):
         # interior: against the exact range; elsewhere: how far outside the footprint
