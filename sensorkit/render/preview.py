@@ -36,6 +36,7 @@ from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusi
 if TYPE_CHECKING:
     from sensorkit.findings import Finding
     from sensorkit.loading.untrusted import Untrusted
+    from sensorkit.model import Loaded
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
@@ -135,13 +136,14 @@ def _pose_dict(T: Mat) -> dict[str, Any]:
     }
 
 
-def _load_robot(
+def _load(
     path: Path,
     args: Mapping[str, str],
     package_paths: Sequence[str],
     what: str,
     untrusted: Untrusted | None = None,
-) -> Robot:
+) -> tuple[Robot, Loaded]:
+    """The robot at ``path`` and what loading it gave (kept for validate)."""
     from sensorkit.model import load_robot
 
     loaded = load_robot(
@@ -152,7 +154,17 @@ def _load_robot(
         detail = f"{first.source}: {first.message}" if first is not None else "cannot be read"
         msg = f"{what} {detail}" if what else detail
         raise InputError(msg)
-    return loaded.robot
+    return loaded.robot, loaded
+
+
+def _load_robot(
+    path: Path,
+    args: Mapping[str, str],
+    package_paths: Sequence[str],
+    what: str,
+    untrusted: Untrusted | None = None,
+) -> Robot:
+    return _load(path, args, package_paths, what, untrusted)[0]
 
 
 def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
@@ -698,14 +710,17 @@ def _reach(robot_shapes: list[Shape], poses: dict[str, Mat]) -> float:
 
 def _validate(
     path: Path,
+    loaded: Loaded,
     target: str,
     args: Mapping[str, str],
     package_paths: Sequence[str],
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
 ) -> tuple[list[Finding] | None, str | None]:
+    """validate's findings on the robot the preview loaded from ``path`` (``loaded``:
+    read once, for both)."""
     try:
-        from sensorkit.engine import Options, validate_file
+        from sensorkit.engine import Options, validate_loaded
     except ImportError as exc:
         return None, f"validate is not available ({exc})"
     options = Options(
@@ -715,7 +730,7 @@ def _validate(
         select=tuple(select),
         ignore=tuple(ignore),
     )
-    report = validate_file(path, options)
+    report = validate_loaded(path, loaded, options)
     if report.error:
         return None, report.error
     return list(report.findings), None
@@ -895,7 +910,7 @@ def render_preview(
     started = time.perf_counter()
     args = dict(args or {})
     _say(progress, f"loading {path}")
-    robot = _load_robot(path, args, package_paths, "", untrusted)
+    robot, loaded = _load(path, args, package_paths, "", untrusted)
     known = [s.name for s in robot.sensors]
     for name in sensors:
         if name not in known:
@@ -1012,7 +1027,9 @@ def render_preview(
                         robot_boxes.append((lo, hi))
 
         _say(progress, "running validate")
-        findings, findings_error = _validate(path, target, args, package_paths, select, ignore)
+        findings, findings_error = _validate(
+            path, loaded, target, args, package_paths, select, ignore
+        )
         from sensorkit.render.gate import sensor_findings
 
         for p in previews:
