@@ -64,7 +64,9 @@ class Canvas:
         self.width = width
         self.height = height
         self.image = np.empty((height, width, 3), dtype=np.uint8)
-        self.image[:] = background
+        row = np.empty((width, 3), dtype=np.uint8)
+        row[:] = background
+        self.image[:] = row  # (a row at a time: filling with one colour is much slower)
 
     def _pixels(self) -> npt.NDArray[np.uint8]:
         """``image`` as one row of RGB per pixel (row-major), a view: writes to it show
@@ -166,7 +168,7 @@ class Canvas:
                     with np.errstate(divide="ignore", invalid="ignore"):
                         xcross = ax + (gy - ay) * (bx - ax) / (by - ay)
                     inside ^= crosses & (gx < xcross)
-                self.image[gy[inside], gx[inside]] = fill
+                self._pixels()[gy[inside] * self.width + gx[inside]] = fill
         if outline is not None:
             self.lines(pts, np.roll(pts, -1, axis=0), outline)
 

@@ -58,7 +58,9 @@ def feature_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
     for _ in range(40):
         w, h = rng.integers(size // 20, size // 4, 2)
         x0, y0 = rng.integers(0, size - w), rng.integers(0, size - h)
-        img[y0 : y0 + h, x0 : x0 + w] = rng.integers(0, 256, 3)
+        row = np.empty((w, 3), dtype=np.int16)  # one row of the colour, then every row:
+        row[:] = rng.integers(0, 256, 3)  # numpy fills a block with one colour slowly
+        img[y0 : y0 + h, x0 : x0 + w] = row
     for _ in range(14):
         r = rng.uniform(size / 40, size / 10)
         cx, cy = rng.uniform(0, size, 2)
