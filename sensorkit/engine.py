@@ -19,7 +19,7 @@ from sensorkit.findings import Finding, Severity
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.uris import resolve_uri
-from sensorkit.model import load_robot
+from sensorkit.model import Loaded, load_robot
 from sensorkit.model.frames import sensor_frames
 from sensorkit.model.robot import Link, Robot
 from sensorkit.model.sdf import Conversion, convert
@@ -309,6 +309,13 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
         return FileReport(
             path=path, error=f"{display_path(path)}: the document nests too deeply to read"
         )
+    return validate_loaded(path, loaded, options)
+
+
+def validate_loaded(path: Path, loaded: Loaded, options: Options) -> FileReport:
+    """``validate_file`` of ``path`` already loaded (as ``options`` says to load it): the
+    same rules, filtering, suppression and order, without reading and modelling the
+    file a second time (``sensorkit render preview`` validates the robot it rendered)."""
     if loaded.robot is None:
         report = FileReport(path=path, findings=list(loaded.findings))
     else:
@@ -394,6 +401,7 @@ __all__ = [
     "make_context",
     "run_rules",
     "validate_file",
+    "validate_loaded",
     "validate_one",
     "validate_paths",
 ]

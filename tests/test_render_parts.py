@@ -308,6 +308,63 @@ def test_pruned_first_hits_equal_every_shape_tested(seed: int) -> None:
     np.testing.assert_allclose(every[i[hit], np.flatnonzero(hit)], t[hit], rtol=1e-12)
 
 
+@settings(max_examples=60, deadline=None)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(1, 700),
+    st.sampled_from([np.float32, np.float64]),
+    st.sampled_from(["normal", "small", "ties", "wide"]),
+)
+def test_stats_give_numpys_numbers_bit_for_bit(seed: int, n: int, dtype: type, kind: str) -> None:
+    """median, percentile and unique (sensorkit.render._stats, which spare the preview
+    numpy.ma) are np.median, np.percentile, np.nanmedian and np.unique, exactly."""
+    from sensorkit.render._stats import median, percentile, unique
+
+    rng = np.random.default_rng(seed)
+    values = {
+        "normal": lambda: rng.normal(size=n),
+        "small": lambda: rng.exponential(size=n) * 1e-3,
+        "ties": lambda: rng.integers(0, 4, size=n).astype(float),
+        "wide": lambda: np.abs(rng.normal(size=n)) * 10.0 ** rng.integers(-9, 3, size=n),
+    }[kind]().astype(dtype)
+    assert median(values) == float(np.median(values)) == float(np.nanmedian(values))
+    for q in (0.0, 1.0, 2.0, 37.3, 50.0, 98.0, 99.0, 100.0):
+        assert percentile(values, q) == float(np.percentile(values, q)), q
+    wide = values.astype(np.float64)  # as depth_colour_range passes them, with two q at once
+    both = np.percentile(wide, [2.0, 98.0])
+    assert (percentile(wide, 2.0), percentile(wide, 98.0)) == (float(both[0]), float(both[1]))
+    with_nan = values.copy()
+    with_nan[rng.integers(0, n)] = np.nan
+    assert math.isnan(median(with_nan)) and math.isnan(percentile(with_nan, 99.0))
+    ints = rng.integers(-5, 2**40, size=n) // rng.integers(1, 2**38)
+    np.testing.assert_array_equal(unique(ints), np.unique(ints))
+    assert unique(ints).dtype == np.unique(ints).dtype
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 400), st.integers(-3, 3))
+def test_picture_helpers_equal_the_numpy_they_replace(seed: int, n: int, scale: int) -> None:
+    """finite_rows, take_rows and the furthest return of scan_view are the plain numpy
+    expressions they stand for, exactly."""
+    from sensorkit.render.overview import _furthest
+    from sensorkit.render.raster import finite_rows, take_rows
+
+    rng = np.random.default_rng(seed)
+    points = rng.normal(size=(n, 3)) * 10.0**scale
+    if seed % 3 == 0:
+        points[rng.random(n) < 0.3] = np.nan
+    if seed % 5 == 0:
+        points[rng.integers(0, n), rng.integers(0, 3)] = np.inf
+    if seed % 7 == 0:
+        points[:] = 0.0
+    finite = np.isfinite(points).all(axis=1)
+    np.testing.assert_array_equal(finite_rows(points), finite)
+    np.testing.assert_array_equal(take_rows(points, finite), points[finite])
+    if finite.any():
+        exact = float(np.max(np.hypot(points[finite, 0], points[finite, 1])))
+        assert _furthest(points, finite) == exact
+
+
 def _scan_in(scene: Scene, spec: LidarSpec, z: float = 0.8) -> tuple[LidarScan, dict]:
     from sensorkit.render.sim import World
 

@@ -198,9 +198,6 @@ def preview(
             else f"--scene {scene}: not a file"
         )
 
-    from sensorkit.render import render_preview
-    from sensorkit.render.gate import found_text
-
     def say(message: str) -> None:
         note(message, quiet)
 
@@ -215,27 +212,45 @@ def preview(
         def log(message: str) -> None:
             console.log(message, markup=False)
 
-    # No live spinner: it would run a thread, and cameras render in forked processes.
-    result = render_preview(
-        file,
-        out,
-        scene=scene,
-        sensors=tuple(sensor or ()),
-        joints=joints,
-        args=st.args,
-        package_paths=st.package_paths,
-        target=st.target,
-        progress=log,
-        workers=min(4, os.cpu_count() or 1),
-        max_pixels=max_pixels,
-        max_rays=max_rays,
-        force=force,
-        untrusted=st.untrusted,
-        target_origin=st.origin("target"),
-        fail_on=threshold,
-        select=tuple(st.config.select),
-        ignore=tuple(st.config.ignore),
-    )
+    import gc
+
+    collecting = gc.isenabled()
+    # As validate: a short-lived process building many small acyclic objects (the
+    # modules' classes and functions, the model, a lidar's ray results), which the
+    # cyclic collector would only walk again and again.
+    gc.disable()
+    try:
+        from sensorkit.render import render_preview
+
+        # No live spinner: it would run a thread, and cameras render in forked processes.
+        result = render_preview(
+            file,
+            out,
+            scene=scene,
+            sensors=tuple(sensor or ()),
+            joints=joints,
+            args=st.args,
+            package_paths=st.package_paths,
+            target=st.target,
+            progress=log,
+            workers=min(4, os.cpu_count() or 1),
+            max_pixels=max_pixels,
+            max_rays=max_rays,
+            force=force,
+            untrusted=st.untrusted,
+            target_origin=st.origin("target"),
+            fail_on=threshold,
+            select=tuple(st.config.select),
+            ignore=tuple(st.config.ignore),
+        )
+    finally:
+        if collecting:
+            # what the preview left is long-lived or freed by reference counting: set
+            # it aside, or the first collection would walk all of it
+            gc.freeze()
+            gc.enable()
+    from sensorkit.render.gate import found_text
+
     for s in result.sensors:
         found = found_text(s.findings)
         typer.echo(

@@ -41,6 +41,7 @@ import numpy.typing as npt
 
 from sensorkit.intrinsics import Intrinsics
 from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
+from sensorkit.render._stats import median, percentile, unique
 from sensorkit.render.checks import Check
 
 if TYPE_CHECKING:
@@ -295,7 +296,7 @@ def depth_check(
     sample_keys = image.seg[rows, cols]
     origin, dirs, cos = camera.rays_at(cols, rows)
     analytic = np.full(len(rows), np.nan)
-    for key in np.unique(sample_keys):
+    for key in unique(sample_keys):
         if key < 0:
             continue
         body, link = int(key) & 0xFFFFFF, (int(key) >> 24) - 1
@@ -313,14 +314,14 @@ def depth_check(
     if n == 0:
         return Check("depth", "skipped", "no known flat surface in view")
     err = np.abs(depth[compared].astype(np.float64) - analytic[compared])
-    p99 = float(np.percentile(err, 99))
+    p99 = percentile(err, 99)
     worst_m = float(err.max())
     status = "ok" if p99 <= DEPTH_LIMIT_M else "fail"
     message = (
         f"rendered depth of {n} pixels on known surfaces is within {p99 * 1000:.2f} mm "
         f"(99th percentile; worst {worst_m * 1000:.2f} mm) of the exact depth"
     )
-    details = {"pixels": n, "p99_m": p99, "max_m": worst_m, "median_m": float(np.median(err))}
+    details = {"pixels": n, "p99_m": p99, "max_m": worst_m, "median_m": median(err)}
     return Check("depth", status, message, p99, "m", DEPTH_LIMIT_M, details)
 
 

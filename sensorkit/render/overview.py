@@ -12,12 +12,13 @@ RViz will place it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.render.raster import Canvas, convex_hull
+from sensorkit.render.raster import Canvas, convex_hull, finite_rows, take_rows
 from sensorkit.render.scene import GROUND, MARKER, Shape
 
 __all__ = [
@@ -111,7 +112,7 @@ def draw_overview(
         canvas.points(view.px(same), (240, 120, 220), radius=max(1.0, radius * view.scale))
     for s in sensors:  # beams first, faint, so that the robot and the axes stay visible
         if s.hits is not None and len(s.hits):
-            hits = s.hits[np.isfinite(s.hits).all(axis=1)]
+            hits = take_rows(s.hits, finite_rows(s.hits))
             step = max(1, len(hits) // 360)
             sub = view.px(hits[::step, :2])
             o = view.px(s.origin[:2])
@@ -181,12 +182,24 @@ class ScanView:
         return np.stack([c - a[:, 1] * self.scale, c - a[:, 0] * self.scale], axis=1)
 
 
+def _furthest(points: FloatArray, rows: npt.NDArray[np.bool_]) -> float:
+    """``max(np.hypot(x, y))`` over the ``rows`` of ``points`` (at least one), exactly,
+    with np.hypot (slow: 6 ms for 262,144 points) only on the rows whose x * x + y * y
+    comes within 1e-9 of the largest (rounding moves it by a few parts in 1e16)."""
+    x, y = points[:, 0], points[:, 1]
+    with np.errstate(invalid="ignore", over="ignore"):
+        square = x * x + y * y
+    top = float(np.max(square, where=rows, initial=-np.inf))
+    if not math.isfinite(top) or top == 0.0:  # overflow or all at the centre: every row
+        return float(np.max(np.hypot(x[rows], y[rows])))
+    near = rows & (square >= top * (1.0 - 1e-9))
+    return float(np.max(np.hypot(x[near], y[near])))
+
+
 def scan_view(points: FloatArray, range_max: float, size: int = 480) -> ScanView:
     """The view ``draw_scan`` uses for ``points``: out to the furthest return plus 10 %."""
-    finite = np.isfinite(points).all(axis=1)
-    reach = (
-        float(np.max(np.hypot(points[finite, 0], points[finite, 1]))) if finite.any() else range_max
-    )
+    finite = finite_rows(points)
+    reach = _furthest(points, finite) if finite.any() else range_max
     half = max(1.0, min(range_max, reach * 1.1))
     step = next((s for s in (0.5, 1, 2, 5, 10, 20, 50, 100) if half / s <= 8), 200.0)
     return ScanView(size, half, float(step))
@@ -204,16 +217,19 @@ def draw_scan(
     size: int = 480,
     *,
     sectors: list[tuple[float, float]] | None = None,
+    view: ScanView | None = None,
 ) -> npt.NDArray[np.uint8]:
     """A lidar's returns seen from above in its own frame, forward (+x) up, left (+y) left.
 
-    Range rings every 1, 2, 5, 10... m (``scan_view``); returns from the robot itself in
-    red, and ``sectors`` (azimuth intervals in radians, counter-clockwise from +x) shaded
-    light red; 3D scans are coloured by beam row.
+    Range rings every 1, 2, 5, 10... m (``scan_view``; pass ``view`` when it is already
+    computed for these points); returns from the robot itself in red, and ``sectors``
+    (azimuth intervals in radians, counter-clockwise from +x) shaded light red; 3D scans
+    are coloured by beam row.
     """
     canvas = Canvas(size, size, (250, 250, 250))
-    finite = np.isfinite(points).all(axis=1)
-    view = scan_view(points, range_max, size)
+    finite = finite_rows(points)
+    if view is None or view.size != size:
+        view = scan_view(points, range_max, size)
     c = view.centre
     for a0, a1 in sectors or []:
         n = max(2, int(np.degrees(a1 - a0)) + 2)
@@ -227,7 +243,7 @@ def draw_scan(
     canvas.line((0, c), (size, c), (225, 225, 225))
     rows = int(elevation_index.max()) + 1 if len(elevation_index) else 1
     colours = scan_colours(elevation_index[finite], self_hit[finite], rows)
-    canvas.points(view.px(points[finite, :2]), colours, radius=1.0)
+    canvas.points(view.px(take_rows(points, finite)[:, :2]), colours, radius=1.0)
     canvas.polygon(np.array([[c, c - 9], [c - 6, c + 6], [c + 6, c + 6]]), (0, 0, 0))
     return canvas.image
 

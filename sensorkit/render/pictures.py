@@ -36,8 +36,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sensorkit.render._stats import percentile, unique
 from sensorkit.render.overview import SELF_HIT, ScanView, row_palette
-from sensorkit.render.raster import DEPTH_STOPS, Canvas, convex_hull
+from sensorkit.render.raster import DEPTH_STOPS, Canvas, convex_hull, finite_rows
 
 __all__ = [
     "AXIS_COLOURS",
@@ -213,7 +214,7 @@ def depth_colour_range(
     if values.size == 0:
         hi = far if math.isfinite(far) else near + 1.0
         return float(near), float(hi)
-    lo, hi = (float(v) for v in np.percentile(values, [2.0, 98.0]))
+    lo, hi = percentile(values, 2.0), percentile(values, 98.0)
     step = nice_step(hi - lo, 10) if hi > lo else nice_step(max(abs(hi), 1e-3), 10)
     lo = math.floor(lo / step + 1e-9) * step
     hi = math.ceil(hi / step - 1e-9) * step
@@ -346,7 +347,7 @@ def scan_figure(
     y = display + 16
     if rows > 1:
         palette = row_palette(rows)
-        shown = np.unique(np.linspace(0, rows - 1, min(rows, 60)).round().astype(int))
+        shown = unique(np.linspace(0, rows - 1, min(rows, 60)).round().astype(int))
         for i, row in enumerate(shown):
             svg.add(
                 "rect",
@@ -430,7 +431,8 @@ def draw_side(
     ``points``: world coordinates ``(N, 3)`` (NaN for no return); ``heading``: the
     sensor's forward axis in the world.
     """
-    finite = np.isfinite(points).all(axis=1)
+    finite = finite_rows(points)
+    keep = slice(None) if finite.all() else finite  # every point: no copies
     rel = points - origin
     flat = np.array([heading[0], heading[1]], dtype=np.float64)
     norm = float(np.hypot(*flat))
@@ -439,10 +441,10 @@ def draw_side(
     dist = np.hypot(rel[:, 0], rel[:, 1]) * np.where(along < 0, -1.0, 1.0)
     z = points[:, 2]
     sensor_z = float(origin[2])
-    d_max = float(np.max(np.abs(dist[finite]))) * 1.05 if finite.any() else 1.0
+    d_max = float(np.max(np.abs(dist[keep]))) * 1.05 if finite.any() else 1.0
     d_max = max(d_max, 1.0)
-    z_lo = min(0.0, float(np.min(z[finite])) if finite.any() else 0.0) - 0.1
-    z_hi = max(sensor_z, float(np.max(z[finite])) if finite.any() else sensor_z) + 0.2
+    z_lo = min(0.0, float(np.min(z[keep])) if finite.any() else 0.0) - 0.1
+    z_hi = max(sensor_z, float(np.max(z[keep])) if finite.any() else sensor_z) + 0.2
     left, right, top, bottom = 8.0, 8.0, 8.0, 8.0
     sx = (width - left - right) / (2 * d_max)
     sz = (height - top - bottom) / (z_hi - z_lo)
@@ -453,11 +455,11 @@ def draw_side(
     canvas.line(g[0], g[1], (150, 130, 100), width=2)
     s = view.px(np.array([0.0, 0.0]), np.array([0.0, sensor_z]))
     canvas.line(s[0], s[1], (200, 200, 200))
-    colours = row_palette(n_rows)[rows[finite]]
-    colours[ground[finite]] = GROUND_HIT
-    colours[self_hit[finite]] = SELF_HIT
-    order = np.argsort(ground[finite], kind="stable")  # ground hits last: they stay visible
-    pts = view.px(dist[finite], z[finite])
+    colours = row_palette(n_rows)[rows[keep]]
+    colours[ground[keep]] = GROUND_HIT
+    colours[self_hit[keep]] = SELF_HIT
+    order = np.argsort(ground[keep], kind="stable")  # ground hits last: they stay visible
+    pts = view.px(dist[keep], z[keep])
     canvas.points(pts[order], colours[order], radius=1.0)
     canvas.circle(s[1], 4, (0, 0, 0))
     on_ground = finite & ground
@@ -468,7 +470,7 @@ def draw_side(
         "ground_hits": int(on_ground.sum()),
         "nearest_ground_ahead_m": float(dist[ahead].min()) if ahead.any() else None,
         "nearest_ground_behind_m": float(-dist[behind].max()) if behind.any() else None,
-        "lowest_return_m": float(z[finite].min()) if finite.any() else None,
+        "lowest_return_m": float(z[keep].min()) if finite.any() else None,
         "view": {
             "x0": view.x0,
             "pixels_per_m_horizontal": view.sx,

@@ -36,11 +36,12 @@ from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusi
 if TYPE_CHECKING:
     from sensorkit.findings import Finding
     from sensorkit.loading.untrusted import Untrusted
+    from sensorkit.model import Loaded
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, Sensor
     from sensorkit.render.lidar import LidarScan
-    from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.overview import ScanView, SensorDrawing
     from sensorkit.render.pictures import Figure
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
@@ -135,13 +136,14 @@ def _pose_dict(T: Mat) -> dict[str, Any]:
     }
 
 
-def _load_robot(
+def _load(
     path: Path,
     args: Mapping[str, str],
     package_paths: Sequence[str],
     what: str,
     untrusted: Untrusted | None = None,
-) -> Robot:
+) -> tuple[Robot, Loaded]:
+    """The robot at ``path`` and what loading it gave (kept for validate)."""
     from sensorkit.model import load_robot
 
     loaded = load_robot(
@@ -152,7 +154,17 @@ def _load_robot(
         detail = f"{first.source}: {first.message}" if first is not None else "cannot be read"
         msg = f"{what} {detail}" if what else detail
         raise InputError(msg)
-    return loaded.robot
+    return loaded.robot, loaded
+
+
+def _load_robot(
+    path: Path,
+    args: Mapping[str, str],
+    package_paths: Sequence[str],
+    what: str,
+    untrusted: Untrusted | None = None,
+) -> Robot:
+    return _load(path, args, package_paths, what, untrusted)[0]
 
 
 def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
@@ -375,9 +387,11 @@ def _lidar(
     from sensorkit.exporters import laser_scan_dict
     from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
+    from sensorkit.render._stats import median
     from sensorkit.render.lidar import cast, lidar_beams, range_check
-    from sensorkit.render.overview import SensorDrawing, draw_scan
+    from sensorkit.render.overview import SensorDrawing, draw_scan, scan_view
     from sensorkit.render.png import write_png
+    from sensorkit.render.raster import take_rows
 
     sensor = job.sensor
     out = SensorPreview(sensor.name, sensor.name, sensor.type, sensor.kind, sensor.reference)
@@ -413,17 +427,16 @@ def _lidar(
     self_hit = np.isin(scan.hits.body, run.world.robot_bodies)
     out.files["scan_png"] = folder / "scan.png"
     sectors = _self_occluded(scan, self_hit)
+    # the points in the sensor's frame and in the world, and the view of scan.png: once,
+    # for every picture
+    pts = scan.points.reshape(-1, 3).astype(np.float64)
+    world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
+    view = scan_view(pts, beams.range_max)
     png = write_png(
         out.files["scan_png"],
-        draw_scan(
-            scan.points.reshape(-1, 3).astype(np.float64),
-            rows,
-            self_hit,
-            beams.range_max,
-            sectors=sectors,
-        ),
+        draw_scan(pts, rows, self_hit, beams.range_max, sectors=sectors, view=view),
     )
-    _lidar_figures(run, out, scan, png, rows, self_hit, sectors)
+    _lidar_figures(run, out, scan, png, view, world_pts, rows, self_hit, sectors)
 
     frames = run.frames(sensor)
     out.info["frames"] = run.frame_info(frames, T_render)
@@ -443,14 +456,8 @@ def _lidar(
     fcheck = frame_check(T_render, T_frame, frame, frames.how, optical=False)
     out.checks.append(fcheck)
 
-    pts = scan.points.reshape(-1, 3).astype(np.float64)
-    world_pts = pts @ T_render[:3, :3].T + T_render[:3, 3]
     finite = np.isfinite(scan.ranges.reshape(-1))
-    fwd = (
-        float(np.nanmedian(scan.ranges[np.isfinite(scan.ranges)]))
-        if finite.any()
-        else beams.range_max
-    )
+    fwd = median(scan.ranges[np.isfinite(scan.ranges)]) if finite.any() else beams.range_max
     origin = T_render[:3, 3].copy()
     drawing = SensorDrawing(
         sensor.name,
@@ -458,7 +465,7 @@ def _lidar(
         origin,
         origin + T_render[:3, 0] * min(fwd, 1.0),
         [],
-        world_pts[finite],
+        take_rows(world_pts, finite),
     )
     if fcheck.status == "warn" and T_frame is not None and frame is not None:
         from sensorkit.render.rviz import Misplaced, lidar_points
@@ -490,6 +497,11 @@ def _show_misplaced(out: SensorPreview, drawing: SensorDrawing, seen: Misplaced)
     )
 
 
+def _wanted(sensor: Sensor, only: Sequence[str]) -> bool:
+    """Is ``sensor`` previewed (``only``: the sensors asked for; all when empty)?"""
+    return not only or sensor.name in only
+
+
 def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | SensorPreview]:
     """What to render, in document order, with folders and colours fixed up front."""
     from sensorkit.render.overview import PALETTE
@@ -498,7 +510,7 @@ def _plan(robot: Robot, only: Sequence[str], out_dir: Path) -> list[_Job | Senso
     taken: set[str] = set()
     drawn = 0
     for sensor in robot.sensors:
-        if only and sensor.name not in only:
+        if not _wanted(sensor, only):
             continue
         if sensor.is_camera and sensor.cameras:
             folder = out_dir / _folder_name(sensor.name, taken)
@@ -582,7 +594,6 @@ def _preload(jobs: list[_Job], target: str) -> None:
     from sensorkit.model.targets import is_gz
 
     names = [
-        "numpy.ma",  # np.percentile and np.median import it on first use
         "sensorkit.atomic",
         "sensorkit.exporters",
         "sensorkit.intrinsics",
@@ -699,14 +710,17 @@ def _reach(robot_shapes: list[Shape], poses: dict[str, Mat]) -> float:
 
 def _validate(
     path: Path,
+    loaded: Loaded,
     target: str,
     args: Mapping[str, str],
     package_paths: Sequence[str],
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
 ) -> tuple[list[Finding] | None, str | None]:
+    """validate's findings on the robot the preview loaded from ``path`` (``loaded``:
+    read once, for both)."""
     try:
-        from sensorkit.engine import Options, validate_file
+        from sensorkit.engine import Options, validate_loaded
     except ImportError as exc:
         return None, f"validate is not available ({exc})"
     options = Options(
@@ -716,7 +730,7 @@ def _validate(
         select=tuple(select),
         ignore=tuple(ignore),
     )
-    report = validate_file(path, options)
+    report = validate_loaded(path, loaded, options)
     if report.error:
         return None, report.error
     return list(report.findings), None
@@ -896,7 +910,7 @@ def render_preview(
     started = time.perf_counter()
     args = dict(args or {})
     _say(progress, f"loading {path}")
-    robot = _load_robot(path, args, package_paths, "", untrusted)
+    robot, loaded = _load(path, args, package_paths, "", untrusted)
     known = [s.name for s in robot.sensors]
     for name in sensors:
         if name not in known:
@@ -962,7 +976,8 @@ def render_preview(
             shapes, str(scene), max(extent, _reach(robot_shapes, poses)) + 0.5, scene
         )
     else:
-        world_scene = default_scene(_reach(robot_shapes, poses))
+        cameras = any(s.is_camera and s.cameras for s in robot.sensors if _wanted(s, sensors))
+        world_scene = default_scene(_reach(robot_shapes, poses), textured=cameras)
 
     from sensorkit.atomic import staged_folder
 
@@ -1012,7 +1027,9 @@ def render_preview(
                         robot_boxes.append((lo, hi))
 
         _say(progress, "running validate")
-        findings, findings_error = _validate(path, target, args, package_paths, select, ignore)
+        findings, findings_error = _validate(
+            path, loaded, target, args, package_paths, select, ignore
+        )
         from sensorkit.render.gate import sensor_findings
 
         for p in previews:
@@ -1077,32 +1094,29 @@ def _lidar_figures(
     out: SensorPreview,
     scan: LidarScan,
     scan_png: bytes,
+    view: ScanView,
+    world_pts: np.ndarray,
     rows: np.ndarray,
     self_hit: np.ndarray,
     sectors: list[tuple[float, float]],
 ) -> None:
-    """scan.png labelled; for a 3D lidar or a tilted 2D one, side.png and its labels."""
-    from sensorkit.render.overview import scan_view
+    """scan.png labelled (``view``: where draw_scan put things); for a 3D lidar or a
+    tilted 2D one, side.png (of ``world_pts``, every beam's point in the world) and its
+    labels."""
     from sensorkit.render.pictures import draw_side, scan_figure, side_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.scene import GROUND
 
     beams = scan.beams
     V = beams.shape[0]
-    points = scan.points.reshape(-1, 3).astype(np.float64)
-    view = scan_view(points, beams.range_max)
     _add_figure(out, scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
     if (V <= 1 and tilt <= 1.0) or out.directory is None:
         return
-    ground_keys = [
-        (body + 1) * 2**32 + (link + 1)
-        for (body, link), shapes in run.world.shape_of.items()
-        if any(x.kind == GROUND for x in shapes)
-    ]
-    hit_keys = (scan.hits.body.astype(np.int64) + 1) * 2**32 + (scan.hits.link.astype(np.int64) + 1)
-    ground = np.isin(hit_keys, ground_keys)
-    world_pts = points @ scan.rotation.T + scan.origin
+    ground = np.zeros(len(world_pts), dtype=bool)
+    for (body, link), shapes in run.world.shape_of.items():
+        if any(x.kind == GROUND for x in shapes):
+            ground |= (scan.hits.body == body) & (scan.hits.link == link)
     image, side, facts = draw_side(
         world_pts, scan.origin, scan.rotation[:, 0], rows, V, ground, self_hit
     )

@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sensorkit.model.transforms_np import Mat
-from sensorkit.render.raster import Canvas
+from sensorkit.render.raster import Canvas, finite_rows
 
 __all__ = ["MISMATCH", "Misplaced", "camera_points", "draw_rviz", "lidar_points"]
 
@@ -76,7 +76,7 @@ class Misplaced:
 
 
 def _subsample(points: FloatArray, limit: int = MAX_POINTS) -> FloatArray:
-    points = points[np.isfinite(points).all(axis=1)]
+    points = points[finite_rows(points)]
     if len(points) > limit:
         points = points[np.linspace(0, len(points) - 1, limit).round().astype(np.intp)]
     return points
@@ -120,7 +120,7 @@ class _Fit:
     """Equal-aspect mapping of 2D coordinates into a panel, with a margin."""
 
     def __init__(self, pts: FloatArray, width: int, height: int, margin: int = 14) -> None:
-        ok = pts[np.isfinite(pts).all(axis=1)]
+        ok = pts[finite_rows(pts)]
         lo = ok.min(axis=0) if len(ok) else np.zeros(2)
         hi = ok.max(axis=0) if len(ok) else np.ones(2)
         span = np.maximum(hi - lo, 0.5)

@@ -151,9 +151,12 @@ def _box(o: Array, d: Array, h: Array) -> tuple[Array, Array]:
     t1 = np.where(parallel, np.where(inside_slab, -np.inf, np.inf), t1)
     t2 = np.where(parallel, np.inf, t2)
     entry = np.minimum(t1, t2)
+    leave = np.maximum(t1, t2)
     axis = entry.argmax(axis=1)
-    t_near = entry.max(axis=1)
-    t_far = np.maximum(t1, t2).min(axis=1)
+    # max and min over the three slabs, column by column (numpy reduces along a short
+    # last axis several times slower; the result is the same, NaN included)
+    t_near = np.maximum(np.maximum(entry[:, 0], entry[:, 1]), entry[:, 2])
+    t_far = np.minimum(np.minimum(leave[:, 0], leave[:, 1]), leave[:, 2])
     hit = (t_near <= t_far) & (t_near > 0)
     n = np.zeros_like(o)
     rows = np.arange(len(o))
@@ -243,11 +246,13 @@ class Scene:
         return [s for s in self.shapes if s.role == MARKER and s.visual]
 
 
-def default_scene(reach: float) -> Scene:
+def default_scene(reach: float, *, textured: bool = True) -> Scene:
     """The room, crates and markers, sized so the robot (``reach`` metres from the origin
-    at most) stands inside with at least 1.5 m to spare."""
-    from sensorkit.render.textures import feature_texture, floor_texture
+    at most) stands inside with at least 1.5 m to spare.
 
+    ``textured=False`` leaves ``textures`` empty (the shapes still name theirs): for a
+    preview without cameras, whose rays meet collision shapes and never see a texture.
+    """
     half = max(3.0, math.ceil((reach + 1.5) * 2.0) / 2.0)
     s = half / 3.0  # everything else scales with the room
     height = 2.5 * s
@@ -255,7 +260,7 @@ def default_scene(reach: float) -> Scene:
     shapes: list[Shape] = [
         Shape("ground", GROUND, np.eye(4), (), GROUND, (1, 1, 1, 1), "floor", 1.0),
     ]
-    textures = {"floor": floor_texture(7)}
+    seeds: dict[str, tuple[int, int]] = {"floor": (7, 256)}  # texture -> (seed, size)
     walls = [
         ("wall_+x", (half + thick / 2, 0.0), (thick / 2, half + thick, height / 2)),
         ("wall_-x", (-half - thick / 2, 0.0), (thick / 2, half + thick, height / 2)),
@@ -264,7 +269,7 @@ def default_scene(reach: float) -> Scene:
     ]
     for i, (name, (x, y), size) in enumerate(walls):
         key = f"wall{i}"
-        textures[key] = feature_texture(100 + i)
+        seeds[key] = (100 + i, 256)
         shapes.append(
             Shape(
                 name, "box", transform((x, y, height / 2)), size, "wall", (1, 1, 1, 1), key, 0.5 / s
@@ -273,7 +278,7 @@ def default_scene(reach: float) -> Scene:
     crate = (0.3 * s, 0.3 * s, 0.4 * s)
     for i, (sx, sy) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
         key = f"crate{i}"
-        textures[key] = feature_texture(200 + i, 128)
+        seeds[key] = (200 + i, 128)
         T = transform((sx * 0.62 * half, sy * 0.62 * half, crate[2]), (0.0, 0.0, 0.45 + 0.3 * i))
         shapes.append(Shape(f"crate_{i}", "box", T, crate, "crate", (1, 1, 1, 1), key, 1.2 / s))
     radius = 0.05 * s
@@ -294,6 +299,13 @@ def default_scene(reach: float) -> Scene:
                         (1.0, 0.1, 0.9, 1.0),
                     )
                 )
+    textures: dict[str, npt.NDArray[np.uint8]] = {}
+    if textured:
+        from sensorkit.render.textures import feature_texture, floor_texture
+
+        for key, (seed, pixels) in seeds.items():
+            make = floor_texture if key == "floor" else feature_texture
+            textures[key] = make(seed, pixels)
     return Scene(shapes, "default", half + thick, None, textures)
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import gc
 import os
 import sys
 import tempfile
@@ -256,7 +257,8 @@ class World:
                 continue
             half = tuple(float(v) for v in shape.size)
             col = self._call("createCollisionShape", self.p.GEOM_BOX, halfExtents=list(half))
-            if shape.texture is not None:
+            texture = shape.texture if shape.texture in scene.textures else None
+            if texture is not None:
                 v, i, uv, n = box_mesh((half[0], half[1], half[2]), shape.uv_per_m)
                 vis = self._call(
                     "createVisualShape", self.p.GEOM_MESH, vertices=v, indices=i, uvs=uv, normals=n
@@ -269,8 +271,8 @@ class World:
                     rgbaColor=list(shape.rgba),
                 )
             body = self._create(col, vis, shape.T_world)
-            if shape.texture is not None:
-                tex = self._texture(shape.texture, scene, cache)
+            if texture is not None:
+                tex = self._texture(texture, scene, cache)
                 self._call(
                     "changeVisualShape", body, -1, textureUniqueId=tex, rgbaColor=[1, 1, 1, 1]
                 )
@@ -470,8 +472,17 @@ class World:
 
     def cast(self, starts: np.ndarray, ends: np.ndarray) -> RayHits:
         """First hit of each ray from ``starts`` to ``ends`` (``(N, 3)``)."""
-        with self.quiet:
-            return self._cast(starts, ends)
+        # rayTestBatch answers with a tuple of five per ray (two of them tuples): the
+        # cyclic collector would walk them again and again (a tenth of a second of a
+        # 262,144-ray scan) though they hold no cycles and are gone within the batch.
+        collecting = gc.isenabled()
+        gc.disable()
+        try:
+            with self.quiet:
+                return self._cast(starts, ends)
+        finally:
+            if collecting:
+                gc.enable()
 
     def _cast(self, starts: np.ndarray, ends: np.ndarray) -> RayHits:
         n = len(starts)

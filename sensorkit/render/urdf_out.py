@@ -20,8 +20,8 @@ from pathlib import Path
 from lxml import etree
 
 from sensorkit.loading import PackageResolver
+from sensorkit.loading.marks import LOC_ATTR
 from sensorkit.loading.uris import resolve_uri
-from sensorkit.loading.xacro_expand import LOC_ATTR
 from sensorkit.model.robot import Robot, local
 
 __all__ = [
