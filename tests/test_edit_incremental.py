@@ -56,6 +56,39 @@ def test_the_rover_takes_the_short_way(rover: Path) -> None:
     assert FAST == [True]
 
 
+def test_sensorkits_own_macro_expands_without_a_fork(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The fragment of sensorkit's own macro expands in process (forking a process that
+    holds a large robot costs more than the expansion); a user's modified copy of the
+    macro still goes to the isolated child, with its timeout."""
+    from sensorkit.edit import add_sensor, fragment
+
+    forked: list[Path] = []
+    real = fragment.expand
+
+    def spy(path: Path, *args: object, **kwargs: object) -> object:
+        forked.append(path)
+        return real(path, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(fragment, "expand", spy)
+    monkeypatch.chdir(tmp_path)
+    shutil.copyfile(ROBOTS / "rover.urdf", tmp_path / "rover.urdf")
+    plan_add(AddRequest(tmp_path / "rover.urdf", "camera", "s", "base_link"))
+    assert forked == []
+    # a xacro robot: the add copies sensorkit's macro beside it, and uses it unchanged
+    shutil.copytree(ROBOTS / "xacro_robot", tmp_path / "x")
+    top = tmp_path / "x" / "robot.urdf.xacro"
+    add_sensor(AddRequest(top, "camera", "s", "base_link"))
+    assert forked == []
+    (copy,) = (tmp_path / "x" / "sensors").glob("*.xacro")
+    plan_add(AddRequest(top, "camera", "s2", "base_link"))  # the copy as shipped
+    assert forked == []
+    copy.write_text(copy.read_text() + "<!-- mine -->\n")  # now a user's modified copy
+    plan_add(AddRequest(top, "camera", "s3", "base_link"))
+    assert len(forked) == 1
+
+
 def full(robot: Robot, load: list[Finding], part: Document, options: object) -> Verdict:
     return compare(robot, load, copy_document_with(robot.document, part), options)  # type: ignore[arg-type]
 

@@ -19,7 +19,7 @@ from sensorkit.edit.render import Lines, xacro_literal, xml_attr
 from sensorkit.errors import EditRefused
 from sensorkit.loading.document import strict_parser
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.loading.xacro_expand import LOC_ATTR, expand
+from sensorkit.loading.xacro_expand import LOC_ATTR, expand, expand_in_process
 
 
 @dataclass
@@ -45,9 +45,18 @@ def _strip_locations(el: etree._Element) -> None:
 
 
 def expand_fragment(
-    macro_path: Path, macro_name: str, call: Lines, timeout: float = 60.0
+    macro_path: Path,
+    macro_name: str,
+    call: Lines,
+    timeout: float = 60.0,
+    *,
+    in_process: bool = False,
 ) -> Fragment:
-    """Expand ``call`` (lines of a macro call, without an include) against ``macro_path``."""
+    """Expand ``call`` (lines of a macro call, without an include) against ``macro_path``.
+
+    ``in_process``: expand in this process rather than in a forked child (with its
+    timeout); only for sensorkit's own macro file called with checked values.
+    """
     include = f'<xacro:include filename="{xml_attr(xacro_literal(str(macro_path.resolve())))}"/>'
     body = "\n".join("  " * (d + 1) + text for d, text in [(0, include), *call])
     wrapper = (
@@ -58,7 +67,11 @@ def expand_fragment(
     with tempfile.TemporaryDirectory(prefix="sensorkit-fragment-") as tmp:
         path = Path(tmp) / "fragment.urdf.xacro"
         path.write_text(wrapper, encoding="utf-8")
-        outcome = expand(path, {}, PackageResolver(use_environment=False), timeout=timeout)
+        resolver = PackageResolver(use_environment=False)
+        if in_process:
+            outcome = expand_in_process(path, {}, resolver)
+        else:
+            outcome = expand(path, {}, resolver, timeout=timeout)
     if outcome.error_kind is not None or outcome.xml is None:
         message = " ".join(outcome.message.split()) or "no output"
         msg = f"the {macro_name} macro does not expand with these settings: {message}"
