@@ -638,3 +638,42 @@ def test_captured_output_keeps_c_level_writes_off_the_terminal() -> None:
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     assert proc.stdout == "after ['fd one', 'fd two', 'from C']\n"
+
+
+def test_textures_are_made_once_and_kept_in_the_cache(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The default room's textures come from the user's cache after the first preview;
+    a cached file is used only when whole, and an unwritable cache falls back."""
+    from sensorkit.render.png import read_png
+    from sensorkit.render.textures import Texture, png_file
+
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("SENSORKIT_CACHE_DIR", str(cache))
+    fallback = tmp_path / "tmp"
+    fallback.mkdir()
+    tex = Texture("feature", 101, 64)
+    made = png_file(tex, fallback)
+    assert made.parent == cache / "textures" and list(fallback.iterdir()) == []
+    assert np.array_equal(read_png(made.read_bytes()), tex.image())
+    assert [p.name for p in made.parent.iterdir()] == [made.name]  # no temporary left
+
+    def refuse(self: Texture) -> np.ndarray:
+        raise AssertionError("made again")
+
+    with monkeypatch.context() as m:
+        m.setattr(Texture, "image", refuse)
+        assert png_file(tex, fallback) == made  # read from the cache, not made
+    good = made.read_bytes()
+    for broken in (good[: len(good) // 2], good[:-20] + bytes(20), b"", good[:40]):
+        made.write_bytes(broken)
+        assert png_file(tex, fallback) == made
+        assert made.read_bytes() == good  # made again, whole
+    other = Texture("feature", 101, 32)  # the same seed at another size is another file
+    assert png_file(other, fallback) != made
+    # a cache that cannot be written: the PNG goes to the caller's folder
+    blocked = tmp_path / "blocked"
+    blocked.write_text("a file where the cache folder would be")
+    monkeypatch.setenv("SENSORKIT_CACHE_DIR", str(blocked))
+    out = png_file(tex, fallback)
+    assert out.parent == fallback and out.read_bytes() == good

@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from lxml import etree
 
     from sensorkit.model.robot import Robot
+    from sensorkit.render.textures import Texture
 
 __all__ = ["Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
 
@@ -239,7 +240,7 @@ class Scene:
     source: str  # "default" or the scene file as the user named it
     half_extent: float  # a square of this half size around the origin holds the scene
     urdf: Path | None = None
-    textures: dict[str, npt.NDArray[np.uint8]] = field(default_factory=dict)
+    textures: dict[str, Texture] = field(default_factory=dict)  # made when loaded
 
     @property
     def markers(self) -> list[Shape]:
@@ -299,13 +300,12 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
                         (1.0, 0.1, 0.9, 1.0),
                     )
                 )
-    textures: dict[str, npt.NDArray[np.uint8]] = {}
+    textures: dict[str, Texture] = {}
     if textured:
-        from sensorkit.render.textures import feature_texture, floor_texture
+        from sensorkit.render.textures import Texture
 
         for key, (seed, pixels) in seeds.items():
-            make = floor_texture if key == "floor" else feature_texture
-            textures[key] = make(seed, pixels)
+            textures[key] = Texture("floor" if key == "floor" else "feature", seed, pixels)
     return Scene(shapes, "default", half + thick, None, textures)
 
 

@@ -234,10 +234,9 @@ class World:
     # ---- building the world --------------------------------------------------------
     def _texture(self, key: str, scene: Scene, cache: dict[str, int]) -> int:
         if key not in cache:
-            from sensorkit.render.png import write_png
+            from sensorkit.render.textures import png_file
 
-            path = Path(self._tmp.name) / f"{key}.png"
-            write_png(path, scene.textures[key], level=0)  # read once, by pybullet
+            path = png_file(scene.textures[key], Path(self._tmp.name))
             cache[key] = int(self._call("loadTexture", str(path)))
         return cache[key]
 

@@ -1,15 +1,28 @@
 """Procedural textures rich in corners and edges, so that feature detectors find plenty.
 
 Each texture is a deterministic function of its seed: two-tone checks, random
-rectangles and discs in saturated colours, and a little fine noise. No files are read.
+rectangles and discs in saturated colours, and a little fine noise.
+
+Making the nine textures of the default room and encoding them for pybullet is a tenth of
+a camera preview, the same every time: :func:`png_file` keeps each PNG in the user's
+cache folder (``$SENSORKIT_CACHE_DIR``, else ``$XDG_CACHE_HOME/sensorkit``, else
+``~/.cache/sensorkit``), named by what makes it (kind, seed, size, a digest of this
+module and numpy's version, whose random streams may change between releases). A cached
+file is used only when it is a whole, well-formed PNG of the right size; anything else
+is made again. Where no cache folder can be written, the PNG goes to the caller's
+temporary folder, as before.
 """
 
 from __future__ import annotations
 
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["feature_texture", "floor_texture"]
+__all__ = ["Texture", "feature_texture", "floor_texture", "png_file"]
 
 
 def _disc(
@@ -79,3 +92,96 @@ def floor_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
         cx, cy = rng.uniform(0, size, 2)
         _disc(img, cx, cy, r, rng.integers(20, 236, 3).astype(np.int16))
     return _finish(img, rng, 8)
+
+
+@dataclass(frozen=True)
+class Texture:
+    """A texture of the default room, by what makes it."""
+
+    kind: str  # "floor" or "feature"
+    seed: int
+    size: int = 256
+
+    def image(self) -> npt.NDArray[np.uint8]:
+        make = floor_texture if self.kind == "floor" else feature_texture
+        return make(self.seed, self.size)
+
+
+def cache_dir() -> Path | None:
+    """sensorkit's folder in the user's cache (see the module doc), or None."""
+    explicit = os.environ.get("SENSORKIT_CACHE_DIR")
+    if explicit:
+        return Path(explicit)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    if xdg and os.path.isabs(xdg):
+        return Path(xdg) / "sensorkit"
+    home = os.environ.get("HOME")
+    return Path(home) / ".cache" / "sensorkit" if home else None
+
+
+_DIGEST: list[str] = []
+
+
+def _digest() -> str:
+    """What the textures depend on besides their seeds: this module's code and numpy."""
+    if not _DIGEST:
+        import hashlib
+
+        h = hashlib.sha256(Path(__file__).read_bytes())
+        h.update(np.__version__.encode())
+        _DIGEST.append(h.hexdigest()[:16])
+    return _DIGEST[0]
+
+
+def _whole_png(data: bytes, size: int) -> bool:
+    """``data`` is a PNG of ``size`` x ``size`` pixels whose every chunk is intact."""
+    import struct
+    import zlib
+
+    if not data.startswith(b"\x89PNG\r\n\x1a\n"):
+        return False
+    at, kinds = 8, []
+    while at + 12 <= len(data):
+        (length,) = struct.unpack(">I", data[at : at + 4])
+        end = at + 12 + length
+        if end > len(data):
+            return False
+        body = data[at + 4 : end - 4]
+        if zlib.crc32(body) & 0xFFFFFFFF != struct.unpack(">I", data[end - 4 : end])[0]:
+            return False
+        kinds.append(body[:4])
+        if kinds[0] == b"IHDR" and len(kinds) == 1 and body[4:12] != struct.pack(">II", size, size):
+            return False
+        at = end
+    return at == len(data) and kinds[:1] == [b"IHDR"] and kinds[-1:] == [b"IEND"]
+
+
+def png_file(texture: Texture, fallback: Path) -> Path:
+    """A PNG of ``texture`` for pybullet to load: the cached one (made on first use), or,
+    where the cache cannot be written, one written in the folder ``fallback``."""
+    from sensorkit.render.png import encode_png
+
+    folder = cache_dir()
+    name = f"{texture.kind}-{texture.seed}-{texture.size}-{_digest()}.png"
+    if folder is not None:
+        path = folder / "textures" / name
+        try:
+            if _whole_png(path.read_bytes(), texture.size):
+                return path
+        except OSError:
+            pass
+    data = encode_png(texture.image(), level=0)  # read by pybullet: no need to compress
+    if folder is not None:
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            # a unique name, then one rename: a preview running beside this one reads a
+            # whole file or none
+            tmp = path.with_name(f".{name}.{os.getpid()}.tmp")
+            tmp.write_bytes(data)
+            os.replace(tmp, path)
+            return path
+        except OSError:
+            pass
+    out = fallback / name
+    out.write_bytes(data)
+    return out
