@@ -147,8 +147,11 @@ def _start(ctx: Any, options: Options) -> tuple[BaseProcess, Connection]:
 
     parent_end, child_end = ctx.Pipe()
     proc = ctx.Process(target=_worker, args=(child_end, options), daemon=False)
-    ours = not gc.get_freeze_count()  # leave a caller's own freeze as it is
-    gc.freeze()
+    # A caller that froze objects itself keeps exactly its freeze: freezing more now
+    # could not be undone for its objects alone, so its workers go without.
+    ours = not gc.get_freeze_count()
+    if ours:
+        gc.freeze()
     try:
         proc.start()
     finally:

@@ -188,6 +188,9 @@ def test_workers_start_with_what_they_inherit_frozen(
     """A worker's collections never walk the parent's objects (each would be copied)."""
     monkeypatch.chdir(tmp_path)
     files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:3]
+    # as in a `sensorkit validate` process, nothing is frozen yet (an in-process add or
+    # render preview earlier in this test process froze what it left, as a command does)
+    gc.unfreeze()
     inherited = len(gc.get_objects())
 
     def frozen(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
@@ -197,6 +200,24 @@ def test_workers_start_with_what_they_inherit_frozen(
     reports = validate_paths(files, Options(), jobs=2).files
     assert all(int(fr.error or 0) > inherited // 2 for fr in reports), [fr.error for fr in reports]
     assert gc.get_freeze_count() == 0  # and the parent's collector is as it was
+
+
+def test_a_callers_own_freeze_is_left_as_it_is(
+    tmp_path: Path, mix: list[Path], monkeypatch: pytest.MonkeyPatch, gc_off: None
+) -> None:
+    """A library caller that froze objects itself: validate_paths freezes nothing more."""
+    monkeypatch.chdir(tmp_path)
+    files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:3]
+    gc.unfreeze()
+    gc.freeze()
+    try:
+        before = gc.get_freeze_count()
+        keep = [[i] for i in range(1000)]  # tracked objects made after the caller's freeze
+        reports = validate_paths(files, Options(), jobs=2).files
+        assert len(reports) == len(files) and all(fr.error is None for fr in reports)
+        assert gc.get_freeze_count() == before, len(keep)
+    finally:
+        gc.unfreeze()
 
 
 def test_what_validating_raises_is_raised_as_with_jobs_1(
