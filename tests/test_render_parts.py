@@ -677,3 +677,17 @@ def test_textures_are_made_once_and_kept_in_the_cache(
     monkeypatch.setenv("SENSORKIT_CACHE_DIR", str(blocked))
     out = png_file(tex, fallback)
     assert out.parent == fallback and out.read_bytes() == good
+
+
+def test_intact_png_tells_a_whole_png_from_a_damaged_one() -> None:
+    from sensorkit.render.png import encode_png, intact_png
+
+    data = encode_png(np.full((6, 4, 3), 7, dtype=np.uint8), level=0)
+    assert intact_png(data, 4, 6)
+    assert not intact_png(data, 6, 4)  # another size
+    assert not intact_png(data + b"x", 4, 6)  # trailing bytes
+    for cut in range(len(data)):
+        assert not intact_png(data[:cut], 4, 6)
+    flipped = bytearray(data)
+    flipped[40] ^= 1  # a pixel byte in IDAT: its CRC no longer holds
+    assert not intact_png(bytes(flipped), 4, 6)

@@ -68,6 +68,28 @@ def _paeth(a: int, b: int, c: int) -> int:
     return b if pb <= pc else c
 
 
+def intact_png(data: bytes, width: int, height: int) -> bool:
+    """``data`` is a whole PNG of ``width`` x ``height`` pixels: IHDR first, IEND last,
+    every chunk's CRC intact, nothing after (it says nothing of what the pixels hold)."""
+    if not data.startswith(_SIGNATURE):
+        return False
+    pos = len(_SIGNATURE)
+    kinds: list[bytes] = []
+    while pos + 12 <= len(data):
+        (length,) = struct.unpack(">I", data[pos : pos + 4])
+        end = pos + 12 + length
+        if end > len(data):
+            return False
+        body = data[pos + 4 : end - 4]  # the chunk's type and data, which its CRC covers
+        if zlib.crc32(body) & 0xFFFFFFFF != struct.unpack(">I", data[end - 4 : end])[0]:
+            return False
+        if not kinds and (body[:4] != b"IHDR" or body[4:12] != struct.pack(">II", width, height)):
+            return False
+        kinds.append(body[:4])
+        pos = end
+    return pos == len(data) and kinds[-1:] == [b"IEND"]
+
+
 def read_png(data: bytes) -> npt.NDArray[np.uint8]:
     """Decode a non-interlaced 8-bit grey/RGB/RGBA PNG into ``(H, W, C)`` uint8."""
     if not data.startswith(_SIGNATURE):

@@ -157,16 +157,6 @@ def _load(
     return loaded.robot, loaded
 
 
-def _load_robot(
-    path: Path,
-    args: Mapping[str, str],
-    package_paths: Sequence[str],
-    what: str,
-    untrusted: Untrusted | None = None,
-) -> Robot:
-    return _load(path, args, package_paths, what, untrusted)[0]
-
-
 def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
     """Role -> ROS topic (``image``, ``camera_info``, ``scan``...), None when unknown."""
     from sensorkit.sensorinfo import sensor_topics
@@ -967,7 +957,7 @@ def render_preview(
     scene_robot: Robot | None = None
     if scene is not None:
         _say(progress, f"loading scene {scene}")
-        scene_robot = _load_robot(scene, {}, package_paths, "scene:", untrusted)
+        scene_robot, _ = _load(scene, {}, package_paths, "scene:", untrusted)
         shapes = scene_shapes_from_robot(scene_robot)
         extent = max(
             (float(np.abs(s.footprint()).max()) for s in shapes if len(s.footprint())), default=3.0

@@ -15,6 +15,7 @@ temporary folder, as before.
 
 from __future__ import annotations
 
+import functools
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -119,54 +120,27 @@ def cache_dir() -> Path | None:
     return Path(home) / ".cache" / "sensorkit" if home else None
 
 
-_DIGEST: list[str] = []
-
-
+@functools.cache
 def _digest() -> str:
     """What the textures depend on besides their seeds: this module's code and numpy."""
-    if not _DIGEST:
-        import hashlib
+    import hashlib
 
-        h = hashlib.sha256(Path(__file__).read_bytes())
-        h.update(np.__version__.encode())
-        _DIGEST.append(h.hexdigest()[:16])
-    return _DIGEST[0]
-
-
-def _whole_png(data: bytes, size: int) -> bool:
-    """``data`` is a PNG of ``size`` x ``size`` pixels whose every chunk is intact."""
-    import struct
-    import zlib
-
-    if not data.startswith(b"\x89PNG\r\n\x1a\n"):
-        return False
-    at, kinds = 8, []
-    while at + 12 <= len(data):
-        (length,) = struct.unpack(">I", data[at : at + 4])
-        end = at + 12 + length
-        if end > len(data):
-            return False
-        body = data[at + 4 : end - 4]
-        if zlib.crc32(body) & 0xFFFFFFFF != struct.unpack(">I", data[end - 4 : end])[0]:
-            return False
-        kinds.append(body[:4])
-        if kinds[0] == b"IHDR" and len(kinds) == 1 and body[4:12] != struct.pack(">II", size, size):
-            return False
-        at = end
-    return at == len(data) and kinds[:1] == [b"IHDR"] and kinds[-1:] == [b"IEND"]
+    h = hashlib.sha256(Path(__file__).read_bytes())
+    h.update(np.__version__.encode())
+    return h.hexdigest()[:16]
 
 
 def png_file(texture: Texture, fallback: Path) -> Path:
     """A PNG of ``texture`` for pybullet to load: the cached one (made on first use), or,
     where the cache cannot be written, one written in the folder ``fallback``."""
-    from sensorkit.render.png import encode_png
+    from sensorkit.render.png import encode_png, intact_png
 
     folder = cache_dir()
     name = f"{texture.kind}-{texture.seed}-{texture.size}-{_digest()}.png"
     if folder is not None:
         path = folder / "textures" / name
         try:
-            if _whole_png(path.read_bytes(), texture.size):
+            if intact_png(path.read_bytes(), texture.size, texture.size):
                 return path
         except OSError:
             pass
