@@ -308,7 +308,7 @@ def _sdf_pose(el: etree._Element, locate: object) -> Origin:
         return out
     vals, why = parse_vec(text, 6)
     if why or vals is None:
-        out.problems.append(f"pose {why}")
+        out.problems = (f"pose {why}",)
         return out
     out.xyz = (vals[0], vals[1], vals[2])
     out.rpy = (vals[3], vals[4], vals[5])
