@@ -10,6 +10,8 @@ from conftest import CORPUS, ROOT, rules_of
 from conftest import run_cli as cli
 
 from sensorkit.engine import Options, validate_file
+from sensorkit.loading.document import looks_like_xacro
+from sensorkit.loading.marks import forbid_entities
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.xacro_expand import expand, expand_in_process
 
@@ -145,6 +147,42 @@ def test_malformed_include_reports_the_include_line(tmp_path: Path) -> None:
     p = write(tmp_path, "r.urdf.xacro", f'<robot name="r" {XACRO_NS}><xacro:include filename="part.xacro"/></robot>')
     (f,) = validate_file(p).findings
     assert f.rule == "SK101" and f.file and f.file.endswith("part.xacro") and f.line == 3
+
+
+@pytest.mark.parametrize(
+    ("text", "xacro"),
+    [
+        (b'<robot name="r"><link name="${n}"/></robot>', True),
+        (b'<robot name="r"><link name="$(arg n)"/></robot>', True),
+        (b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r"/>', True),
+        (b'<robot xmlns:xacro = "http://www.ros.org/wiki/xacro" name="r"/>', True),
+        (b'<robot name="r"><xacro:include filename="a.xacro"/></robot>', True),
+        # near misses: a dollar, a colon or the word alone is no xacro markup
+        (b'<robot name="r"><link name="cost$"/><!-- 10 $ { --></robot>', False),
+        (b'<robot name="r"><!-- made by xacro once --><link name="a"/></robot>', False),
+        (b'<robot name="r"><!-- see: xacro --><link name="a:b"/></robot>', False),
+    ],
+)
+def test_urdf_files_are_expanded_only_when_they_hold_xacro_markup(
+    tmp_path: Path, text: bytes, xacro: bool
+) -> None:
+    assert looks_like_xacro(tmp_path / "r.urdf", text) is xacro
+    assert looks_like_xacro(tmp_path / "r.urdf.xacro", text) is True
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        BOMB.encode(),
+        b'<?xml version="1.0"?>\n<!DOCTYPE r [<!entity x "y">]>\n<robot name="r"/>',
+    ],
+)
+def test_entities_are_refused_wherever_the_doctype_is(text: bytes) -> None:
+    assert forbid_entities(text) is not None
+    assert forbid_entities(b"<!-- " + b"x" * 100_000 + b" -->\n" + text) is not None
+    # near misses: a comment with "!" and no DOCTYPE, a DOCTYPE with no entity
+    assert forbid_entities(b'<!-- hi! --><robot name="r"/>') is None
+    assert forbid_entities(b'<!DOCTYPE robot><robot name="r"/>') is None
 
 
 def test_urdf_with_xacro_markup_is_expanded() -> None:

@@ -114,8 +114,12 @@ def looks_like_xacro(path: Path, data: bytes) -> bool:
     """True for .xacro files and for .urdf files that really contain xacro markup."""
     if path.name.endswith(".xacro"):
         return True
-    if b"${" in data or b"$(" in data:  # plain substring tests: much faster than a regex on MBs
+    # Plain substring tests, each a single pass: much faster than a regex on MBs. A
+    # one-byte search (memchr) first, as the two-byte ones cost ten times more.
+    if b"$" in data and (b"${" in data or b"$(" in data):
         return True
+    if b":" not in data:  # what is left to find (xmlns:xacro=, <xacro:) has a colon
+        return False
     return b"xacro" in data and bool(re.search(_XACRO_MARKERS, data))
 
 
