@@ -168,6 +168,33 @@ def test_rule_triggers_and_near_miss_does_not(check, rule: str, bad: str, good: 
     assert rule not in rules_of(miss), [(f.rule, f.message) for f in miss.findings if f.rule == rule]
 
 
+def test_sk201_and_sk204_on_names_and_parents_that_repeat(check) -> None:
+    """What the per-name maps' fast paths must still find: an empty name, a name used three
+    times (reported twice), and a second parent; a self-joint is no parent joint."""
+    msgs = [
+        (f.rule, f.message)
+        for f in check(
+            _tree(
+                TB, link("b"), link("b"), link("b"), '<link name=""/>',
+                joint("j", "a", "b"), joint("j", "a", "c"), link("c"),
+                joint("k", "c", "c"), joint("m", "b", "c"),
+            )
+        ).findings
+        if f.rule in ("SK201", "SK204")
+    ]
+    assert ("SK201", "a <link> has no name") in msgs
+    assert msgs.count(("SK201", "link name 'b' is used 3 times")) == 2
+    assert ("SK201", "joint name 'j' is used 2 times") in msgs
+    assert ("SK204", "joint 'k' joins link 'c' to itself") in msgs
+    assert ("SK204", "link 'c' has 2 parent joints: j, m") in msgs
+    assert not any("'b' has" in m for _, m in msgs)
+    # with the self-joint alone beside one parent, c has one parent joint
+    one = check(_tree(TB, link("c"), joint("j", "a", "c"), joint("k", "c", "c")))
+    assert [f.message for f in one.findings if f.rule == "SK204"] == [
+        "joint 'k' joins link 'c' to itself"
+    ]
+
+
 def test_every_rule_has_a_case() -> None:
     # The loaders' rules: test_loading.py; SK612 and SK614 need a bridge file: test_trust.py
     # and test_sim_facts.py.

@@ -13,7 +13,12 @@ from sensorkit.rules.base import Context, rule
 @rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
 def unique_names(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    for kind, items in (("link", robot.links), ("joint", robot.joints)):
+    for kind, items, by_name in (
+        ("link", robot.links, robot.link_map),
+        ("joint", robot.joints, robot.joint_map),
+    ):
+        if len(by_name) == len(items) and "" not in by_name:
+            continue  # the map holds one entry per name: every name is there once
         counts = Counter(x.name for x in items)
         seen: set[str] = set()
         for item in items:
@@ -125,9 +130,11 @@ def single_root(ctx: Context) -> Iterator[Finding]:
 )
 def tree_shape(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    parents: dict[str, list[str]] = {}
+    children: set[str] = set()  # every child of a joint that is not a self-joint
+    twice = False
     for j in robot.joints:
-        if j.parent is not None and j.parent == j.child:
+        c = j.child
+        if c is not None and j.parent == c:
             yield ctx.finding(
                 "SK204",
                 Severity.ERROR,
@@ -137,8 +144,16 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 link=j.parent,
                 fix="a joint's parent and child must differ",
             )
-        elif j.child is not None:
-            parents.setdefault(j.child, []).append(j.name)
+        elif c is not None:
+            if c in children:
+                twice = True
+            else:
+                children.add(c)
+    parents: dict[str, list[str]] = {}  # the parent joints of each child, when any has two
+    if twice:
+        for j in robot.joints:
+            if j.child is not None and j.parent != j.child:
+                parents.setdefault(j.child, []).append(j.name)
     for child, joints in parents.items():
         if len(joints) > 1:
             yield ctx.finding(
@@ -153,7 +168,7 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
     # Cycles over every joint (a second parent can close a loop too): iterative DFS.
     # Fast path: with one parent per link, a walk from the roots that reaches every child
     # proves there is no cycle.
-    if not any(len(js) > 1 for js in parents.values()):
+    if not twice:
         stack = robot.roots()
         reached = set(stack)
         child_joints = robot.child_joints
@@ -165,7 +180,7 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                     if c is not None and c not in reached and j.parent != c:
                         reached.add(c)
                         stack.append(c)
-        if reached.issuperset(parents):
+        if reached.issuperset(children):
             return
     edges: dict[str, list[tuple[str, str]]] = {}
     for j in robot.joints:
