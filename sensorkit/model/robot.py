@@ -795,23 +795,50 @@ def _limit_parts(items: _Items) -> tuple[dict[str, float | None], tuple[str, ...
 
 
 def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint:
-    parent = child = mimic_el = None
+    # lxml's items() is one call where keys() and get() are two or three: each element's
+    # attributes are read once, and the usual shapes (name then type; a lone link or xyz)
+    # are recognised without a dict.
+    parent = child = mimic = None
+    has_parent = has_child = has_mimic = has_axis = False
     origin: Origin | None = None
     axis_text: str | None = None
-    has_axis = False
     limit_hit = None
-    keys = el.keys()
-    if not _JOINT_ATTRS.issuperset(keys):
-        _stray_attrs(el, "joint", keys, URDF_ATTRS["joint"], None, strays)
+    it = el.items()
+    if it and it[-1][0] == LOC_ATTR:
+        del it[-1]
+    if len(it) == 2 and it[0][0] == "name" and it[1][0] == "type":
+        name, jtype = it[0][1], it[1][1]
+    else:
+        attrs = dict(it)
+        name, jtype = attrs.get("name", ""), attrs.get("type", "")
+        if not _JOINT_ATTRS.issuperset(attrs):
+            _stray_attrs(el, "joint", el.keys(), URDF_ATTRS["joint"], None, strays)
     for c in el:
         tag = c.tag
-        if tag == "parent":
-            if parent is None:
-                parent = c
-        elif tag == "child":
-            if child is None:
-                child = c
-        elif tag == "origin":
+        if tag == "parent" or tag == "child" or tag == "axis":
+            it = c.items()
+            if it and it[-1][0] == LOC_ATTR:
+                del it[-1]
+            wanted = "xyz" if tag == "axis" else "link"
+            if len(it) == 1 and it[0][0] == wanted:
+                value: str | None = it[0][1]
+                clean = True
+            else:
+                attrs = dict(it)
+                value = attrs.get(wanted)
+                clean = _JOINT_CHILD_ATTRS[tag].issuperset(attrs)
+            if tag == "parent":
+                if not has_parent:
+                    has_parent, parent = True, value
+            elif tag == "child":
+                if not has_child:
+                    has_child, child = True, value
+            elif not has_axis:
+                has_axis, axis_text = True, value
+            if not clean:
+                _check_attrs(c, tag, None, strays)
+            continue
+        if tag == "origin":
             if origin is None:
                 origin = _read_origin(c, None, strays)
                 continue  # its attributes are checked
@@ -824,26 +851,14 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
                 if not limit_hit[2]:
                     _check_attrs(c, "limit", None, strays)
                 continue
-        elif tag == "axis":
-            if not has_axis:
-                has_axis = True
-                axis_text = c.get("xyz")
-        elif tag == "mimic" and mimic_el is None:
-            mimic_el = c
-        attrs = _JOINT_CHILD_ATTRS.get(tag)
-        if attrs is None:
+        elif tag == "mimic" and not has_mimic:
+            has_mimic, mimic = True, c.get("joint")
+        attrs_ok = _JOINT_CHILD_ATTRS.get(tag)
+        if attrs_ok is None:
             _stray_child(c, "joint", None, strays)
-        elif not attrs.issuperset(c.keys()):
+        elif not attrs_ok.issuperset(c.keys()):
             _check_attrs(c, tag, None, strays)
-    joint = Joint(
-        el.get("name", ""),
-        el.get("type", ""),
-        parent.get("link") if parent is not None else None,
-        child.get("link") if child is not None else None,
-        origin if origin is not None else _NO_ORIGIN,
-        el,
-        doc,
-    )
+    joint = Joint(name, jtype, parent, child, origin if origin is not None else _NO_ORIGIN, el, doc)
     if axis_text is not None:
         hit = _AXIS_MEMO.get(axis_text)
         if hit is None:
@@ -854,9 +869,8 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
         joint.axis, joint.axis_problem = hit
     if limit_hit is not None:
         joint.limit, joint.limit_problems = limit_hit[0], limit_hit[1]
-    if mimic_el is not None:
-        joint.has_mimic = True
-        joint.mimic = mimic_el.get("joint")
+    if has_mimic:
+        joint.has_mimic, joint.mimic = True, mimic
     return joint
 
 
