@@ -8,6 +8,7 @@ model never raises on bad input.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from sys import intern
 from typing import TYPE_CHECKING, Any
 
 from lxml import etree
@@ -750,7 +751,7 @@ _VISUAL = frozenset({"visual", "collision"})
 
 
 def _read_link(el: etree._Element, doc: Document, strays: list[Stray]) -> Link:
-    name = el.get("name", "")
+    name = intern(el.get("name", ""))  # see _read_joint
     if not _LINK_ATTRS.issuperset(el.keys()):
         _check_attrs(el, "link", name, strays)
     inertial: Inertial | None = None
@@ -794,6 +795,9 @@ def _limit_parts(items: _Items) -> tuple[dict[str, float | None], tuple[str, ...
     return limit, tuple(problems), _JOINT_CHILD_ATTRS["limit"].issuperset(attrs)
 
 
+_ONE_ATTR = frozenset({"parent", "child", "axis"})  # joint children read for one attribute
+
+
 def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint:
     # lxml's items() is one call where keys() and get() are two or three: each element's
     # attributes are read once, and the usual shapes (name then type; a lone link or xyz)
@@ -815,7 +819,7 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
             _stray_attrs(el, "joint", el.keys(), URDF_ATTRS["joint"], None, strays)
     for c in el:
         tag = c.tag
-        if tag == "parent" or tag == "child" or tag == "axis":
+        if tag in _ONE_ATTR:
             it = c.items()
             if it and it[-1][0] == LOC_ATTR:
                 del it[-1]
@@ -858,7 +862,19 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
             _stray_child(c, "joint", None, strays)
         elif not attrs_ok.issuperset(c.keys()):
             _check_attrs(c, tag, None, strays)
-    joint = Joint(name, jtype, parent, child, origin if origin is not None else _NO_ORIGIN, el, doc)
+    # Link names are interned (here and in _read_link): a link's name, and the parent and
+    # child of its joints, are one string object, so the many dict lookups by link name
+    # that follow (tree, conversion, poses, rules) match by identity instead of comparing
+    # text in another part of memory. On a 100,000-link robot that is most of their cost.
+    joint = Joint(
+        name,
+        intern(jtype),  # a handful of values: one string each, not one per joint
+        parent if parent is None else intern(parent),
+        child if child is None else intern(child),
+        origin if origin is not None else _NO_ORIGIN,
+        el,
+        doc,
+    )
     if axis_text is not None:
         hit = _AXIS_MEMO.get(axis_text)
         if hit is None:
