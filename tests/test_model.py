@@ -88,3 +88,42 @@ def test_massless_revolute_link_drops_its_subtree() -> None:
     )
     conv = convert(_robot(text))
     assert conv.dropped == {"pan": "pan", "cam": "pan"}
+
+
+def _tangle() -> str:
+    """Leaves before their parents, a cycle, a cut-off branch, a duplicate name, a leaf of a
+    leaf's sibling and rotated origins: every way world_positions can take."""
+    return (
+        '<robot name="r">'
+        + '<link name="late_leaf"/>' + joint("lj", "mid", "late_leaf", xyz="0.3 -0.2 0.1", rpy="0.4 0.2 -0.3")
+        + link("base", inertial(1, 0.1)) + '<link name="mid"/>'
+        + joint("mj", "base", "mid", xyz="1 2 3", rpy="0.1 -0.7 1.3")
+        + '<link name="leaf"/>' + joint("fj", "mid", "leaf", xyz="-0.5 0.25 2", rpy="1 2 3")
+        + '<link name="leaf"/>'
+        + '<link name="c1"/><link name="c2"/>' + joint("c1j", "c2", "c1") + joint("c2j", "c1", "c2")
+        + '<link name="cut"/>' + joint("xj", "nowhere", "cut", xyz="5 5 5", rpy="0 0 1")
+        + '<link name="cut_leaf"/>' + joint("xlj", "cut", "cut_leaf", xyz="0.1 0.2 0.3", rpy="0.3 0 0")
+        + '<link name="cycle_leaf"/>' + joint("clj", "c1", "cycle_leaf")
+        + "</robot>"
+    )
+
+
+@pytest.mark.parametrize("path", [None, *ROBOTS], ids=lambda p: p.name if p else "tangle")
+def test_world_positions_are_the_world_poses_translations_bit_for_bit(path: Path | None) -> None:
+    def fresh():  # type: ignore[no-untyped-def]
+        if path is None:
+            return _robot(_tangle())
+        loaded = load_robot(path).robot
+        assert loaded is not None
+        return loaded
+
+    positions = fresh().world_positions()
+    poses = fresh()  # its own caches: each pose composed the long way
+    names = [lk.name for lk in poses.links]
+    assert set(positions) == set(names)
+    for name in names:
+        P = poses.world_pose(name)
+        assert positions[name] == (None if P is None else P[9:12]), name
+    if path is None:
+        assert positions["c1"] is None and positions["cycle_leaf"] is None
+        assert positions["cut_leaf"] is not None and positions["late_leaf"] is not None

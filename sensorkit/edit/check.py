@@ -178,7 +178,6 @@ _ROBOT_FIELDS = frozenset(
         "_T_world",
         "_up",
         "_roots",
-        "_all_posed",
         "cache",
     }
 )

@@ -99,15 +99,15 @@ def _links_near(robot: Robot, tol_m: float) -> tuple[dict[tuple[int, int, int], 
     size = 2.0 * tol_m
     floor = math.floor
     pj = robot.parent_joint
-    poses = robot.world_poses()
+    positions = robot.world_positions()
     lim = _GRID_LIMIT
     for i, lk in enumerate(robot.links):
         if lk.name not in pj:
             continue
-        P = poses[lk.name]
+        P = positions[lk.name]
         if P is None:
             continue
-        x, y, z = P[9], P[10], P[11]
+        x, y, z = P
         if -lim < x < lim and -lim < y < lim and -lim < z < lim:
             cell = (floor(x / size), floor(y / size), floor(z / size))
             bucket = cells.get(cell)

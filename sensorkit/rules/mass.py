@@ -148,9 +148,10 @@ def _few(names: list[str], n: int = 8) -> str:
     "gz sdf -k",
 )
 def inertia_valid(ctx: Context) -> Iterator[Finding]:
-    # Links read from the same <mass> and <inertia> text share their value objects (the
-    # reader's memo): each such combination is judged once. Keyed by identity, so values
-    # that compare equal but print differently (0.0 and -0.0) stay apart.
+    # Links read from the same <mass> and <inertia> text share their mass object and
+    # inertia dict (the reader's memo): each such combination is judged once. Keyed by
+    # identity, so values that compare equal but print differently (0.0 and -0.0) stay
+    # apart.
     judged: dict[tuple[int, ...], str | None] = {}
     for link in ctx.robot.links:
         inertial = link.inertial
@@ -159,7 +160,7 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
         if inertial.problems:
             problem = inertia_problem(inertial)
         else:
-            key = (id(inertial.mass), *map(id, inertial.inertia.values()))
+            key = (id(inertial.mass), id(inertial.inertia))
             if key in judged:
                 problem = judged[key]
             else:
