@@ -126,14 +126,23 @@ def median_cpu(cmd: list[str], env: dict[str, str]) -> float:
 
 
 def paired(cmds: dict[str, list[str]], runs: int, env: dict[str, str]) -> dict[str, float]:
-    """Median CPU seconds of each command over ``runs`` interleaved rounds."""
+    """Median CPU seconds of each command over ``runs`` interleaved rounds; and, as
+    ``"<name>/<first>"``, the median over rounds of each command's ratio to the first
+    command of the same round (steadier than a ratio of medians when the machine's speed
+    drifts between rounds)."""
     names = list(cmds)
     times: dict[str, list[float]] = {name: [] for name in names}
     for r in range(runs):
         order = names[r % len(names) :] + names[: r % len(names)]
         for name in order:
             times[name].append(median_cpu(cmds[name], env))
-    return {name: statistics.median(t) for name, t in times.items()}
+    out = {name: statistics.median(t) for name, t in times.items()}
+    first = names[0]
+    for name in names[1:]:
+        out[f"{first}/{name}"] = statistics.median(
+            a / b for a, b in zip(times[first], times[name], strict=True)
+        )
+    return out
 
 
 def main() -> None:
@@ -170,7 +179,11 @@ def main() -> None:
                     cmds["check_urdf"] = [check_urdf, str(path)]
                 results[(shape, n)] = paired(cmds, a.runs, env)
                 print(
-                    "  " + ", ".join(f"{k} {v:.3f} s" for k, v in results[(shape, n)].items()),
+                    "  "
+                    + ", ".join(
+                        f"{k} {v:.3f}" + ("" if "/" in k else " s")
+                        for k, v in results[(shape, n)].items()
+                    ),
                     flush=True,
                 )
         startup = None
@@ -187,14 +200,20 @@ def main() -> None:
             )
     print()
     print(f"median CPU seconds of {a.runs} paired runs")
-    head = f"{'robot':<12}{'validate':>10}{'floor':>9}{'check_urdf':>12}{'v/floor':>9}{'v/check':>9}"
+    print("(v/floor, v/check: ratio of the medians; per run: median of each round's ratio)")
+    head = (
+        f"{'robot':<12}{'validate':>10}{'floor':>9}{'check_urdf':>12}{'v/floor':>9}"
+        f"{'per run':>9}{'v/check':>9}{'per run':>9}"
+    )
     print(head)
+    nan = float("nan")
     for (shape, n), r in results.items():
         cu = r.get("check_urdf")
         print(
             f"{shape + ' ' + str(n):<12}{r['validate']:>10.3f}{r['floor']:>9.3f}"
-            f"{cu if cu is not None else float('nan'):>12.3f}{r['validate'] / r['floor']:>9.2f}"
-            f"{r['validate'] / cu if cu else float('nan'):>9.2f}"
+            f"{cu if cu is not None else nan:>12.3f}{r['validate'] / r['floor']:>9.2f}"
+            f"{r['validate/floor']:>9.2f}{r['validate'] / cu if cu else nan:>9.2f}"
+            f"{r.get('validate/check_urdf', nan):>9.2f}"
         )
     if len(a.sizes) >= 2:
         lo, hi = min(a.sizes), max(a.sizes)
@@ -207,7 +226,8 @@ def main() -> None:
         print(
             f"start-up, 100 links with sensors: validate {startup['validate'] * 1000:.0f} ms, "
             f"typer+lxml {startup['typer+lxml'] * 1000:.0f} ms, "
-            f"ratio {startup['validate'] / startup['typer+lxml']:.2f}"
+            f"ratio {startup['validate'] / startup['typer+lxml']:.2f} "
+            f"(per run {startup['validate/typer+lxml']:.2f})"
         )
 
 
