@@ -157,12 +157,16 @@ def optical_frame_at(
     # angle_between(R_render.T @ R_link, R_BODY_OPTICAL) is the angle of
     # R_link.T @ (R_render @ R_BODY_OPTICAL)
     R_want = rotation(T_world_render) @ R_BODY_OPTICAL
+    positions = robot.world_positions()  # the whole pose only of links close enough
     for name in candidates:
+        at = positions.get(name)
+        if at is None:
+            continue
+        dx, dy, dz = at[0] - px, at[1] - py, at[2] - pz
+        if math.sqrt(dx * dx + dy * dy + dz * dz) > tol_m:
+            continue
         P = robot.world_pose(name)
         if P is None:
-            continue
-        dx, dy, dz = P[9] - px, P[10] - py, P[11] - pz
-        if math.sqrt(dx * dx + dy * dy + dz * dz) > tol_m:
             continue
         R = ((P[0], P[1], P[2]), (P[3], P[4], P[5]), (P[6], P[7], P[8]))
         if angle_between(R, R_want) <= tol_rad:
