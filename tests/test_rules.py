@@ -195,6 +195,26 @@ def test_sk201_and_sk204_on_names_and_parents_that_repeat(check) -> None:
     ]
 
 
+def test_sk202_names_each_missing_or_unknown_end(check) -> None:
+    """Every way a joint's ends can fail, each reported once; a joint whose two links
+    exist is not reported (the rule's fast path)."""
+    text = _tree(
+        TB, link("b"), link("c"),
+        joint("ok", "a", "b"),
+        '<joint name="noparent" type="fixed"><child link="c"/></joint>',
+        '<joint name="nochild" type="fixed"><parent link="a"/></joint>',
+        joint("ghostparent", "ghost", "c"),
+        joint("ghostchild", "b", "ghost2"),
+    )
+    msgs = sorted(f.message for f in check(text).findings if f.rule == "SK202")
+    assert msgs == sorted([
+        "joint 'noparent' has no <parent link=\"...\"/>",
+        "joint 'nochild' has no <child link=\"...\"/>",
+        "joint 'ghostparent' names parent link 'ghost', which does not exist",
+        "joint 'ghostchild' names child link 'ghost2', which does not exist",
+    ]), msgs
+
+
 def test_every_rule_has_a_case() -> None:
     # The loaders' rules: test_loading.py; SK612 and SK614 need a bridge file: test_trust.py
     # and test_sim_facts.py.

@@ -48,6 +48,8 @@ def unique_names(ctx: Context) -> Iterator[Finding]:
 def joint_links(ctx: Context) -> Iterator[Finding]:
     links = ctx.robot.link_map
     for j in ctx.robot.joints:
+        if j.parent in links and j.child in links:
+            continue  # the usual case: both exist (None is never a link name)
         for role, name in (("parent", j.parent), ("child", j.child)):
             if name is None:
                 yield ctx.finding(
