@@ -341,3 +341,29 @@ def test_robot_yaml_append_keeps_every_byte(text: str, added: str) -> None:
         "0.2 0 0.1",
         {"width": "320"},
     )
+
+
+def test_commands_run_in_a_callers_process_leave_its_objects_collectable(tmp_path: Path) -> None:
+    """The sensorkit program runs validate, add-* and render preview with the cyclic
+    collector off and freezes what they built (it exits right after); a caller running
+    them in its own process (CliRunner here) must get its collector back as it was, with
+    nothing of the command's frozen for good."""
+    import gc
+
+    robot = tmp_path / "plain.urdf.xacro"
+    robot.write_text(PLAIN)
+    before = gc.get_freeze_count()
+    assert gc.isenabled()  # as every test leaves it (validate in-process used not to)
+    code, _, err = cli("validate", robot)
+    assert code in (0, 1), err
+    assert gc.isenabled() and gc.get_freeze_count() == before
+    code, _, err = cli("add-camera", robot, "--name", "cam", "--parent", "base_link")
+    assert code == 0, err
+    assert gc.isenabled() and gc.get_freeze_count() == before
+    wall_bot = Path(__file__).parent / "render_robots" / "wall_bot.urdf"
+    code, out, err = cli(
+        "render", "preview", wall_bot, "--out", tmp_path / "preview", "--sensor", "laser",
+        "--fail-on", "never",
+    )
+    assert code == 0, out + err
+    assert gc.isenabled() and gc.get_freeze_count() == before

@@ -101,6 +101,8 @@ def main() -> None:
     skips the interpreter's teardown (freeing a large model costs a tenth of a second for
     nothing). Output streams are flushed first; nothing else is pending by then.
     """
+    global _program  # noqa: PLW0603 (one process-wide switch)
+    _program = True
     sys.argv[1:] = xacro_args_as_options(sys.argv[1:])
     try:
         app()
@@ -114,6 +116,14 @@ def main() -> None:
 
 
 _quick_exit = False
+_program = False
+
+
+def in_program() -> bool:
+    """True when this process is the ``sensorkit`` program (``main()`` runs the command),
+    which ends when the command does; False for a caller running a command in its own
+    process (typer's CliRunner, a script), whose objects outlive the command."""
+    return _program
 
 
 def leave_quickly() -> None:

@@ -245,9 +245,13 @@ def preview(
         )
     finally:
         if collecting:
-            # what the preview left is long-lived or freed by reference counting: set
-            # it aside, or the first collection would walk all of it
-            gc.freeze()
+            from sensorkit.cli import in_program
+
+            if in_program():
+                # what the preview left is long-lived or freed by reference counting: set
+                # it aside, or the first collection would walk all of it. A caller running
+                # the command in its own process keeps its objects collectable.
+                gc.freeze()
             gc.enable()
     from sensorkit.render.gate import found_text
 

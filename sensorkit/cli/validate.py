@@ -126,86 +126,94 @@ def validate(
     """
     import gc
 
+    from sensorkit.cli import in_program
     from sensorkit.engine import Options, validate_paths
 
+    collecting = gc.isenabled()
     gc.disable()  # a short-lived process building many small acyclic objects
-    from sensorkit.errors import UsageError
-    from sensorkit.report import FORMATS, render
+    try:
+        from sensorkit.errors import UsageError
+        from sensorkit.report import FORMATS, render
 
-    if fmt not in FORMATS:
-        raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    colored = fmt == "text" and use_color(color)
-    if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
-        raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
-    files, overlay = stdin_robots(files, stdin_filename)
-    st = settings(
-        files[0] if files else None,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
-    )
-    cfg = st.config
-    sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
-    ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
-    threshold = fail_on_threshold(fail_on, cfg)
-    st.say_where(
-        tuple(
-            k
-            for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on))
-            if not flag
-        ),
-        quiet=quiet,
-    )
-    options = Options(
-        target=st.target,
-        select=tuple(sep),
-        ignore=tuple(ign),
-        fail_on=threshold,
-        args=st.args,
-        package_paths=st.package_paths,
-        timeout=timeout,
-        bridges=tuple(str(b) for b in bridge or ()),
-        untrusted=st.untrusted,
-        target_origin=st.origin("target"),
-        overlay=overlay,
-    )
-    inputs = _expand_folders(files, quiet=quiet)
-    if fix or diff or unsafe_fixes:
-        from sensorkit.cli.fixing import run_fix
-
-        run_fix(
-            inputs,
-            options,
-            fmt,
-            threshold,
-            diff=diff,
-            fix=fix,
-            unsafe=unsafe_fixes,
-            quiet=quiet,
-            color=colored,
-            exit_zero=exit_zero,
+        if fmt not in FORMATS:
+            raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
+        colored = fmt == "text" and use_color(color)
+        if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
+            raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
+        files, overlay = stdin_robots(files, stdin_filename)
+        st = settings(
+            files[0] if files else None,
+            config=config,
+            target=target,
+            package_path=package_path,
+            arg=arg,
+            untrusted=untrusted,
+            env=env,
         )
-    if not jobs:
-        from sensorkit.fleet import cpu_count
+        cfg = st.config
+        sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
+        ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
+        threshold = fail_on_threshold(fail_on, cfg)
+        st.say_where(
+            tuple(
+                k
+                for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on))
+                if not flag
+            ),
+            quiet=quiet,
+        )
+        options = Options(
+            target=st.target,
+            select=tuple(sep),
+            ignore=tuple(ign),
+            fail_on=threshold,
+            args=st.args,
+            package_paths=st.package_paths,
+            timeout=timeout,
+            bridges=tuple(str(b) for b in bridge or ()),
+            untrusted=st.untrusted,
+            target_origin=st.origin("target"),
+            overlay=overlay,
+        )
+        inputs = _expand_folders(files, quiet=quiet)
+        if fix or diff or unsafe_fixes:
+            from sensorkit.cli.fixing import run_fix
 
-        jobs = cpu_count()
-    # The last model stays referenced until the process ends without teardown: freeing
-    # it would only cost time.
-    _KEPT.clear()  # one model at most (in-process callers run validate more than once)
-    report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
-    from sensorkit.cli import leave_quickly
+            run_fix(
+                inputs,
+                options,
+                fmt,
+                threshold,
+                diff=diff,
+                fix=fix,
+                unsafe=unsafe_fixes,
+                quiet=quiet,
+                color=colored,
+                exit_zero=exit_zero,
+            )
+        if not jobs:
+            from sensorkit.fleet import cpu_count
 
-    leave_quickly()  # only reading was done: nothing to clean up
-    sys.stdout.write(render(report, fmt, color=colored, quiet=quiet))
-    for fr in report.files:
-        if fr.error:
-            typer.echo(f"sensorkit: {fr.error}", err=True)
-        for err in fr.internal_errors:
-            typer.echo(f"sensorkit: internal error: {err}", err=True)
-    raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))
+            jobs = cpu_count()
+        # The last model stays referenced until the process ends without teardown: freeing
+        # it would only cost time.
+        _KEPT.clear()  # one model at most (in-process callers run validate more than once)
+        report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
+        from sensorkit.cli import leave_quickly
+
+        leave_quickly()  # only reading was done: nothing to clean up
+        sys.stdout.write(render(report, fmt, color=colored, quiet=quiet))
+        for fr in report.files:
+            if fr.error:
+                typer.echo(f"sensorkit: {fr.error}", err=True)
+            for err in fr.internal_errors:
+                typer.echo(f"sensorkit: internal error: {err}", err=True)
+        raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))
+    finally:
+        # The sensorkit program exits now, with the collector still off; a caller that
+        # ran the command in its own process gets its collector back as it was.
+        if collecting and not in_program():
+            gc.enable()
 
 
 def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
