@@ -193,6 +193,9 @@ def test_gz_sensor_without_frame_tag_warns_its_frame_is_not_in_tf(check) -> None
     f = next(f for f in check(gz_robot(camera_tags="<topic>cam</topic>"), target="harmonic").findings
              if f.rule == "SK501" and f.sensor == "front_camera")
     assert f.severity.label == "warning" and f.frame == "rover::base_footprint::front_camera"
+    # the model part is the name the robot is spawned under (a launch may give another, as
+    # osrf/vrx spawns its WAM-V robot as "wamv"): the message says so
+    assert "MODEL being the name the robot is spawned under" in f.message
     assert f.fix == "add <gz_frame_id>camera_optical_frame</gz_frame_id> to the sensor (an optical frame at the camera)"
     assert "SK501" not in rules_of(check(gz_robot(), target="harmonic"))  # near miss: frame tags set
 

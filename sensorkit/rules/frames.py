@@ -149,7 +149,8 @@ def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:
         "SK501",
         Severity.WARNING,
         f"sensor {s.name!r} has no frame tag: Gazebo Sim stamps its data {fr.published!r} "
-        "(MODEL::LINK::SENSOR), a frame robot_state_publisher never publishes: unless a launch "
+        "(MODEL::LINK::SENSOR, MODEL being the name the robot is spawned under, shown as the "
+        "URDF's robot name), a frame robot_state_publisher never publishes: unless a launch "
         "file adds a static transform for it, TF cannot place the data",
         s.source,
         sensor=s.name,
