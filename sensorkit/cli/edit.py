@@ -23,6 +23,7 @@ from sensorkit.cli.common import (
     PackagePathOpt,
     QuietOpt,
     UntrustedOpt,
+    collector_off,
     die,
     handle_errors,
     note,
@@ -402,23 +403,10 @@ def _run(
         package_paths=package_paths,
         validation=validation,
     )
-    import gc
+    from sensorkit.cli import leave_quickly
 
-    from sensorkit.cli import in_program, leave_quickly
-
-    was_enabled = gc.isenabled()
-    gc.disable()  # as validate: the model is tens of thousands of small objects, built once
-    try:
+    with collector_off():
         result = add_sensor(req, dry_run=diff)
-    finally:
-        if was_enabled:
-            if in_program():
-                # what the add built lives until exit: set it aside, or the first
-                # allocation after enable() starts a collection that walks all of it (64 ms
-                # on 10k links). A caller running the command in its own process keeps
-                # its objects collectable instead: frozen, they would never be freed.
-                gc.freeze()
-            gc.enable()
     leave_quickly()  # every write is done (add_sensor returned): skip freeing the model
     if result.simulator:
         note(f"sensorkit: {result.simulator}", quiet)

@@ -33,6 +33,7 @@ from sensorkit.cli.common import (
     PackagePathOpt,
     QuietOpt,
     UntrustedOpt,
+    collector_off,
     die,
     exit_status,
     fail_on_threshold,
@@ -212,14 +213,8 @@ def preview(
         def log(message: str) -> None:
             console.log(message, markup=False)
 
-    import gc
-
-    collecting = gc.isenabled()
-    # As validate: a short-lived process building many small acyclic objects (the
-    # modules' classes and functions, the model, a lidar's ray results), which the
-    # cyclic collector would only walk again and again.
-    gc.disable()
-    try:
+    # the model, the scene and a lidar's ray results: many small objects (collector_off)
+    with collector_off():
         from sensorkit.render import render_preview
 
         # No live spinner: it would run a thread, and cameras render in forked processes.
@@ -243,16 +238,6 @@ def preview(
             select=tuple(st.config.select),
             ignore=tuple(st.config.ignore),
         )
-    finally:
-        if collecting:
-            from sensorkit.cli import in_program
-
-            if in_program():
-                # what the preview left is long-lived or freed by reference counting: set
-                # it aside, or the first collection would walk all of it. A caller running
-                # the command in its own process keeps its objects collectable.
-                gc.freeze()
-            gc.enable()
     from sensorkit.render.gate import found_text
 
     for s in result.sensors:

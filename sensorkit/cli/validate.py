@@ -17,6 +17,7 @@ from sensorkit.cli.common import (
     QuietOpt,
     StdinFilenameOpt,
     UntrustedOpt,
+    collector_off,
     exit_status,
     fail_on_threshold,
     handle_errors,
@@ -124,14 +125,9 @@ def validate(
     Exit status: 0 nothing at or above --fail-on (or --exit-zero), 1 findings, 2 could
     not run.
     """
-    import gc
-
-    from sensorkit.cli import in_program
     from sensorkit.engine import Options, validate_paths
 
-    collecting = gc.isenabled()
-    gc.disable()  # a short-lived process building many small acyclic objects
-    try:
+    with collector_off():
         from sensorkit.errors import UsageError
         from sensorkit.report import FORMATS, render
 
@@ -209,11 +205,6 @@ def validate(
             for err in fr.internal_errors:
                 typer.echo(f"sensorkit: internal error: {err}", err=True)
         raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))
-    finally:
-        # The sensorkit program exits now, with the collector still off; a caller that
-        # ran the command in its own process gets its collector back as it was.
-        if collecting and not in_program():
-            gc.enable()
 
 
 def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
