@@ -23,12 +23,12 @@ from pathlib import Path
 from typing import Any
 
 from sensorkit.errors import UsageError
-from sensorkit.record import Record
+from sensorkit.record import FACTORY, Record
 
 KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class Config(Record):
     """Settings read from a configuration file (``path``; None when there is none)."""
 
@@ -39,6 +39,24 @@ class Config(Record):
     fail_on: str | None = None
     package_paths: list[str] = field(default_factory=list)
     args: dict[str, str] = field(default_factory=dict)
+
+    def __init__(
+        self,
+        path: Path | None = None,
+        target: str | None = None,
+        select: list[str] = FACTORY,
+        ignore: list[str] = FACTORY,
+        fail_on: str | None = None,
+        package_paths: list[str] = FACTORY,
+        args: dict[str, str] = FACTORY,
+    ) -> None:
+        self.path = path
+        self.target = target
+        self.select = [] if select is FACTORY else select
+        self.ignore = [] if ignore is FACTORY else ignore
+        self.fail_on = fail_on
+        self.package_paths = [] if package_paths is FACTORY else package_paths
+        self.args = {} if args is FACTORY else args
 
 
     def describe(self, used: Iterable[str]) -> str | None:

@@ -6,7 +6,9 @@ import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from sensorkit.record import FrozenRecord
+from sensorkit.record import FACTORY, FrozenRecord
+
+_set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 
 
 class Severity(enum.IntEnum):
@@ -29,12 +31,16 @@ class Severity(enum.IntEnum):
             raise ValueError(msg) from None
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(init=False, frozen=True, repr=False, eq=False)
 class SourceRef(FrozenRecord):
     """Where an element came from: a file and a 1-based line (None when unknown)."""
 
     file: str | None
     line: int | None = None
+
+    def __init__(self, file: str | None, line: int | None = None) -> None:
+        _set(self, "file", file)
+        _set(self, "line", line)
 
     def __str__(self) -> str:
         if self.file is None:
@@ -42,7 +48,7 @@ class SourceRef(FrozenRecord):
         return f"{self.file}:{self.line}" if self.line else self.file
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(init=False, frozen=True, repr=False, eq=False)
 class Finding(FrozenRecord):
     """One problem found in a robot description.
 
@@ -60,6 +66,30 @@ class Finding(FrozenRecord):
     frame: str | None = None
     fix: str | None = None
     column: int | None = None
+
+    def __init__(
+        self,
+        rule: str,
+        severity: Severity,
+        message: str,
+        source: SourceRef = FACTORY,
+        link: str | None = None,
+        joint: str | None = None,
+        sensor: str | None = None,
+        frame: str | None = None,
+        fix: str | None = None,
+        column: int | None = None,
+    ) -> None:
+        _set(self, "rule", rule)
+        _set(self, "severity", severity)
+        _set(self, "message", message)
+        _set(self, "source", SourceRef(None) if source is FACTORY else source)
+        _set(self, "link", link)
+        _set(self, "joint", joint)
+        _set(self, "sensor", sensor)
+        _set(self, "frame", frame)
+        _set(self, "fix", fix)
+        _set(self, "column", column)
 
     @property
     def file(self) -> str | None:

@@ -13,6 +13,13 @@ A class declared ``@dataclass(repr=False, eq=False)`` that derives from :class:`
 - ``FrozenRecord``: hashable by the same fields (``hash=`` of a field as dataclass reads it).
 
 The field names of each class are looked up once, on first use.
+
+The same classes are declared ``init=False`` and write their ``__init__`` by hand: one
+parameter per field, in order, with the field's default (``FACTORY`` where the field has
+a default factory), assigning each (``object.__setattr__`` when frozen) and calling
+``__post_init__`` last, as dataclass's own would. Compiling those ~35 ``__init__``s cost
+~7 ms of a ~120 ms ``sensorkit validate``. ``tests/test_record.py`` holds every such
+``__init__`` to its fields: add a field, add its parameter.
 """
 
 from __future__ import annotations
@@ -22,6 +29,20 @@ from reprlib import recursive_repr
 from typing import Any
 
 _NAMES: dict[tuple[type, str], tuple[str, ...]] = {}
+
+
+class _Factory:
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return "<factory>"
+
+
+# The default of an ``__init__`` parameter whose field has a default factory, in the
+# classes that write their own ``__init__`` (``@dataclass(init=False)``): the parameter
+# reads ``x: list[str] = FACTORY`` and the body ``[] if x is FACTORY else x``, as
+# dataclass's own ``__init__`` does with its private ``<factory>`` marker.
+FACTORY: Any = _Factory()
 
 
 def _names(cls: type, what: str) -> tuple[str, ...]:

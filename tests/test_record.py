@@ -76,14 +76,15 @@ def test_a_recursive_record_prints() -> None:
 
 def test_validate_compiles_no_dataclass_repr_or_eq() -> None:
     """Start-up: every dataclass ``sensorkit validate`` loads takes its __repr__ and __eq__
-    from Record (compiling them per class was a fifth of the start-up)."""
+    from Record and writes its own __init__ (compiling them per class was a fifth of the
+    start-up, then ~7 ms of ~120 for the __init__s alone)."""
     code = textwrap.dedent(
         """
         import dataclasses, sys
         seen = []
         orig = dataclasses._process_class
         def spy(cls, init, repr, eq, *rest):
-            seen.append((cls.__module__ + "." + cls.__qualname__, repr, eq))
+            seen.append((cls.__module__ + "." + cls.__qualname__, repr or init, eq))
             return orig(cls, init, repr, eq, *rest)
         dataclasses._process_class = spy
         sys.argv = ["sensorkit", "validate", sys.argv[1]]
@@ -105,4 +106,103 @@ def test_validate_compiles_no_dataclass_repr_or_eq() -> None:
         check=True,
     ).stdout.split()
     assert int(out[-1]) >= 30, out  # the spy saw the classes
-    assert out[:-1] == [], f"dataclasses compiling their own __repr__/__eq__: {out[:-1]}"
+    assert out[:-1] == [], f"dataclasses compiling their own __init__/__repr__/__eq__: {out[:-1]}"
+
+
+def _classes_with_own_init() -> list[type]:
+    import importlib
+    import pkgutil
+
+    import sensorkit
+
+    found = []
+    for mod in pkgutil.walk_packages(sensorkit.__path__, "sensorkit."):
+        if mod.name.endswith("__main__"):
+            continue  # runs the program
+        module = importlib.import_module(mod.name)
+        for obj in vars(module).values():
+            if (
+                isinstance(obj, type)
+                and obj.__module__ == module.__name__
+                and dataclasses.is_dataclass(obj)
+                and not obj.__dataclass_params__.init  # type: ignore[attr-defined]
+            ):
+                found.append(obj)
+    return found
+
+
+def _twin(cls: type) -> type:
+    """The class as ``@dataclass`` would have written its ``__init__``."""
+    specs = []
+    for f in dataclasses.fields(cls):
+        kw: dict[str, object] = {"init": f.init}
+        if f.default is not dataclasses.MISSING:
+            kw["default"] = f.default
+        if f.default_factory is not dataclasses.MISSING:
+            kw["default_factory"] = f.default_factory
+        specs.append((f.name, f.type, dataclasses.field(**kw)))  # type: ignore[call-overload]
+    return dataclasses.make_dataclass(cls.__name__ + "Twin", specs)
+
+
+_POST_CALLS: list[object] = []
+
+
+def _record_post(self: object) -> None:
+    _POST_CALLS.append(self)
+
+
+def test_hand_written_inits_do_what_dataclass_would() -> None:
+    """A dataclass declared ``init=False`` writes its __init__ by hand (start-up): it must
+    take the fields' parameters in order with their defaults and annotations, set every
+    field from them (defaults and fresh factory values otherwise) and call __post_init__.
+    A field added without its parameter, or a default that drifts, fails here."""
+    import inspect
+
+    from sensorkit.record import FACTORY
+
+    classes = _classes_with_own_init()
+    assert len(classes) >= 35, [c.__qualname__ for c in classes]
+    for cls in classes:
+        name = f"{cls.__module__}.{cls.__qualname__}"
+        assert "__init__" in cls.__dict__, f"{name}: init=False but no __init__ of its own"
+        fields = dataclasses.fields(cls)
+        params = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        wanted = [f for f in fields if f.init]
+        assert [p.name for p in params] == [f.name for f in wanted], name
+        for p, f in zip(params, wanted, strict=True):
+            assert p.kind is p.POSITIONAL_OR_KEYWORD, (name, p.name)
+            assert p.annotation == f.type, (name, p.name, p.annotation, f.type)
+            if f.default is not dataclasses.MISSING:
+                assert p.default == f.default and type(p.default) is type(f.default), (name, p.name)
+            elif f.default_factory is not dataclasses.MISSING:
+                assert p.default is FACTORY, (name, p.name)
+            else:
+                assert p.default is p.empty, (name, p.name)
+        twin = _twin(cls)
+        no_default = dataclasses.MISSING
+        given = [
+            f.name for f in wanted if f.default is no_default and f.default_factory is no_default
+        ]
+        required = [object() for _ in given]
+        everything = [object() for _ in wanted]
+        post = getattr(cls, "__post_init__", None)
+        if post is not None:
+            cls.__post_init__ = _record_post  # type: ignore[attr-defined]
+        try:
+            for args in (required, everything):
+                mine, theirs, again = cls(*args), twin(*args), cls(*args)
+                for f in fields:
+                    if not f.init and f.default is dataclasses.MISSING:
+                        continue
+                    a, b = getattr(mine, f.name), getattr(theirs, f.name)
+                    if f.init and (len(args) == len(everything) or f.name in given):
+                        assert a is b, (name, f.name, a, b)  # the argument itself
+                        continue
+                    assert type(a) is type(b) and a == b, (name, f.name, a, b)  # the default
+                    if isinstance(a, (list, dict, set)):
+                        assert a is not getattr(again, f.name), (name, f.name, "shared")
+                if post is not None:
+                    assert _POST_CALLS[-2:] == [mine, again], name
+        finally:
+            if post is not None:
+                cls.__post_init__ = post  # type: ignore[attr-defined]

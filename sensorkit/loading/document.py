@@ -20,7 +20,7 @@ from sensorkit.errors import InputError
 from sensorkit.findings import Finding, Severity, SourceRef
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.record import Record
+from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
@@ -57,7 +57,7 @@ def strict_parser() -> etree.XMLParser:
     )
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class Document(Record):
     """An XML robot description with a way back to the file and line of each element."""
 
@@ -69,6 +69,24 @@ class Document(Record):
 
     _display: str | None = field(default=None, repr=False)
     _file_display: dict[int, str] = field(default_factory=dict, repr=False)
+
+    def __init__(
+        self,
+        path: Path,
+        root: etree._Element,
+        files: list[str] = FACTORY,
+        expanded: bool = False,
+        includes: list[str] = FACTORY,
+        _display: str | None = None,
+        _file_display: dict[int, str] = FACTORY,
+    ) -> None:
+        self.path = path
+        self.root = root
+        self.files = [] if files is FACTORY else files
+        self.expanded = expanded
+        self.includes = [] if includes is FACTORY else includes
+        self._display = _display
+        self._file_display = {} if _file_display is FACTORY else _file_display
 
     @property
     def display(self) -> str:
@@ -102,12 +120,16 @@ class Document(Record):
         return list(self.files) or [str(self.path)]
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class LoadResult(Record):
     """A document, or the findings that say why there is none (SK101..SK103)."""
 
     document: Document | None
     findings: list[Finding] = field(default_factory=list)
+
+    def __init__(self, document: Document | None, findings: list[Finding] = FACTORY) -> None:
+        self.document = document
+        self.findings = [] if findings is FACTORY else findings
 
 
 def looks_like_xacro(path: Path, data: bytes) -> bool:

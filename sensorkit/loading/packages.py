@@ -20,7 +20,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from sensorkit.record import Record
+from sensorkit.record import FACTORY, Record
 
 _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use
@@ -106,7 +106,7 @@ def workspace_roots(path: Path) -> list[Path]:
     return roots
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class PackageResolver(Record):
     """Maps package names to folders; records every place it searched."""
 
@@ -117,6 +117,24 @@ class PackageResolver(Record):
     frozen_env: dict[str, str] | None = None
     _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
     _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
+
+    def __init__(
+        self,
+        explicit: dict[str, Path] = FACTORY,
+        scan_dirs: list[Path] = FACTORY,
+        use_environment: bool = True,
+        workspace_of: Path | None = None,
+        frozen_env: dict[str, str] | None = None,
+        _cache: dict[str, Path | None] = FACTORY,
+        _scanned: dict[Path, dict[str, Path]] = FACTORY,
+    ) -> None:
+        self.explicit = {} if explicit is FACTORY else explicit
+        self.scan_dirs = [] if scan_dirs is FACTORY else scan_dirs
+        self.use_environment = use_environment
+        self.workspace_of = workspace_of
+        self.frozen_env = frozen_env
+        self._cache = {} if _cache is FACTORY else _cache
+        self._scanned = {} if _scanned is FACTORY else _scanned
 
     @classmethod
     def from_options(

@@ -10,18 +10,22 @@ from typing import TYPE_CHECKING
 from sensorkit.findings import Finding
 from sensorkit.loading import PackageResolver, load_description
 from sensorkit.model.robot import Robot, build_robot
-from sensorkit.record import Record
+from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class Loaded(Record):
     """A robot, or the findings (SK101..SK103) that say why it could not be read."""
 
     robot: Robot | None
     findings: list[Finding] = field(default_factory=list)
+
+    def __init__(self, robot: Robot | None, findings: list[Finding] = FACTORY) -> None:
+        self.robot = robot
+        self.findings = [] if findings is FACTORY else findings
 
 
 def load_robot(

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from sensorkit.model.robot import text_of
-from sensorkit.record import Record
+from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
@@ -23,7 +23,7 @@ _TRUE = {"true", "1"}
 MASS_EPSILON = 1e-6  # sdformat compares the (lumped) mass with 0 by math::equal
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class Conversion(Record):
     """Result of the conversion as far as frames and masses go."""
 
@@ -31,6 +31,18 @@ class Conversion(Record):
     mass_of: dict[str, float] = field(default_factory=dict)  # surviving link -> lumped mass
     dropped: dict[str, str] = field(default_factory=dict)  # link -> massless link that drops it
     preserved_joints: set[str] = field(default_factory=set)
+
+    def __init__(
+        self,
+        target_of: dict[str, str] = FACTORY,
+        mass_of: dict[str, float] = FACTORY,
+        dropped: dict[str, str] = FACTORY,
+        preserved_joints: set[str] = FACTORY,
+    ) -> None:
+        self.target_of = {} if target_of is FACTORY else target_of
+        self.mass_of = {} if mass_of is FACTORY else mass_of
+        self.dropped = {} if dropped is FACTORY else dropped
+        self.preserved_joints = set() if preserved_joints is FACTORY else preserved_joints
 
     def survivor(self, link: str) -> str:
         return self.target_of.get(link, link)

@@ -235,7 +235,7 @@ def _resolve(name: str, ns: str, node: str) -> str:
     return f"{ns}/{name.strip('/')}"
 
 
-@dataclass(repr=False, eq=False)
+@dataclass(init=False, repr=False, eq=False)
 class Topic(Record):
     """A resolved topic name and the sensor and plugin that publish it."""
 
@@ -243,6 +243,18 @@ class Topic(Record):
     sensor: Sensor | None
     plugin: Plugin | None
     element: etree._Element
+
+    def __init__(
+        self,
+        name: str,
+        sensor: Sensor | None,
+        plugin: Plugin | None,
+        element: etree._Element,
+    ) -> None:
+        self.name = name
+        self.sensor = sensor
+        self.plugin = plugin
+        self.element = element
 
 
 def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
