@@ -50,3 +50,12 @@ GZ_READS_CAMERA_INFO_TOPIC = frozenset({"camera", "wideanglecamera", "wide_angle
 # (src/RgbdCameraSensor.cc:313-322); DepthCameraSensor renders depth within the camera's own
 # <clip> (src/DepthCameraSensor.cc:349-358).
 GZ_READS_DEPTH_CLIP = frozenset({"rgbd_camera", "rgbd"})
+
+
+# Which sensors stamp their data with gz-sensors' Sensor::FrameId(): the frame tag the
+# version reads, else the sensor's name (sensorkit.model.frames.GZ_FRAME_TAGS), which gz-sim
+# sets to MODEL::LINK::SENSOR. SK501 warns for them when they have no frame tag.
+# By kind (sensorkit.model.sensors): cameras (gazebosim/gz-sim@gz-sim8:
+# src/rendering/RenderUtil.cc:1719-1721), lidars (gz-sensors@gz-sensors8:src/Lidar.cc:260-266)
+# and IMUs (gz-sensors8:src/ImuSensor.cc:255-257, named by gz-sim8:src/systems/imu/Imu.cc:194-197).
+GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", "imu"})

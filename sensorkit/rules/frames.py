@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity, SourceRef
-from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+from sensorkit.knowledge.gazebo_sim import GZ_FRAMED_KINDS, GZ_UNSUPPORTED_SENSOR_TYPES
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
@@ -129,9 +129,6 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
                 None,
             )
             break
-
-
-GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", "imu"})
 
 
 def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:
