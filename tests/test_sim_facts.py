@@ -300,3 +300,33 @@ def test_gz_navsat_pose_published_to_tf_is_not_reported(check) -> None:
     # with the pose publisher too.
     cam = gz_robot(camera_tags="<topic>cam</topic>", extra=POSE_PUBLISHER)
     assert [f for f in check(cam, target="harmonic").findings if f.rule == "SK501" and f.sensor == "front_camera"]
+
+
+def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
+    # No <topic>: gz-sim's NavSat system publishes on scopedName + "/navsat"
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/navsat/NavSat.cc:182-186).
+    f = next(f for f in check(_navsat(), target="harmonic").findings if f.rule == "SK607")
+    assert f.severity.label == "info" and f.sensor == "gps"
+    assert "/world/WORLD/model/MODEL/link/base_footprint/sensor/gps/navsat" in f.message
+    # With a bridge known, a <topic> no entry names is a warning; an entry naming it, nothing.
+    from sensorkit.engine import Options, validate_file
+
+    path = tmp_path / "rover.urdf"
+    path.write_text(_navsat("<topic>gps/fix</topic><gz_frame_id>gps_link</gz_frame_id>"))
+    entry = ("- ros_topic_name: gps/fix\n  gz_topic_name: gps/fix\n  ros_type_name: sensor_msgs/msg/NavSatFix\n"
+             "  gz_type_name: gz.msgs.NavSat\n  direction: GZ_TO_ROS\n")
+    others = ("- ros_topic_name: front_camera/image_raw\n  gz_topic_name: front_camera/image_raw\n"
+              "  ros_type_name: sensor_msgs/msg/Image\n  gz_type_name: gz.msgs.Image\n  direction: GZ_TO_ROS\n"
+              "- ros_topic_name: scan\n  gz_topic_name: scan\n  ros_type_name: sensor_msgs/msg/LaserScan\n"
+              "  gz_type_name: gz.msgs.LaserScan\n  direction: GZ_TO_ROS\n")
+
+    def sk607(text: str) -> list:  # type: ignore[type-arg]
+        bridge = tmp_path / "bridge.yaml"
+        bridge.write_text(text)
+        report = validate_file(path, Options(target="harmonic", bridges=(str(bridge),)))
+        return [f for f in report.findings if f.rule == "SK607"]
+
+    lacking = sk607(others)
+    assert [(f.sensor, f.severity.label) for f in lacking] == [("gps", "warning")]
+    assert "/gps/fix" in lacking[0].message
+    assert sk607(others + entry) == []

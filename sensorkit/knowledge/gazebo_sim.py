@@ -73,6 +73,10 @@ GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", 
 # 739cb42 and @ros2 a4d00a9: :516; src/convert/utils.cpp:47-49 on all three): MODEL/LINK/SENSOR,
 # which robot_state_publisher never publishes.
 GZ_NAVSAT_TYPES = frozenset({"navsat", "gps"})
+# What a NavSat sensor with no <topic> publishes on: its scoped name + "/navsat"
+# (gz-sim@gz-sim8:src/systems/navsat/NavSat.cc:182-186, the same on ign-gazebo6 and gz-sim10;
+# gz-sensors' own "/navsat" fallback, src/NavSatSensor.cc:107-108, is never reached under gz-sim).
+GZ_NAVSAT_SUFFIX = "/navsat"
 # gz-sim's PosePublisher with <publish_sensor_pose> true (default false: gazebosim/gz-sim@gz-sim8
 # b81e26d:src/systems/pose_publisher/PosePublisher.cc:113, read at :224) publishes every
 # sensor's pose from MODEL::LINK to MODEL::LINK::SENSOR (:436-448, header keys :590-596), the
