@@ -230,3 +230,103 @@ def test_sk502_on_gazebo_sim_says_what_breaks_there(check) -> None:
     assert "depth_image_proc" in f.message and "camera_info" in f.message
     classic = next(f for f in check(__import__("builders").robot(camera=__import__("builders").camera_sensor(params="<frame_name>camera_link</frame_name>")), target="classic").findings if f.rule == "SK502")
     assert "depth_image_proc" not in classic.message and "points up at the sky" in classic.message
+
+
+# --- NavSat on Gazebo Sim ------------------------------------------------------------------
+
+def _navsat(tags: str = "", stype: str = "navsat", extra: str = "") -> str:
+    from builders import joint, link
+
+    sensor = f'<gazebo reference="gps_link"><sensor name="gps" type="{stype}"><update_rate>1</update_rate>{tags}</sensor></gazebo>'
+    return gz_robot(extra=link("gps_link") + joint("gps_joint", "base_link", "gps_link", "0 0 0.3") + sensor + extra)
+
+
+POSE_PUBLISHER = ('<gazebo><plugin filename="gz-sim-pose-publisher-system" name="gz::sim::systems::PosePublisher">'
+                  "<publish_sensor_pose>true</publish_sensor_pose><use_pose_vector_msg>true</use_pose_vector_msg></plugin></gazebo>")
+
+
+def test_gz_navsat_without_frame_tag_warns_its_frame_is_not_in_tf(check) -> None:
+    # gz-sim's NavSat system names the sensor MODEL::LINK::SENSOR, as the Imu system does
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/navsat/NavSat.cc:177-180); NavSatSensor
+    # puts FrameId(), that name without a frame tag (gz-sensors@gz-sensors8:src/Sensor.cc:
+    # 184-195), in the message's own frame_id (gazebosim/gz-sensors@gz-sensors8 c8159af:
+    # src/NavSatSensor.cc:174), which ros_gz_bridge makes NavSatFix.header.frame_id, "::" -> "/"
+    # (gazebosim/ros_gz@jazzy 739cb42:ros_gz_bridge/src/convert/sensor_msgs.cpp:516,
+    # src/convert/utils.cpp:47-49): MODEL/LINK/SENSOR, which robot_state_publisher never has.
+    f = next(f for f in check(_navsat(), target="harmonic").findings if f.rule == "SK501")
+    assert f.severity.label == "warning" and f.sensor == "gps"
+    assert f.frame == "rover::base_footprint::gps"  # the fixed joints lump gps_link into the root
+    assert f.fix == "add <gz_frame_id>gps_link</gz_frame_id> to the sensor"
+    # sdformat reads type "gps" as SensorType::NAVSAT too (gazebosim/sdformat@sdf14 8512585:
+    # src/Sensor.cc:344-351), and gz-sim gives it the same NavSat component
+    # (gz-sim@gz-sim8:src/SdfEntityCreator.cc:1163-1167).
+    assert "SK501" in rules_of(check(_navsat(stype="gps"), target="harmonic"))
+    # Fortress and Jetty: the same system and sensor code (gz-sim@ign-gazebo6 aab5556 and
+    # @gz-sim10 ccd6694:src/systems/navsat/NavSat.cc:177-180; gz-sensors@ign-sensors6 7cfaddf:
+    # src/NavSatSensor.cc:161, @gz-sensors10 ff8c92b:174).
+    assert "SK501" in rules_of(check(_navsat(), target="fortress"))
+    assert "SK501" in rules_of(check(_navsat(), target="jetty"))
+
+
+def test_gz_navsat_near_misses_say_nothing(check) -> None:
+    # The frame tag each version reads (sensorkit.model.frames.GZ_FRAME_TAGS) names a link.
+    assert "SK501" not in rules_of(check(_navsat("<gz_frame_id>gps_link</gz_frame_id>"), target="harmonic"))
+    assert "SK501" not in rules_of(check(_navsat("<ignition_frame_id>gps_link</ignition_frame_id>"), target="fortress"))
+    assert "SK501" not in rules_of(check(_navsat("<frame_id>gps_link</frame_id>"), target="jetty"))
+    # Harmonic ignores ignition_frame_id (gz-sensors@gz-sensors8:src/Sensor.cc:184-195): the
+    # frame is the scoped name again, and SK608 says the tag is ignored.
+    ignored = rules_of(check(_navsat("<ignition_frame_id>gps_link</ignition_frame_id>"), target="harmonic"))
+    assert {"SK501", "SK608"} <= ignored
+    # Gazebo Classic: the frame is the gazebo_ros plugin's business, not this warning's.
+    classic = check(_navsat('<plugin name="gps_plugin" filename="libgazebo_ros_gps_sensor.so"/>', stype="gps"), target="classic")
+    assert "SK501" not in rules_of(classic)
+    # A type sensorkit knows nothing of on Gazebo Sim: no claim about its frame.
+    assert "SK501" not in rules_of(check(_navsat(stype="air_pressure"), target="harmonic"))
+
+
+def test_gz_navsat_pose_published_to_tf_is_not_reported(check) -> None:
+    # PosePublisher with <publish_sensor_pose> publishes MODEL::LINK -> MODEL::LINK::SENSOR
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/pose_publisher/PosePublisher.cc:436-448),
+    # and ros_gz_bridge turns "::" into "/" in TF frames (ros_gz@jazzy:ros_gz_bridge/src/
+    # convert/std_msgs.cpp:171-175, geometry_msgs.cpp:251-256) as in NavSatFix's: osrf/vrx
+    # bridges it to /tf with robot_state_publisher's frame_prefix "wamv/" (osrf/vrx@93ae8d0:
+    # vrx_gz/src/vrx_gz/bridges.py:40-46, vrx_ros/src/pose_tf_broadcaster.cc:43,70,
+    # vrx_gz/src/vrx_gz/launch.py:377), so its navsat's frame is in TF: not reported.
+    report = check(_navsat(extra=POSE_PUBLISHER), target="harmonic")
+    assert not [f for f in report.findings if f.rule == "SK501" and f.sensor == "gps"]
+    off = POSE_PUBLISHER.replace("<publish_sensor_pose>true", "<publish_sensor_pose>false")
+    assert [f for f in check(_navsat(extra=off), target="harmonic").findings if f.rule == "SK501" and f.sensor == "gps"]
+    # The other kinds keep their findings as they were: the camera without a frame tag warns
+    # with the pose publisher too.
+    cam = gz_robot(camera_tags="<topic>cam</topic>", extra=POSE_PUBLISHER)
+    assert [f for f in check(cam, target="harmonic").findings if f.rule == "SK501" and f.sensor == "front_camera"]
+
+
+def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
+    # No <topic>: gz-sim's NavSat system publishes on scopedName + "/navsat"
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/navsat/NavSat.cc:182-186).
+    f = next(f for f in check(_navsat(), target="harmonic").findings if f.rule == "SK607")
+    assert f.severity.label == "info" and f.sensor == "gps"
+    assert "/world/WORLD/model/MODEL/link/base_footprint/sensor/gps/navsat" in f.message
+    # With a bridge known, a <topic> no entry names is a warning; an entry naming it, nothing.
+    from sensorkit.engine import Options, validate_file
+
+    path = tmp_path / "rover.urdf"
+    path.write_text(_navsat("<topic>gps/fix</topic><gz_frame_id>gps_link</gz_frame_id>"))
+    entry = ("- ros_topic_name: gps/fix\n  gz_topic_name: gps/fix\n  ros_type_name: sensor_msgs/msg/NavSatFix\n"
+             "  gz_type_name: gz.msgs.NavSat\n  direction: GZ_TO_ROS\n")
+    others = ("- ros_topic_name: front_camera/image_raw\n  gz_topic_name: front_camera/image_raw\n"
+              "  ros_type_name: sensor_msgs/msg/Image\n  gz_type_name: gz.msgs.Image\n  direction: GZ_TO_ROS\n"
+              "- ros_topic_name: scan\n  gz_topic_name: scan\n  ros_type_name: sensor_msgs/msg/LaserScan\n"
+              "  gz_type_name: gz.msgs.LaserScan\n  direction: GZ_TO_ROS\n")
+
+    def sk607(text: str) -> list:  # type: ignore[type-arg]
+        bridge = tmp_path / "bridge.yaml"
+        bridge.write_text(text)
+        report = validate_file(path, Options(target="harmonic", bridges=(str(bridge),)))
+        return [f for f in report.findings if f.rule == "SK607"]
+
+    lacking = sk607(others)
+    assert [(f.sensor, f.severity.label) for f in lacking] == [("gps", "warning")]
+    assert "/gps/fix" in lacking[0].message
+    assert sk607(others + entry) == []

@@ -50,3 +50,40 @@ GZ_READS_CAMERA_INFO_TOPIC = frozenset({"camera", "wideanglecamera", "wide_angle
 # (src/RgbdCameraSensor.cc:313-322); DepthCameraSensor renders depth within the camera's own
 # <clip> (src/DepthCameraSensor.cc:349-358).
 GZ_READS_DEPTH_CLIP = frozenset({"rgbd_camera", "rgbd"})
+
+
+# Which sensors stamp their data with gz-sensors' Sensor::FrameId(): the frame tag the
+# version reads, else the sensor's name (sensorkit.model.frames.GZ_FRAME_TAGS), which gz-sim
+# sets to MODEL::LINK::SENSOR. SK501 warns for them when they have no frame tag.
+# By kind (sensorkit.model.sensors): cameras (gazebosim/gz-sim@gz-sim8:
+# src/rendering/RenderUtil.cc:1719-1721), lidars (gz-sensors@gz-sensors8:src/Lidar.cc:260-266)
+# and IMUs (gz-sensors8:src/ImuSensor.cc:255-257, named by gz-sim8:src/systems/imu/Imu.cc:194-197).
+GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", "imu"})
+# And by type, NavSat (its kind is "other"): sdformat reads type "navsat" and "gps" alike as
+# SensorType::NAVSAT (gazebosim/sdformat@sdf12 b9417e5:src/Sensor.cc:326-333, @sdf14 8512585:
+# :344-351, @sdf16 9a26f90:348-355) and gz-sim gives both a NavSat component
+# (gazebosim/gz-sim@ign-gazebo6 aab5556:src/SdfEntityCreator.cc:965-969, @gz-sim8 b81e26d:
+# 1163-1167, @gz-sim10 ccd6694:1197-1201). The NavSat system (not the Sensors system) creates
+# the sensor and names it MODEL::LINK::SENSOR, as the Imu system does
+# (src/systems/navsat/NavSat.cc:177-180 on all three). NavSatSensor writes FrameId() into the
+# message's own frame_id field, not into the header (gazebosim/gz-sensors@ign-sensors6 7cfaddf:
+# src/NavSatSensor.cc:161; @gz-sensors8 c8159af and @gz-sensors10 ff8c92b: :174), and
+# ros_gz_bridge makes that field NavSatFix.header.frame_id with "::" turned into "/"
+# (gazebosim/ros_gz@humble 5cc92f8:ros_gz_bridge/src/convert/sensor_msgs.cpp:518; @jazzy
+# 739cb42 and @ros2 a4d00a9: :516; src/convert/utils.cpp:47-49 on all three): MODEL/LINK/SENSOR,
+# which robot_state_publisher never publishes.
+GZ_NAVSAT_TYPES = frozenset({"navsat", "gps"})
+# What a NavSat sensor with no <topic> publishes on: its scoped name + "/navsat"
+# (gz-sim@gz-sim8:src/systems/navsat/NavSat.cc:182-186, the same on ign-gazebo6 and gz-sim10;
+# gz-sensors' own "/navsat" fallback, src/NavSatSensor.cc:107-108, is never reached under gz-sim).
+GZ_NAVSAT_SUFFIX = "/navsat"
+# gz-sim's PosePublisher with <publish_sensor_pose> true (default false: gazebosim/gz-sim@gz-sim8
+# b81e26d:src/systems/pose_publisher/PosePublisher.cc:113, read at :224) publishes every
+# sensor's pose from MODEL::LINK to MODEL::LINK::SENSOR (:436-448, header keys :590-596), the
+# very name the sensor stamps, and ros_gz_bridge turns "::" into "/" in those TF frames
+# (ros_gz@jazzy:ros_gz_bridge/src/convert/std_msgs.cpp:171-175, geometry_msgs.cpp:251-256) as
+# in the data's: a launch that bridges it to /tf, with robot_state_publisher's frame_prefix
+# "MODEL/", puts the sensor's frame in the robot's tree (osrf/vrx@93ae8d0 does:
+# vrx_gz/src/vrx_gz/bridges.py:40-46, vrx_ros/src/pose_tf_broadcaster.cc:43,70,
+# vrx_gz/src/vrx_gz/launch.py:377).
+GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"

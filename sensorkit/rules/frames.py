@@ -7,7 +7,12 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from sensorkit.findings import Finding, Severity, SourceRef
-from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+from sensorkit.knowledge.gazebo_sim import (
+    GZ_FRAMED_KINDS,
+    GZ_NAVSAT_TYPES,
+    GZ_SENSOR_POSE_PARAM,
+    GZ_UNSUPPORTED_SENSOR_TYPES,
+)
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
@@ -93,7 +98,7 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
         fr = ctx.frames_of(s)
         if gz and s.type in GZ_UNSUPPORTED_SENSOR_TYPES:
             continue  # never created (SK613): it stamps nothing
-        if gz and fr.is_default and fr.image_frame is None and s.kind in GZ_FRAMED_KINDS:
+        if gz and fr.is_default and fr.image_frame is None and _gz_stamps_scoped_name(ctx, s):
             yield _gz_default_frame(ctx, s, fr)
             continue
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
@@ -131,7 +136,27 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
             break
 
 
-GZ_FRAMED_KINDS = frozenset({"camera", "depth", "rgbd", "multicamera", "lidar", "imu"})
+def _gz_stamps_scoped_name(ctx: Context, s: Sensor) -> bool:
+    """A gz sensor whose data, with no frame tag, reaches ROS stamped with its scoped name
+    (see sensorkit/knowledge/gazebo_sim.py for the sources)."""
+    if s.kind in GZ_FRAMED_KINDS:
+        return True
+    # NavSat, unless the model publishes its sensors' poses, which puts that very name in
+    # TF once a launch bridges them (osrf/vrx does). The kinds above do not consult this:
+    # their findings are kept as they were.
+    return s.type in GZ_NAVSAT_TYPES and not _gz_sensor_poses_published(ctx.robot)
+
+
+def _gz_sensor_poses_published(robot: Robot) -> bool:
+    """The model loads gz-sim's PosePublisher with <publish_sensor_pose> true."""
+    from sensorkit.knowledge import plugins as known
+
+    pose_publisher = known.lookup("gz-sim-pose-publisher-system", "gz")
+    return any(
+        known.lookup(p.filename, "gz") is pose_publisher
+        and (p.param(GZ_SENSOR_POSE_PARAM) or "").strip().lower() in ("true", "1")
+        for p in robot.model_plugins
+    )
 
 
 def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:

@@ -17,7 +17,11 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS2_ONLY,
     ROS2_PLUGINS,
 )
-from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+from sensorkit.knowledge.gazebo_sim import (
+    GZ_NAVSAT_SUFFIX,
+    GZ_NAVSAT_TYPES,
+    GZ_UNSUPPORTED_SENSOR_TYPES,
+)
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.robot import child, children, local
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
@@ -493,12 +497,18 @@ def _norm(topic: str) -> str:
 
 def gz_primary_topic(s: Sensor) -> str | None:
     """The gz topic that carries a sensor's main data (None for kinds sensorkit does not know)."""
-    if s.kind not in GZ_DEFAULT_SUFFIX:
+    suffix = GZ_DEFAULT_SUFFIX.get(s.kind)
+    if suffix is None and s.type in GZ_NAVSAT_TYPES:
+        # NavSat (kind "other"): gz-sim's NavSat system publishes scopedName + "/navsat"
+        # (gazebosim/gz-sim@gz-sim8:src/systems/navsat/NavSat.cc:182-186), with a <topic>
+        # on that topic alone (gz-sensors@gz-sensors8:src/NavSatSensor.cc:107-111).
+        suffix = GZ_NAVSAT_SUFFIX
+    if suffix is None:
         return None
     if s.topic:
         topics = gz_topics(s)
         return topics[0] if topics else None
-    return f"/sensor/{s.name}{GZ_DEFAULT_SUFFIX[s.kind]}"  # the tail of the scoped name
+    return f"/sensor/{s.name}{suffix}"  # the tail of the scoped name
 
 
 def _bridged(topic: str, scoped: bool, bridged: set[str]) -> bool:
