@@ -196,6 +196,10 @@ def test_gz_sensor_without_frame_tag_warns_its_frame_is_not_in_tf(check) -> None
     # the model part is the name the robot is spawned under (a launch may give another, as
     # osrf/vrx spawns its WAM-V robot as "wamv"): the message says so
     assert "MODEL being the name the robot is spawned under" in f.message
+    # ros_gz_bridge hands ROS the frame with "::" turned into "/" (gazebosim/ros_gz@jazzy
+    # 739cb42:ros_gz_bridge/src/convert/utils.cpp:47-49, std_msgs.cpp:171-175): the message
+    # names what `ros2 topic echo` shows
+    assert "hands to ROS as 'rover/base_footprint/front_camera'" in f.message
     assert f.fix == "add <gz_frame_id>camera_optical_frame</gz_frame_id> to the sensor (an optical frame at the camera)"
     assert "SK501" not in rules_of(check(gz_robot(), target="harmonic"))  # near miss: frame tags set
 
@@ -284,22 +288,31 @@ def test_gz_navsat_near_misses_say_nothing(check) -> None:
     assert "SK501" not in rules_of(check(_navsat(stype="air_pressure"), target="harmonic"))
 
 
-def test_gz_navsat_pose_published_to_tf_is_not_reported(check) -> None:
+def test_gz_sensor_pose_published_to_tf_is_not_reported(check) -> None:
     # PosePublisher with <publish_sensor_pose> publishes MODEL::LINK -> MODEL::LINK::SENSOR
-    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/pose_publisher/PosePublisher.cc:436-448),
-    # and ros_gz_bridge turns "::" into "/" in TF frames (ros_gz@jazzy:ros_gz_bridge/src/
-    # convert/std_msgs.cpp:171-175, geometry_msgs.cpp:251-256) as in NavSatFix's: osrf/vrx
-    # bridges it to /tf with robot_state_publisher's frame_prefix "wamv/" (osrf/vrx@93ae8d0:
-    # vrx_gz/src/vrx_gz/bridges.py:40-46, vrx_ros/src/pose_tf_broadcaster.cc:43,70,
-    # vrx_gz/src/vrx_gz/launch.py:377), so its navsat's frame is in TF: not reported.
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/pose_publisher/PosePublisher.cc:436-448,
+    # the world scope removed by removeParentScope, src/Util.cc:403-411), and ros_gz_bridge
+    # turns "::" into "/" in TF frames (ros_gz@jazzy 739cb42:ros_gz_bridge/src/convert/
+    # tf2_msgs.cpp:42-52, geometry_msgs.cpp:245-257, std_msgs.cpp:171-175) as in the data's:
+    # osrf/vrx bridges it to /tf with robot_state_publisher's frame_prefix "wamv/" (osrf/vrx@
+    # 93ae8d0: vrx_gz/src/vrx_gz/bridges.py:40-46, vrx_ros/src/pose_tf_broadcaster.cc:43,70,
+    # vrx_gz/src/vrx_gz/launch.py:377), so its sensors' frames are in TF. Whether a launch
+    # does that sensorkit cannot see: no SK501 for any kind, the navsat or the camera.
     report = check(_navsat(extra=POSE_PUBLISHER), target="harmonic")
     assert not [f for f in report.findings if f.rule == "SK501" and f.sensor == "gps"]
+    cam = gz_robot(camera_tags="<topic>cam</topic>", extra=POSE_PUBLISHER)
+    assert not [f for f in check(cam, target="harmonic").findings if f.rule == "SK501"]
+    # Near misses: <publish_sensor_pose> false (its default, PosePublisher.cc:113) or absent,
+    # and a camera whose frame tag names no link (that error stands: the tag is read).
     off = POSE_PUBLISHER.replace("<publish_sensor_pose>true", "<publish_sensor_pose>false")
     assert [f for f in check(_navsat(extra=off), target="harmonic").findings if f.rule == "SK501" and f.sensor == "gps"]
-    # The other kinds keep their findings as they were: the camera without a frame tag warns
-    # with the pose publisher too.
-    cam = gz_robot(camera_tags="<topic>cam</topic>", extra=POSE_PUBLISHER)
-    assert [f for f in check(cam, target="harmonic").findings if f.rule == "SK501" and f.sensor == "front_camera"]
+    cam_off = gz_robot(camera_tags="<topic>cam</topic>", extra=off)
+    assert [f for f in check(cam_off, target="harmonic").findings if f.rule == "SK501" and f.sensor == "front_camera"]
+    absent = POSE_PUBLISHER.replace("<publish_sensor_pose>true</publish_sensor_pose>", "")
+    assert [f for f in check(_navsat(extra=absent), target="harmonic").findings if f.rule == "SK501" and f.sensor == "gps"]
+    wrong = gz_robot(camera_tags="<topic>cam</topic><gz_frame_id>no_such_link</gz_frame_id>", extra=POSE_PUBLISHER)
+    missing = [f for f in check(wrong, target="harmonic").findings if f.rule == "SK501"]
+    assert [(f.sensor, f.severity.label) for f in missing] == [("front_camera", "error")]
 
 
 def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
