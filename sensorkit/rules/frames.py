@@ -160,7 +160,7 @@ def _gz_sensor_poses_published(robot: Robot) -> bool:
     from sensorkit.knowledge import plugins as known
 
     pose_publisher = known.lookup("gz-sim-pose-publisher-system", "gz")
-    return any(
+    return pose_publisher is not None and any(
         known.lookup(p.filename, "gz") is pose_publisher
         and (p.param(GZ_SENSOR_POSE_PARAM) or "").strip().lower() in ("true", "1")
         for p in robot.model_plugins
