@@ -11,7 +11,23 @@ import pytest
 from sensorkit.engine import FileReport, Options, validate_file
 
 ROOT = Path(__file__).resolve().parent.parent
-CORPUS = ROOT / "tests" / "corpus"  # a copy of shared/corpus, licences included
+# Public robots fetched from other repositories live beside the project, never in it:
+# ../shared/corpus (with its licences and MANIFEST.md) and its labelled real-world set.
+CORPUS = ROOT.parent / "shared" / "corpus"
+REALWORLD = CORPUS / "realworld"
+NO_CORPUS = "../shared/corpus is absent: the public robots live beside the project, not in it (CI has them)"
+needs_corpus = pytest.mark.skipif(not CORPUS.is_dir(), reason=NO_CORPUS)
+
+
+def corpus_package_paths() -> tuple[str, ...]:
+    """Where the corpus robots find their packages: the corpus's repositories, then the
+    real-world set's (in that order: two repositories ship a package of one name). The
+    real-world set sits inside the corpus folder, so the corpus is named repository by
+    repository to keep it out of the first scan."""
+    if not CORPUS.is_dir():
+        return ()
+    repos = sorted(p for p in CORPUS.iterdir() if p.is_dir() and p != REALWORLD)
+    return (*map(str, repos), str(REALWORLD))
 
 
 @pytest.fixture

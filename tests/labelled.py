@@ -1,10 +1,18 @@
 """The labelled real-world corpora: run validate on every robot and compare with labels.
 
-Each corpus folder (tests/corpus, tests/realworld) has ``robots.yaml`` (which files to
-validate, with args, target and bridge files, as a user would) and ``labels.yaml``: for
-each robot, every finding validate reports, with its verdict (true or false) and why.
-Findings are keyed by (rule, file relative to tests/, line). SK104 (missing meshes) is
-left out: the corpora copy no meshes, so every mesh reference is missing by construction.
+The robots are public files fetched from other repositories; they live beside the project
+in ../shared/corpus (and its real-world set ../shared/corpus/realworld), never in it. The
+project keeps its own work on them in tests/corpus and tests/realworld: ``robots.yaml``
+(which files to validate, with args, target and bridge files, as a user would; paths
+relative to the corpus folder, or to the run list's folder for a path starting ``../``,
+the project's own wrappers) and ``labels.yaml``: for each robot, every finding validate
+reports, with its verdict (true or false) and why. Findings are keyed by (rule, file,
+line), the file named ``corpus/...``, ``realworld/...`` or, for the project's own files,
+relative to tests/. SK104 (missing meshes) is left out: the corpora copy no meshes, so
+every mesh reference is missing by construction.
+
+A robot still to be fetched is listed in tests/realworld/wanted.yaml and marked
+``pending: true`` in robots.yaml: until its files are in the corpus it is skipped.
 
 Used by test_realworld.py (no unlabelled finding, no stale label, precision >= 95 %) and
 by benchmarks/corpus_precision.py (figures, and a skeleton for new findings to label).
@@ -18,17 +26,33 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+from conftest import CORPUS, REALWORLD, corpus_package_paths
 
 TESTS = Path(__file__).resolve().parent
-CORPORA = (TESTS / "corpus", TESTS / "realworld")
 IGNORED = ("SK104",)
 
 Key = tuple[str, str, "int | None"]
 
 
+@dataclass(frozen=True)
+class Corpus:
+    """One labelled corpus: its robot files under ``root``, its run list and labels in
+    tests/NAME."""
+
+    name: str
+    root: Path
+
+    @property
+    def lists(self) -> Path:
+        return TESTS / self.name
+
+
+CORPORA = (Corpus("corpus", CORPUS), Corpus("realworld", REALWORLD))
+
+
 @dataclass
 class Robot:
-    corpus: Path
+    corpus: Corpus
     file: str
     flavour: str = ""
     kind: str = ""
@@ -37,12 +61,15 @@ class Robot:
     bridge: list[str] = field(default_factory=list)
     # NAME -> folder (relative to the corpus): a package this robot must find before the
     # corpora's own (two repositories here ship a package of one name, e.g. velodyne_description
-    # in its ROS 2 port under tests/corpus and its ROS 1 original under tests/realworld).
+    # in its ROS 2 port in the corpus and its ROS 1 original in the real-world set).
     packages: dict[str, str] = field(default_factory=dict)
+    pending: bool = False
 
     @property
     def path(self) -> Path:
-        return (self.corpus / self.file).resolve()
+        if self.file.startswith("../"):  # the project's own wrapper beside the run list
+            return (self.corpus.lists / self.file).resolve()
+        return (self.corpus.root / self.file).resolve()
 
     @property
     def key(self) -> str:
@@ -53,6 +80,10 @@ class Robot:
     @property
     def id(self) -> str:
         return f"{self.corpus.name}/{self.key}"
+
+    @property
+    def present(self) -> bool:
+        return self.path.is_file()
 
 
 @dataclass
@@ -66,7 +97,7 @@ class Outcome:
 def robots() -> list[Robot]:
     out: list[Robot] = []
     for corpus in CORPORA:
-        listing = corpus / "robots.yaml"
+        listing = corpus.lists / "robots.yaml"
         if not listing.is_file():
             continue
         for entry in yaml.safe_load(listing.read_text()) or []:
@@ -80,21 +111,25 @@ def robots() -> list[Robot]:
                     target=entry.get("target", "auto") or "auto",
                     bridge=list(entry.get("bridge") or []),
                     packages={k: str(v) for k, v in (entry.get("packages") or {}).items()},
+                    pending=bool(entry.get("pending", False)),
                 )
             )
     return out
 
 
 def _rel(file: str | None) -> str:
+    """The label key's file: ``realworld/...``, ``corpus/...`` or relative to tests/."""
     if not file:
         return ""
     p = Path(file)
     if not p.is_absolute():
         p = (Path.cwd() / p).resolve()
-    try:
-        return str(p.resolve().relative_to(TESTS))
-    except ValueError:
-        return str(p)
+    p = p.resolve()
+    for prefix, root in (("realworld", REALWORLD), ("corpus", CORPUS), ("", TESTS)):
+        if p.is_relative_to(root.resolve()):
+            rel = str(p.relative_to(root.resolve()))
+            return f"{prefix}/{rel}" if prefix else rel
+    return str(p)
 
 
 def run(robot: Robot) -> Outcome:
@@ -104,11 +139,11 @@ def run(robot: Robot) -> Outcome:
         target=robot.target,
         args=dict(robot.args),
         package_paths=(
-            *(f"{name}={robot.corpus / folder}" for name, folder in robot.packages.items()),
-            *(str(c) for c in CORPORA if c.is_dir()),
+            *(f"{name}={robot.corpus.root / folder}" for name, folder in robot.packages.items()),
+            *corpus_package_paths(),
         ),
         ignore=IGNORED,
-        bridges=tuple(str(robot.corpus / b) for b in robot.bridge),
+        bridges=tuple(str(robot.corpus.root / b) for b in robot.bridge),
     )
     report = validate_file(robot.path, options)
     keys: Counter[Key] = Counter()
@@ -121,9 +156,9 @@ def run(robot: Robot) -> Outcome:
     return Outcome(robot, keys, messages, error)
 
 
-def labels(corpus: Path) -> dict[str, dict[Key, dict[str, Any]]]:
+def labels(corpus: Corpus) -> dict[str, dict[Key, dict[str, Any]]]:
     """robot key (file and args) -> finding key -> label (verdict, why)."""
-    path = corpus / "labels.yaml"
+    path = corpus.lists / "labels.yaml"
     if not path.is_file():
         return {}
     out: dict[str, dict[Key, dict[str, Any]]] = {}

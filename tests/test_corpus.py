@@ -5,12 +5,16 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import CORPUS
+from conftest import CORPUS, REALWORLD, corpus_package_paths, needs_corpus
 
 from sensorkit.engine import Options, validate_file
 from sensorkit.findings import Severity
 
-FILES = sorted(p for p in CORPUS.rglob("*") if p.suffix in (".urdf", ".xacro", ".sdf"))
+pytestmark = needs_corpus
+
+FILES = sorted(
+    p for p in CORPUS.rglob("*") if p.suffix in (".urdf", ".xacro", ".sdf") and REALWORLD not in p.parents
+)
 
 
 def test_corpus_is_there() -> None:
@@ -93,7 +97,6 @@ def test_flir_blackfly_under_gz_reports_the_classic_plugin_and_misplaced_frame_t
     assert "SK105" in rules  # <intertial> with <mass values=...>
 
 
-REALWORLD = CORPUS.parent / "realworld"
 REAL_FILES = sorted(p for p in REALWORLD.rglob("*") if p.suffix in (".urdf", ".xacro"))
 
 
@@ -105,7 +108,7 @@ def test_realworld_is_there() -> None:
 def test_no_crash_on_any_realworld_file(path: Path) -> None:
     # Every file on its own, as a user might point validate at it: macro files, files that
     # need args. Findings are expected; a crash or an internal error never is.
-    report = validate_file(path, Options(package_paths=(str(CORPUS), str(REALWORLD))))
+    report = validate_file(path, Options(package_paths=corpus_package_paths()))
     assert not report.internal_errors, report.internal_errors
     for f in report.findings:
         assert f.file and f.message and f.fix, f

@@ -22,6 +22,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+from conftest import CORPUS, REALWORLD, needs_corpus
 from typer.testing import CliRunner
 
 from sensorkit.cli import app
@@ -781,6 +782,7 @@ def test_rules_say_what_is_fixable() -> None:
 # --------------------------------------------------------------------------- the corpora
 
 
+@needs_corpus
 def test_real_world_corpora_fixed_on_copies(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -790,9 +792,15 @@ def test_real_world_corpora_fixed_on_copies(
     sys.path.insert(0, str(Path(__file__).parent))
     import labelled
 
-    for d in ("corpus", "realworld", "corpus_wrappers"):
-        shutil.copytree(labelled.TESTS / d, tmp_path / d, symlinks=True)
-    corpora = tuple(str(tmp_path / c.name) for c in labelled.CORPORA)
+    # The corpora side by side as the labelled run reads them, the real-world set taken out
+    # of the corpus folder it sits in, and the project's wrappers beside them.
+    shutil.copytree(CORPUS, tmp_path / "corpus", symlinks=True, ignore=lambda d, names: ["realworld"] if Path(d) == CORPUS else [])
+    shutil.copytree(REALWORLD, tmp_path / "realworld", symlinks=True)
+    shutil.copytree(labelled.TESTS / "corpus_wrappers", tmp_path / "corpus_wrappers", symlinks=True)
+    for p in tmp_path.rglob("*"):  # ../shared is read-only: the copies are ours to fix
+        p.chmod(p.stat().st_mode | stat.S_IWUSR)
+    repos = sorted(p for p in (tmp_path / "corpus").iterdir() if p.is_dir())
+    corpora = (*map(str, repos), str(tmp_path / "realworld"))
     fixed = applied = robots = 0
     problems: list[str] = []
     for r in labelled.robots():

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 from builders import robot
-from conftest import CORPUS, ROOT, rules_of
+from conftest import CORPUS, ROOT, needs_corpus, rules_of
 from conftest import run_cli as cli
 
 from sensorkit.engine import Options, validate_file
@@ -185,6 +185,7 @@ def test_entities_are_refused_wherever_the_doctype_is(text: bytes) -> None:
     assert forbid_entities(b'<!DOCTYPE robot><robot name="r"/>') is None
 
 
+@needs_corpus
 def test_urdf_with_xacro_markup_is_expanded() -> None:
     p = CORPUS / "ROBOTIS-GIT__turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf"
     report = validate_file(p)

@@ -1,7 +1,7 @@
 """Issue 8's false-positive classes and misses: each with a trigger and a near miss.
 
 Robots are our own, written to reproduce one class each; the real robots that showed
-them live in tests/realworld (labelled in test_realworld.py).
+them live in ../shared/corpus/realworld (labelled in tests/realworld, run by test_realworld.py).
 """
 
 from __future__ import annotations
