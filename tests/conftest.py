@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from sensorkit.engine import FileReport, Options, validate_file
+from sensorkit.lint.engine import FileReport, Options, validate_file
 
 ROOT = Path(__file__).resolve().parent.parent
 # Public robots fetched from other repositories live beside the project, never in it:

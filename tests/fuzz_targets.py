@@ -68,7 +68,7 @@ def bound(target: str) -> float:
 
 
 def _clean_error(exc: BaseException) -> bool:
-    from sensorkit.errors import SensorkitError
+    from sensorkit.base.errors import SensorkitError
 
     return isinstance(exc, (SensorkitError, OSError))
 
@@ -181,8 +181,8 @@ def _check_cli(target: str, res: Any, argv: list[str]) -> Outcome:
 
 
 def _options(inp: FuzzInput, work: Path | None = None) -> Any:
-    from sensorkit.engine import Options
-    from sensorkit.findings import Severity
+    from sensorkit.base.findings import Severity
+    from sensorkit.lint.engine import Options
 
     k = inp.knobs
     bridges: tuple[str, ...] = ()
@@ -202,8 +202,8 @@ def _options(inp: FuzzInput, work: Path | None = None) -> Any:
 
 def t_validate(inp: FuzzInput, work: Path) -> Outcome:
     """validate_file in-process, and the report rendered in the chosen format."""
-    from sensorkit.engine import Report, validate_file
-    from sensorkit.report import render
+    from sensorkit.lint.engine import Report, validate_file
+    from sensorkit.lint.report import render
 
     path = inp.case.write(work)
     try:
@@ -228,7 +228,7 @@ def t_validate(inp: FuzzInput, work: Path) -> Outcome:
 
 def t_validate_paths(inp: FuzzInput, work: Path) -> Outcome:
     """validate_paths on the robot, every other file of the case, and a missing file."""
-    from sensorkit.engine import validate_paths
+    from sensorkit.lint.engine import validate_paths
 
     path = inp.case.write(work)
     others = [work / rel for rel in inp.case.files if (work / rel) != path][:4]
@@ -319,7 +319,7 @@ def check_add(
                     continue
                 return Outcome(inp.target, f"add changed bytes of {rel} outside an insertion")
             return Outcome(inp.target, f"add changed another file {rel}")
-    from sensorkit.engine import Options, validate_file
+    from sensorkit.lint.engine import Options, validate_file
 
     with _cwd(cwd) if cwd is not None else contextlib.nullcontext():
         report = validate_file(
@@ -463,8 +463,8 @@ def t_cli_add(inp: FuzzInput, work: Path) -> Outcome:
 
 def t_intrinsics(inp: FuzzInput, work: Path) -> Outcome:
     """intrinsics as the command does it (load, describe, select, document), and via the CLI."""
+    from sensorkit.describe.sensorinfo import describe, load
     from sensorkit.exporters.robot import intrinsics_document, select_cameras
-    from sensorkit.sensorinfo import describe, load
 
     path = inp.case.write(work)
     k = inp.knobs
@@ -502,8 +502,8 @@ def t_intrinsics(inp: FuzzInput, work: Path) -> Outcome:
 
 def t_export(inp: FuzzInput, work: Path) -> Outcome:
     """export as the command does it (describe, plan, publish into a folder), and via the CLI."""
+    from sensorkit.describe.sensorinfo import describe, load
     from sensorkit.exporters.robot import export_files, publish_export
-    from sensorkit.sensorinfo import describe, load
 
     path = inp.case.write(work)
     k = inp.knobs

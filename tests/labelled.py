@@ -133,7 +133,7 @@ def _rel(file: str | None) -> str:
 
 
 def run(robot: Robot) -> Outcome:
-    from sensorkit.engine import Options, validate_file
+    from sensorkit.lint.engine import Options, validate_file
 
     options = Options(
         target=robot.target,

@@ -16,9 +16,9 @@ from lxml import etree
 from typer.testing import CliRunner
 
 import sensorkit.edit.add
+from sensorkit.base.errors import WriteFailed
 from sensorkit.cli import app
 from sensorkit.edit import AddRequest, add_sensor
-from sensorkit.errors import WriteFailed
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.xacro_expand import expand_in_process
 
@@ -279,7 +279,7 @@ HAND_BRIDGE = """\
 
 
 def test_hand_written_package_gets_bridge_entries_appended(tmp_path: Path) -> None:
-    from sensorkit.resources import macros_dir
+    from sensorkit.base.resources import macros_dir
 
     pkg = tmp_path / "hand_description"
     (pkg / "urdf" / "sensors").mkdir(parents=True)

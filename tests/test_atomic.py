@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from sensorkit.atomic import check_replaceable, staged_folder, write_bytes, write_text
-from sensorkit.errors import UsageError, WriteFailed
+from sensorkit.base.atomic import check_replaceable, staged_folder, write_bytes, write_text
+from sensorkit.base.errors import UsageError, WriteFailed
 
 
 def test_write_text_keeps_mode_and_leaves_no_temp(tmp_path: Path) -> None:

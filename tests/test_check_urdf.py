@@ -15,8 +15,8 @@ from builders import inertial, joint, link
 from conftest import ROOT, run_check_urdf
 from test_rules import CASES
 
-from sensorkit.engine import Options, validate_file
-from sensorkit.findings import Severity
+from sensorkit.base.findings import Severity
+from sensorkit.lint.engine import Options, validate_file
 from sensorkit.loading.document import looks_like_xacro
 
 STRUCTURAL = {"SK101", "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207"}

@@ -121,10 +121,10 @@ def _plugin_params(fragment: str) -> str:
 
 @pytest.mark.parametrize("rule", ["SK502", "SK602", "SK505"])
 def test_rule_examples_do_what_they_say(check: object, rule: str) -> None:
-    # The bad example triggers its rule; the good one does not (sensorkit/explain.py).
+    # The bad example triggers its rule; the good one does not (sensorkit/lint/explain.py).
     from builders import camera_sensor, robot
 
-    from sensorkit.explain import EXAMPLES
+    from sensorkit.lint.explain import EXAMPLES
 
     ex = EXAMPLES[rule]
     if rule == "SK505":

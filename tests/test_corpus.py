@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 from conftest import CORPUS, REALWORLD, corpus_package_paths, needs_corpus
 
-from sensorkit.engine import Options, validate_file
-from sensorkit.findings import Severity
+from sensorkit.base.findings import Severity
+from sensorkit.lint.engine import Options, validate_file
 
 pytestmark = needs_corpus
 

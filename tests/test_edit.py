@@ -17,12 +17,12 @@ import pytest
 from lxml import etree
 from typer.testing import CliRunner
 
+from sensorkit.base.errors import EditRefused, UsageError
+from sensorkit.base.findings import Severity
+from sensorkit.base.resources import macros_dir
 from sensorkit.cli import app
 from sensorkit.edit import AddRequest, add_sensor, apply_add, plan_add
-from sensorkit.engine import Options, validate_file
-from sensorkit.errors import EditRefused, UsageError
-from sensorkit.findings import Severity
-from sensorkit.resources import macros_dir
+from sensorkit.lint.engine import Options, validate_file
 
 ROBOTS = Path(__file__).resolve().parent / "edit_robots"
 XACRO_BIN = Path(sys.executable).parent / "xacro"

@@ -10,10 +10,10 @@ import pytest
 
 import sensorkit.edit.add
 import sensorkit.edit.check
+from sensorkit.base.errors import EditRefused
+from sensorkit.base.findings import Finding
 from sensorkit.edit import AddRequest, plan_add
 from sensorkit.edit.check import Verdict, compare, copy_document_with
-from sensorkit.errors import EditRefused
-from sensorkit.findings import Finding
 from sensorkit.loading.document import Document
 from sensorkit.model import Robot
 from sensorkit.model.sdf import Conversion, convert

@@ -16,10 +16,10 @@ from pathlib import Path
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from sensorkit.base.errors import EditRefused
+from sensorkit.base.findings import Severity
 from sensorkit.edit import AddRequest, add_sensor, apply_add
-from sensorkit.engine import Options, validate_file
-from sensorkit.errors import EditRefused
-from sensorkit.findings import Severity
+from sensorkit.lint.engine import Options, validate_file
 from sensorkit.model import load_robot
 
 ROBOTS = Path(__file__).resolve().parent / "edit_robots"

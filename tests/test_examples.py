@@ -14,10 +14,10 @@ import pytest
 import yaml
 from lxml import etree
 
-from sensorkit.engine import Options, validate_file
-from sensorkit.findings import Severity
+from sensorkit.base.findings import Severity
+from sensorkit.describe.intrinsics import camera_intrinsics
 from sensorkit.generate import new_package
-from sensorkit.intrinsics import camera_intrinsics
+from sensorkit.lint.engine import Options, validate_file
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"

@@ -732,7 +732,7 @@ def test_format_limits_are_notes_not_failures(tmp_path: Path) -> None:
 
 def test_cli_does_not_import_pybullet() -> None:
     code = (
-        "import sys, sensorkit.cli, sensorkit.cli.export, sensorkit.sensorinfo;"
+        "import sys, sensorkit.cli, sensorkit.cli.export, sensorkit.describe.sensorinfo;"
         "print([m for m in ('pybullet', 'trimesh', 'sensorkit.render') if m in sys.modules])"
     )
     res = subprocess.run(

@@ -13,6 +13,13 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
+from sensorkit.describe.intrinsics import (
+    Intrinsics,
+    InvalidValue,
+    LaserScanParams,
+    camera_intrinsics,
+    laser_scan,
+)
 from sensorkit.exporters import (
     BridgeEntry,
     OrbExtractorSettings,
@@ -34,13 +41,6 @@ from sensorkit.exporters import (
     to_json,
 )
 from sensorkit.exporters import _text as text
-from sensorkit.intrinsics import (
-    Intrinsics,
-    InvalidValue,
-    LaserScanParams,
-    camera_intrinsics,
-    laser_scan,
-)
 
 DIST = (-0.25, 0.12, 1e-05, -0.0003, 0.0)
 

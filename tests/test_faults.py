@@ -9,7 +9,7 @@
 - read-only folder, foreign owner: refused or kept.
 
 The steps are counted, not assumed: a profiling hook in the child process counts the
-C-level calls ``sensorkit.atomic`` makes and SIGKILLs the process at call K.
+C-level calls ``sensorkit.base.atomic`` makes and SIGKILLs the process at call K.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ from pathlib import Path
 
 import pytest
 
+from sensorkit.base.errors import WriteFailed
 from sensorkit.edit import AddRequest, add_sensor
-from sensorkit.errors import WriteFailed
 
 ROBOTS = Path(__file__).resolve().parent / "edit_robots"
 
@@ -150,7 +150,7 @@ def test_file_too_large_is_a_clean_refusal(tmp_path: Path) -> None:
 def test_disk_full_and_io_errors_leave_the_file_unchanged(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, err: int
 ) -> None:
-    from sensorkit import atomic
+    from sensorkit.base import atomic
 
     path = _copy(tmp_path)
     before = path.read_bytes()

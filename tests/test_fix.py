@@ -25,12 +25,12 @@ import pytest
 from conftest import CORPUS, REALWORLD, needs_corpus
 from typer.testing import CliRunner
 
+from sensorkit.base.findings import Severity
 from sensorkit.cli import app
-from sensorkit.engine import Options, validate_file
-from sensorkit.findings import Severity
 from sensorkit.fix.apply import FileFix, fix_paths
 from sensorkit.fix.registry import subject
 from sensorkit.fix.source import SourceFile, Tag
+from sensorkit.lint.engine import Options, validate_file
 
 XACRO_BIN = Path(sys.executable).parent / "xacro"
 OPTICAL = "-1.5707963267948966 0 -1.5707963267948966"
@@ -392,8 +392,8 @@ def test_sk602_ros1_tags_take_their_ros2_form(here: Path) -> None:
         "      </plugin>"
     )
     # The topics are where ROS 1 put them: /NS/CAMERA/TOPIC, an absolute name as it is.
+    from sensorkit.lint.rules.plugins import resolved_topics
     from sensorkit.model import load_robot
-    from sensorkit.rules.plugins import resolved_topics
 
     loaded = load_robot(path)
     assert loaded.robot is not None
@@ -772,7 +772,7 @@ def test_rules_say_what_is_fixable() -> None:
         lines["SK505"] == "safe" and lines["SK301"] == "unsafe" and lines["SK502"] == "safe/unsafe"
     )
     assert lines["SK101"] == "-"
-    from sensorkit.report import rule_table
+    from sensorkit.lint.report import rule_table
 
     assert "| SK505 | info |" in rule_table() and rule_table().splitlines()[0].endswith(
         "| `--fix` |"

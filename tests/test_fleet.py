@@ -20,11 +20,11 @@ from pathlib import Path
 
 import pytest
 
-import sensorkit.engine
+import sensorkit.lint.engine
 import sensorkit.model
-from sensorkit.engine import Options, validate_paths
-from sensorkit.errors import UsageError
-from sensorkit.fleet import find_robots, is_partial
+from sensorkit.base.errors import UsageError
+from sensorkit.lint.engine import Options, validate_paths
+from sensorkit.lint.fleet import find_robots, is_partial
 
 ROOT = Path(__file__).resolve().parent.parent
 ACCEPTANCE = ROOT / "tests" / "robots" / "acceptance"
@@ -96,15 +96,15 @@ def test_a_worker_that_dies_costs_only_its_file(
     monkeypatch.chdir(tmp_path)
     files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
     victim = files[2]
-    real = sensorkit.engine.validate_file
+    real = sensorkit.lint.engine.validate_file
 
-    def dying(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+    def dying(path: Path, options: Options | None = None) -> sensorkit.lint.engine.FileReport:
         if path == victim:
             os._exit(9)  # as a segfault or the OOM killer would: no answer at all
         return real(path, options)
 
     expected = validate_paths(files, Options())
-    monkeypatch.setattr(sensorkit.engine, "validate_file", dying)  # forked workers inherit it
+    monkeypatch.setattr(sensorkit.lint.engine, "validate_file", dying)  # forked workers inherit it
     report = validate_paths(files, Options(), jobs=2)
     assert [fr.path for fr in report.files] == files
     for got, want in zip(report.files, expected.files, strict=True):
@@ -120,20 +120,20 @@ def test_files_queued_behind_a_dying_worker_go_to_another(
 ) -> None:
     """A worker holds the file it validates and the next: when it dies on the first, the
     next is validated by its replacement, not reported as the dead worker's."""
-    from sensorkit.fleet import QUEUED, run_pool
+    from sensorkit.lint.fleet import QUEUED, run_pool
 
     assert QUEUED >= 2
     monkeypatch.chdir(tmp_path)
     files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
-    real = sensorkit.engine.validate_file
+    real = sensorkit.lint.engine.validate_file
 
-    def dying(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+    def dying(path: Path, options: Options | None = None) -> sensorkit.lint.engine.FileReport:
         if path in (files[0], files[3]):
             os._exit(9)
         return real(path, options)
 
     expected = validate_paths(files, Options())
-    monkeypatch.setattr(sensorkit.engine, "validate_file", dying)
+    monkeypatch.setattr(sensorkit.lint.engine, "validate_file", dying)
     reports = run_pool(files, Options(), 1)  # one worker at a time: it holds files 0 and 1
     assert [fr.path for fr in reports] == files
     for i, (got, want) in enumerate(zip(reports, expected.files, strict=True)):
@@ -151,7 +151,7 @@ def test_a_worker_gone_between_files_costs_nothing(
     import multiprocessing
     from multiprocessing.connection import Connection
 
-    from sensorkit.fleet import run_pool
+    from sensorkit.lint.fleet import run_pool
 
     monkeypatch.chdir(tmp_path)
     files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name][:2]
@@ -193,10 +193,10 @@ def test_workers_start_with_what_they_inherit_frozen(
     gc.unfreeze()
     inherited = len(gc.get_objects())
 
-    def frozen(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
-        return sensorkit.engine.FileReport(path=path, error=str(gc.get_freeze_count()))
+    def frozen(path: Path, options: Options | None = None) -> sensorkit.lint.engine.FileReport:
+        return sensorkit.lint.engine.FileReport(path=path, error=str(gc.get_freeze_count()))
 
-    monkeypatch.setattr(sensorkit.engine, "validate_file", frozen)
+    monkeypatch.setattr(sensorkit.lint.engine, "validate_file", frozen)
     reports = validate_paths(files, Options(), jobs=2).files
     assert all(int(fr.error or 0) > inherited // 2 for fr in reports), [fr.error for fr in reports]
     assert gc.get_freeze_count() == 0  # and the parent's collector is as it was
@@ -226,14 +226,14 @@ def test_what_validating_raises_is_raised_as_with_jobs_1(
     """A usage error met while validating (a bad --bridge file) stops the run alike."""
     monkeypatch.chdir(tmp_path)
     files = [p for p in mix if "runaway" not in p.name and "missing" not in p.name]
-    real = sensorkit.engine.validate_file
+    real = sensorkit.lint.engine.validate_file
 
-    def failing(path: Path, options: Options | None = None) -> sensorkit.engine.FileReport:
+    def failing(path: Path, options: Options | None = None) -> sensorkit.lint.engine.FileReport:
         if path in (files[1], files[3]):
             raise UsageError(f"--bridge: cannot read it for {path}")
         return real(path, options)
 
-    monkeypatch.setattr(sensorkit.engine, "validate_file", failing)
+    monkeypatch.setattr(sensorkit.lint.engine, "validate_file", failing)
     for jobs in (1, 2):
         with pytest.raises(UsageError, match=re.escape(f"for {files[1]}")):
             validate_paths(files, Options(), jobs=jobs)

@@ -1,7 +1,7 @@
 """Issue 10: edits that cannot lose updates and keep the file's identity.
 
 Concurrent adds take turns on a folder lock held from reading the file to the last rename
-(``sensorkit.atomic.editing``); read-only and hard-linked files are refused byte-identical;
+(``sensorkit.base.atomic.editing``); read-only and hard-linked files are refused byte-identical;
 owner, group, mode and symlinks survive an edit.
 """
 
@@ -16,9 +16,9 @@ from pathlib import Path
 
 import pytest
 
+from sensorkit.base.errors import UsageError
 from sensorkit.edit import AddRequest, add_sensor
-from sensorkit.engine import FileReport
-from sensorkit.errors import UsageError
+from sensorkit.lint.engine import FileReport
 
 ROBOTS = Path(__file__).resolve().parent / "edit_robots"
 
@@ -44,7 +44,7 @@ def _pair(ctx: multiprocessing.context.BaseContext, path: Path) -> dict[str, str
 
 
 def _sensors(path: Path) -> set[str]:
-    from sensorkit.engine import validate_file
+    from sensorkit.lint.engine import validate_file
 
     report = validate_file(path)
     assert report.robot is not None, report.error
@@ -122,7 +122,7 @@ def test_stale_temp_files_are_cleaned_by_the_next_edit(tmp_path: Path) -> None:
 
 
 def test_dtd_ban_covers_the_whole_file_and_large_comments_parse(tmp_path: Path) -> None:
-    from sensorkit.engine import validate_file
+    from sensorkit.lint.engine import validate_file
 
     big = "<!-- " + "x" * (25 * 1024 * 1024) + " -->\n"
     plain = (ROBOTS / "rover.urdf").read_text()
@@ -203,7 +203,7 @@ def test_render_refuses_what_would_exhaust_the_machine(tmp_path: Path, change: t
 def _hold(folder: str, ready: object, seconds: float) -> None:
     import time
 
-    from sensorkit.atomic import editing
+    from sensorkit.base.atomic import editing
 
     with editing(Path(folder) / "x"):
         ready.set()  # type: ignore[attr-defined]
@@ -214,7 +214,7 @@ def test_folder_writers_take_turns(tmp_path: Path) -> None:
     # new and export publish whole folders through staged_folder, which holds the same lock.
     import time
 
-    from sensorkit.atomic import staged_folder
+    from sensorkit.base.atomic import staged_folder
 
     ctx = multiprocessing.get_context("fork")
     ready = ctx.Event()

@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sensorkit.errors import UsageError
-from sensorkit.intrinsics import (
+from sensorkit.base.errors import UsageError
+from sensorkit.describe.intrinsics import (
     Intrinsics,
     InvalidValue,
     camera_intrinsics,

@@ -9,7 +9,7 @@ from builders import robot
 from conftest import CORPUS, ROOT, needs_corpus, rules_of
 from conftest import run_cli as cli
 
-from sensorkit.engine import Options, validate_file
+from sensorkit.lint.engine import Options, validate_file
 from sensorkit.loading.document import looks_like_xacro
 from sensorkit.loading.marks import forbid_entities
 from sensorkit.loading.packages import PackageResolver

@@ -882,8 +882,8 @@ def test_classic_cameras_each_serve_their_own_set_camera_info(
 def test_macro_validates_clean_and_gazebo_keeps_every_sensor(
     case: MacroCase, sim: str, gz_version: str, tmp_path: Path
 ) -> None:
-    from sensorkit.engine import Options, validate_file
-    from sensorkit.findings import Severity
+    from sensorkit.base.findings import Severity
+    from sensorkit.lint.engine import Options, validate_file
     from sensorkit.model.sdf import convert
 
     source = tmp_path / "robot.urdf.xacro"

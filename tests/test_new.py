@@ -16,11 +16,11 @@ from hypothesis import strategies as st
 from lxml import etree
 from typer.testing import CliRunner
 
+from sensorkit.base.errors import InputError, UsageError
+from sensorkit.base.findings import Severity
 from sensorkit.cli import app
-from sensorkit.engine import Options, validate_file
-from sensorkit.errors import InputError, UsageError
-from sensorkit.findings import Severity
 from sensorkit.generate import base_templates, new_package, parse_spec, sensor_macros
+from sensorkit.lint.engine import Options, validate_file
 
 ROOT = Path(__file__).resolve().parent.parent
 HARMONIC_YAML = ROOT / "examples" / "harmonic_robot" / "robot.yaml"

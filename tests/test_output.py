@@ -11,7 +11,7 @@ from builders import camera_sensor, gz_robot, lidar_sensor, robot
 from conftest import ROOT
 from conftest import run_cli as cli
 
-from sensorkit.rules import RULES
+from sensorkit.lint.rules import RULES
 
 BAD = ROOT / "tests/robots/acceptance/sk502_bad.urdf"
 GOOD = ROOT / "tests/robots/acceptance/sk502_fixed.urdf"
@@ -102,7 +102,7 @@ def test_inline_suppression(tmp_path: Path) -> None:
 
 
 def test_readme_rule_table_matches_registry() -> None:
-    from sensorkit.report import rule_table
+    from sensorkit.lint.report import rule_table
 
     readme = (ROOT / "README.md").read_text()
     begin, end = "<!-- rules:begin -->\n", "<!-- rules:end -->"
@@ -122,7 +122,7 @@ def test_validate_does_not_import_pybullet_or_trimesh() -> None:
     )
     assert res.returncode == 0, res.stdout + res.stderr
     imported = {line.rsplit("|", 1)[-1].strip() for line in res.stderr.splitlines() if "|" in line}
-    assert "sensorkit.engine" in imported  # the log is real
+    assert "sensorkit.lint.engine" in imported  # the log is real
     assert not {m for m in imported if m.split(".")[0] in ("pybullet", "trimesh", "yourdfpy")}
 
 
@@ -150,7 +150,7 @@ def test_validate_of_sensors_does_not_import_numpy_pybullet_or_rich(tmp_path: Pa
     assert res.returncode == 1, res.stdout + res.stderr
     assert "SK502" in res.stdout and "SK504" in res.stdout
     imported = {line.rsplit("|", 1)[-1].strip() for line in res.stderr.splitlines() if "|" in line}
-    assert "sensorkit.rules.frames" in imported  # the log is real
+    assert "sensorkit.lint.rules.frames" in imported  # the log is real
     assert not {m for m in imported if m.split(".")[0] in ("numpy", "pybullet", "rich")}
 
 

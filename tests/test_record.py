@@ -1,4 +1,4 @@
-"""sensorkit.record: dataclasses that share one __repr__/__eq__/__hash__ behave as plain ones."""
+"""sensorkit.base.record: dataclasses that share one __repr__/__eq__/__hash__ behave as plain ones."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import pytest
 
-from sensorkit.record import FrozenRecord, Record
+from sensorkit.base.record import FrozenRecord, Record
 
 
 @dataclass
@@ -88,10 +88,10 @@ def test_validate_compiles_no_dataclass_repr_or_eq() -> None:
             return orig(cls, init, repr, eq, *rest)
         dataclasses._process_class = spy
         sys.argv = ["sensorkit", "validate", sys.argv[1]]
-        from sensorkit.engine import Options, validate_paths
+        from sensorkit.lint.engine import Options, validate_paths
         from pathlib import Path
         validate_paths([Path(sys.argv[2])], Options())
-        import sensorkit.cli.validate, sensorkit.cli.common, sensorkit.config
+        import sensorkit.cli.validate, sensorkit.cli.common, sensorkit.lint.config
         for name, r, e in seen:
             if name.startswith("sensorkit.") and (r or e):
                 print(name)
@@ -158,7 +158,7 @@ def test_hand_written_inits_do_what_dataclass_would() -> None:
     A field added without its parameter, or a default that drifts, fails here."""
     import inspect
 
-    from sensorkit.record import FACTORY
+    from sensorkit.base.record import FACTORY
 
     classes = _classes_with_own_init()
     assert len(classes) >= 35, [c.__qualname__ for c in classes]

@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.cli import app
-from sensorkit.findings import Finding, Severity
 from sensorkit.render import render_preview
 from sensorkit.render.checks import Check
 from sensorkit.render.gate import verdict

@@ -214,7 +214,7 @@ def _chain(n: int, kind: str = "fixed") -> str:
 def test_pybullet_refuses_the_state_of_a_body_past_its_limit(links: int, refused: bool) -> None:
     # The limit split_urdf keeps to, measured: 127 links beside the base load and report
     # their poses; 128 do not (PhysicsServerCommandProcessor.cpp:7922, see the top).
-    from sensorkit.errors import InputError
+    from sensorkit.base.errors import InputError
     from sensorkit.render.sim import World
 
     with World() as world:
@@ -457,7 +457,7 @@ def test_kill_9_mid_render_leaves_the_old_preview(old_preview: Path) -> None:
 def test_a_folder_moved_aside_by_a_killed_writer_is_put_back(out_exists: bool, tmp_path: Path) -> None:
     # Killed between _replace_folder's two renames, a writer leaves no folder under the
     # name and the old one as .NAME.old-*: the next writer puts it back first.
-    from sensorkit.atomic import staged_folder
+    from sensorkit.base.atomic import staged_folder
 
     out = tmp_path / "preview"
     aside = tmp_path / ".preview.old-abcd1234"
@@ -474,7 +474,7 @@ def test_a_folder_moved_aside_by_a_killed_writer_is_put_back(out_exists: bool, t
 
 
 def _hold_lock(folder: str, held: Any, release: Any) -> None:
-    from sensorkit.atomic import editing
+    from sensorkit.base.atomic import editing
 
     with editing(Path(folder) / "preview"):
         held.set()

@@ -15,7 +15,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from sensorkit.errors import UsageError
+from sensorkit.base.errors import UsageError
 from sensorkit.loading import PackageResolver
 from sensorkit.model import load_robot
 from sensorkit.model.sensors import LidarSpec
@@ -608,7 +608,7 @@ def test_prepared_urdf_drops_what_pybullet_cannot_load(tmp_path: Path) -> None:
 
 
 def test_pybullet_failure_is_an_input_error() -> None:
-    from sensorkit.errors import InputError
+    from sensorkit.base.errors import InputError
     from sensorkit.render.sim import World
 
     with World() as world, pytest.raises(InputError, match="pybullet could not load"):

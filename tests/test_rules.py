@@ -6,8 +6,8 @@ import pytest
 from builders import OPTICAL, camera_sensor, gz_robot, inertial, joint, lidar_sensor, link, robot
 from conftest import rules_of
 
-from sensorkit.findings import Severity
-from sensorkit.rules import RULES
+from sensorkit.base.findings import Severity
+from sensorkit.lint.rules import RULES
 
 CLEAN = robot()
 GZ_CLEAN = gz_robot()

@@ -75,7 +75,7 @@ def test_bridge_never_carries_a_sensor_gz_never_creates() -> None:
 
 
 def _rgbd(tmp_path, frame: str, bridge_points: bool):  # type: ignore[no-untyped-def]
-    from sensorkit.engine import Options, validate_file
+    from sensorkit.lint.engine import Options, validate_file
 
     robot = gz_robot(camera_type="rgbd_camera", camera_tags=f"<topic>rgbd</topic><gz_frame_id>{frame}</gz_frame_id>")
     (tmp_path / "r.urdf").write_text(robot)
@@ -137,8 +137,8 @@ def test_classic_p_overrides_are_the_published_p(check, tmp_path) -> None:
     # (ros-simulation/gazebo_ros_pkgs@ros2:gazebo_plugins/src/gazebo_ros_camera.cpp:455-462).
     from builders import camera_sensor, robot
 
+    from sensorkit.describe.sensorinfo import published_intrinsics
     from sensorkit.model import load_robot
-    from sensorkit.sensorinfo import published_intrinsics
 
     params = ("<frame_name>camera_optical_frame</frame_name><P_fx>500</P_fx><P_fy>501</P_fy>"
               "<P_cx>320</P_cx><P_cy>240</P_cy><Tx>-60</Tx><Ty>1</Ty>")
@@ -161,9 +161,9 @@ def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None
     # <depth_camera><clip> (RgbdCameraSensor.cc:313-322) and publishes TOPIC/camera_info (:252).
     from lxml import etree
 
+    from sensorkit.describe.sensorinfo import depth_range
     from sensorkit.generate.bridge import sensor_entries
-    from sensorkit.rules.plugins import gz_topics
-    from sensorkit.sensorinfo import depth_range
+    from sensorkit.lint.rules.plugins import gz_topics
 
     cam = ("<camera><horizontal_fov>1</horizontal_fov><image><width>64</width><height>48</height></image>"
            "<clip><near>0.1</near><far>10</far></clip><camera_info_topic>cam/info</camera_info_topic>"
@@ -322,7 +322,7 @@ def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
     assert f.severity.label == "info" and f.sensor == "gps"
     assert "/world/WORLD/model/MODEL/link/base_footprint/sensor/gps/navsat" in f.message
     # With a bridge known, a <topic> no entry names is a warning; an entry naming it, nothing.
-    from sensorkit.engine import Options, validate_file
+    from sensorkit.lint.engine import Options, validate_file
 
     path = tmp_path / "rover.urdf"
     path.write_text(_navsat("<topic>gps/fix</topic><gz_frame_id>gps_link</gz_frame_id>"))

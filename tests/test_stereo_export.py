@@ -35,6 +35,8 @@ import yaml
 from typer.testing import CliRunner
 
 from sensorkit.cli import app
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
+from sensorkit.describe.sensorinfo import describe, load
 from sensorkit.exporters import (
     OrbImuSettings,
     kalibr_stereo_camchain_yaml,
@@ -42,8 +44,6 @@ from sensorkit.exporters import (
     stereo_camera_infos,
 )
 from sensorkit.exporters.opencv import opencv_matrix_lines
-from sensorkit.intrinsics import Intrinsics, InvalidValue
-from sensorkit.sensorinfo import describe, load
 
 try:
     from macro_cases import MACROS_DIR, XACRO_NS

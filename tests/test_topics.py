@@ -13,7 +13,7 @@ import yaml
 from typer.testing import CliRunner
 
 from sensorkit.cli import app
-from sensorkit.topics import classic_encoding, gz_encoding
+from sensorkit.describe.topics import classic_encoding, gz_encoding
 
 OPTICAL_RPY = "-1.5707963267948966 0 -1.5707963267948966"
 # One line of `ros2 topic list -t`: '{topic_name} [{types}]'
@@ -782,9 +782,9 @@ def _launch_topics(path: Path) -> list[tuple[str, str]]:
 
 
 def _camera_images(xacro: Path, target: str, bridge: Path | None) -> set[tuple[str, str | None]]:
+    from sensorkit.describe.sensorinfo import describe, load
+    from sensorkit.describe.topics import BridgeConfig, robot_topics
     from sensorkit.loading.bridge import read_bridge
-    from sensorkit.sensorinfo import describe, load
-    from sensorkit.topics import BridgeConfig, robot_topics
 
     info = describe(load(xacro), target)
     config = BridgeConfig([str(bridge)], read_bridge(bridge)) if bridge else None
@@ -895,8 +895,8 @@ def test_a_triggered_camera_subscribes_to_image_trigger_under_its_name(tmp_path:
     # from the plugin element; a <triggered> inside <camera> is not what it reads.
     from builders import camera_sensor, robot
 
+    from sensorkit.lint.rules.plugins import plugin_topics
     from sensorkit.model import load_robot
-    from sensorkit.rules.plugins import plugin_topics
 
     def names(params: str, camera_extra: str = "") -> list[str]:
         cam = camera_sensor(params="<frame_name>camera_optical_frame</frame_name>" + params)

@@ -9,7 +9,7 @@ from __future__ import annotations
 from builders import camera_sensor, inertial, joint, link, robot
 from conftest import rules_of
 
-from sensorkit.suggest import closest
+from sensorkit.base.suggest import closest
 
 
 def _tree(*parts: str) -> str:
@@ -206,7 +206,7 @@ BRIDGE = """- ros_topic_name: front_camera/image_raw
 def _gz(tmp_path, bridge_text: str | None, *, in_config: bool = False, camera_tags: str | None = None):  # type: ignore[no-untyped-def]
     from builders import gz_robot
 
-    from sensorkit.engine import Options, validate_file
+    from sensorkit.lint.engine import Options, validate_file
 
     pkg = tmp_path / "rover_description"
     (pkg / "urdf").mkdir(parents=True)
@@ -312,7 +312,7 @@ def test_bumper_in_world_frame_is_valid(check) -> None:
 
 
 def test_sk102_in_a_macro_points_at_the_macro(tmp_path) -> None:
-    from sensorkit.engine import validate_file
+    from sensorkit.lint.engine import validate_file
 
     (tmp_path / "sensors.xacro").write_text(
         '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from sensorkit.engine import Options, validate_file
+from sensorkit.lint.engine import Options, validate_file
 from sensorkit.loading.untrusted import (
     Confinement,
     UnsafeExpression,

@@ -13,8 +13,8 @@ from typing import Annotated, Any, TypeVar
 
 import typer
 
-from sensorkit.errors import SensorkitError
-from sensorkit.record import FACTORY, Record
+from sensorkit.base.errors import SensorkitError
+from sensorkit.base.record import FACTORY, Record
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -123,7 +123,7 @@ class Settings(Record):
     package_paths: tuple[str, ...]
     args: dict[str, str]
     untrusted: Any  # sensorkit.loading.untrusted.Untrusted | None
-    config: Any  # sensorkit.config.Config
+    config: Any  # sensorkit.lint.config.Config
     used: list[str] = field(default_factory=list)
 
     def __init__(
@@ -152,8 +152,8 @@ class Settings(Record):
 
     def describe(self, file: Path, overlay: dict[str, bytes], convention: Any = None) -> Any:
         """Load ``file`` with these settings and describe its sensors under the target
-        (a ``sensorkit.sensorinfo.RobotInfo`` saying where a chosen target came from)."""
-        from sensorkit.sensorinfo import describe, load
+        (a ``sensorkit.describe.sensorinfo.RobotInfo`` saying where a chosen target came from)."""
+        from sensorkit.describe.sensorinfo import describe, load
 
         robot = load(
             file,
@@ -186,7 +186,7 @@ def settings(
     default_target: str = "auto",
 ) -> Settings:
     """Merge flags over the settings file found from ``near`` (``--config`` wins)."""
-    from sensorkit.config import load_config
+    from sensorkit.lint.config import load_config
 
     cfg = load_config(near, explicit=config)
     trust = make_untrusted(untrusted, env)
@@ -221,8 +221,8 @@ def fail_on_threshold(flag: str | None, cfg: Any) -> Any:
     ``never`` (no finding fails; a file that cannot be checked still does) is None. The
     settings file is shared by validate and render preview, so both take every value.
     A bad value is a usage error naming where it came from."""
-    from sensorkit.errors import UsageError
-    from sensorkit.findings import Severity
+    from sensorkit.base.errors import UsageError
+    from sensorkit.base.findings import Severity
 
     text = flag or cfg.fail_on or "error"
     where = "--fail-on" if flag else f"{cfg.path}: fail-on"

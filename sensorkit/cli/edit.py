@@ -340,7 +340,7 @@ def _run(
     color: str = "auto",
 ) -> None:
     from sensorkit.edit import AddRequest, add_sensor
-    from sensorkit.engine import Options
+    from sensorkit.lint.engine import Options
     from sensorkit.loading.document import display_path
 
     command = {"depth_camera": "add-depth-camera", "stereo_camera": "add-stereo", "imu": "add-imu",

@@ -95,7 +95,7 @@ def intrinsics(
 
     Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
     """
-    from sensorkit.errors import UsageError
+    from sensorkit.base.errors import UsageError
     from sensorkit.exporters.robot import FORMATS, intrinsics_output
 
     if fmt not in FORMATS:

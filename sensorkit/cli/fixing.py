@@ -14,8 +14,8 @@ from typing import NoReturn
 
 import typer
 
-from sensorkit.engine import Options
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.lint.engine import Options
 
 
 def _where(f: Finding) -> str:
@@ -39,7 +39,7 @@ def run_fix(
     color: bool = False,
     exit_zero: bool = False,
 ) -> NoReturn:
-    from sensorkit.errors import UsageError
+    from sensorkit.base.errors import UsageError
 
     if unsafe and not (fix or diff):
         raise UsageError("--unsafe-fixes only means something with --fix or --diff")
@@ -80,8 +80,8 @@ def run_fix(
             f.severity >= threshold for ff in run.files for f in ff.after
         )
         raise typer.Exit(exit_status(2 if failed else 1 if bad else 0, exit_zero=exit_zero))
-    from sensorkit.engine import validate_paths
-    from sensorkit.report import render
+    from sensorkit.lint.engine import validate_paths
+    from sensorkit.lint.report import render
 
     report = validate_paths(files, options)
     sys.stdout.write(render(report, fmt, color=color, quiet=quiet))

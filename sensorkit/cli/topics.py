@@ -1,6 +1,6 @@
 """``sensorkit topics``: every topic a robot's sensors will publish, as ``ros2 topic list -t``.
 
-Thin: parse options, call :mod:`sensorkit.topics`, print. The list goes to stdout, notes
+Thin: parse options, call :mod:`sensorkit.describe.topics`, print. The list goes to stdout, notes
 and the summary to stderr.
 """
 
@@ -76,9 +76,9 @@ def topics(
 
     Exit status: 0, or 2 when it could not run.
     """
-    from sensorkit.errors import UsageError
+    from sensorkit.base.errors import UsageError
+    from sensorkit.describe.topics import load_bridge, robot_topics, topics_json, topics_text
     from sensorkit.model.targets import is_gz
-    from sensorkit.topics import load_bridge, robot_topics, topics_json, topics_text
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))

@@ -125,11 +125,11 @@ def validate(
     Exit status: 0 nothing at or above --fail-on (or --exit-zero), 1 findings, 2 could
     not run.
     """
-    from sensorkit.engine import Options, validate_paths
+    from sensorkit.lint.engine import Options, validate_paths
 
     with collector_off():
-        from sensorkit.errors import UsageError
-        from sensorkit.report import FORMATS, render
+        from sensorkit.base.errors import UsageError
+        from sensorkit.lint.report import FORMATS, render
 
         if fmt not in FORMATS:
             raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
@@ -188,7 +188,7 @@ def validate(
                 exit_zero=exit_zero,
             )
         if not jobs:
-            from sensorkit.fleet import cpu_count
+            from sensorkit.lint.fleet import cpu_count
 
             jobs = cpu_count()
         # The last model stays referenced until the process ends without teardown: freeing
@@ -215,7 +215,7 @@ def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
             out.append(item)
             continue
         from sensorkit.cli.common import die
-        from sensorkit.fleet import find_robots  # folders only: not on the common path
+        from sensorkit.lint.fleet import find_robots  # folders only: not on the common path
         from sensorkit.loading.document import display_path
 
         found = find_robots(item)
@@ -249,10 +249,10 @@ def rules(
     """List every rule (id, severity, fixable, what it checks), or explain the ones named."""
     import json
 
-    from sensorkit.errors import UsageError
+    from sensorkit.base.errors import UsageError
     from sensorkit.fix import fixable
-    from sensorkit.report import rule_table
-    from sensorkit.rules import RULES
+    from sensorkit.lint.report import rule_table
+    from sensorkit.lint.rules import RULES
 
     if fmt not in ("text", "json", "markdown"):
         raise UsageError(f"--format {fmt!r}: use text, json or markdown")
@@ -267,7 +267,7 @@ def rules(
         sys.stdout.write(rule_table())
         return
     if fmt == "json":
-        from sensorkit.explain import EXAMPLES
+        from sensorkit.lint.explain import EXAMPLES
 
         rows = []
         for rid in wanted or sorted(RULES):
@@ -286,7 +286,7 @@ def rules(
         sys.stdout.write(json.dumps(rows, indent=2) + "\n")
         return
     if wanted:
-        from sensorkit.explain import explain
+        from sensorkit.lint.explain import explain
 
         sys.stdout.write("\n".join(explain(rid) for rid in wanted))
         return

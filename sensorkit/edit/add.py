@@ -25,7 +25,9 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.atomic import check_editable, editing, write_bytes
+from sensorkit.base.atomic import check_editable, editing, write_bytes
+from sensorkit.base.errors import EditRefused, InputError, UsageError, WriteFailed
+from sensorkit.base.findings import Finding
 from sensorkit.edit.check import (
     Verdict,
     check_names,
@@ -56,8 +58,6 @@ from sensorkit.edit.render import (
     render_block,
 )
 from sensorkit.edit.simchoice import choose_simulator
-from sensorkit.errors import EditRefused, InputError, UsageError, WriteFailed
-from sensorkit.findings import Finding
 from sensorkit.loading.document import (
     Document,
     display_path,
@@ -70,7 +70,7 @@ from sensorkit.loading.document import (
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:
-    from sensorkit.engine import Options
+    from sensorkit.lint.engine import Options
     from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model import Robot
 
@@ -274,7 +274,7 @@ def _choose_macro(kind: SensorKind, xacro_style: bool, target: Path) -> _MacroCh
 
 
 def _macro_label(info: MacroInfo) -> str:
-    from sensorkit.resources import macros_dir
+    from sensorkit.base.resources import macros_dir
 
     if info.path.resolve().parent == macros_dir().resolve():
         return f"sensorkit's {info.name} macro"
@@ -648,7 +648,7 @@ def _validate(
     in the file and the macro is self-contained, so the expansion gains the macro's
     output at its end; for URDF they are the inserted text, parsed with its lines.
     """
-    from sensorkit.engine import Options
+    from sensorkit.lint.engine import Options
 
     options = req.validation or Options(args=dict(req.args), package_paths=req.package_paths)
     if bridge_added:
@@ -765,7 +765,7 @@ def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
     """Plan an add and, unless ``dry_run``, publish it. Raises EditRefused on refusal.
 
     A real add holds the folder lock from reading the file to the last rename, so two adds
-    on one file take turns and both land (``sensorkit.atomic.editing``).
+    on one file take turns and both land (``sensorkit.base.atomic.editing``).
     """
     if dry_run:
         return plan_add(req)

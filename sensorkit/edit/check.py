@@ -17,21 +17,21 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from sensorkit.errors import EditRefused
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.errors import EditRefused
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.loading.document import Document, display_path
 from sensorkit.model import Robot
 from sensorkit.model.robot import Joint, Link
 from sensorkit.model.sensors import Sensor
 
 if TYPE_CHECKING:
-    from sensorkit.engine import Options
+    from sensorkit.lint.engine import Options
     from sensorkit.model.sdf import Conversion
 
 
 def closest(name: str, candidates: Iterable[str], n: int = 3) -> list[str]:
     """Up to ``n`` of ``candidates`` that look most like ``name`` (never empty if any exist)."""
-    from sensorkit.suggest import closest as ranked
+    from sensorkit.base.suggest import closest as ranked
 
     pool = sorted(set(candidates))
     hits = ranked(name, pool, n=n)
@@ -113,8 +113,8 @@ def findings(
 ) -> tuple[list[Finding], list[str]]:
     """What ``sensorkit validate`` reports for ``robot`` (selection and inline suppressions
     applied), and the validator's internal errors."""
-    from sensorkit.engine import check_robot
-    from sensorkit.suppress import collect
+    from sensorkit.lint.engine import check_robot
+    from sensorkit.lint.suppress import collect
 
     report = check_robot(robot, options)
     found = [f for f in [*load_findings, *report.findings] if options.wants(f.rule)]
@@ -321,7 +321,7 @@ def extend_conversion(
 
 
 def _selected(found: Iterable[Finding], robot: Robot, options: Options) -> list[Finding]:
-    from sensorkit.suppress import collect
+    from sensorkit.lint.suppress import collect
 
     kept = [f for f in found if options.wants(f.rule)]
     files = [(display_path(f), Path(f)) for f in robot.document.source_files()]
@@ -343,10 +343,10 @@ def compare_added(
     verdict is the one ``compare`` gives (tests/test_edit_incremental.py holds them
     side by side). A part that is not a leaf subtree falls back to ``compare``.
     """
-    from sensorkit.engine import find_missing_files, make_context, run_rule, run_rules
+    from sensorkit.lint.engine import find_missing_files, make_context, run_rule, run_rules
+    from sensorkit.lint.rules import RULES, Context
     from sensorkit.model import build_robot
     from sensorkit.model.targets import is_gz
-    from sensorkit.rules import RULES, Context
 
     added = build_robot(part)
     after = extend_robot(before, added)

@@ -15,8 +15,8 @@ from pathlib import Path
 
 from lxml import etree
 
+from sensorkit.base.errors import EditRefused
 from sensorkit.edit.render import Lines, xacro_literal, xml_attr
-from sensorkit.errors import EditRefused
 from sensorkit.loading.document import strict_parser
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.xacro_expand import LOC_ATTR, expand, expand_in_process

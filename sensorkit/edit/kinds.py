@@ -12,7 +12,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from sensorkit.errors import EditRefused, InputError
+from sensorkit.base.errors import EditRefused, InputError
 from sensorkit.loading.document import display_path, strict_parser
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -74,7 +74,7 @@ class MacroInfo:
 
 def shipped_macro(kind: SensorKind) -> Path:
     """The macro file shipped with sensorkit for ``kind``."""
-    from sensorkit.resources import macros_dir
+    from sensorkit.base.resources import macros_dir
 
     path = macros_dir() / kind.macro_file
     if not path.is_file():

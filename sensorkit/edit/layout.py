@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from sensorkit.errors import EditRefused, InputError
+from sensorkit.base.errors import EditRefused, InputError
 
 _DECL_RE = re.compile(rb"""^<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._\-]+)["']""")
 _NAME_RE = re.compile(r"[^\s/>]+")

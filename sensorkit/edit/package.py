@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.errors import EditRefused, InputError, SensorkitError
+from sensorkit.base.errors import EditRefused, InputError, SensorkitError
 from sensorkit.loading.document import display_path
 
 if TYPE_CHECKING:
@@ -136,9 +136,9 @@ def read_package(source: Path, data: bytes, *, untrusted: bool) -> PackageContex
             "(its ${...} values would run in xacro); add the sensor there too"
         )
         return ctx
-    from sensorkit.config import load_config
     from sensorkit.generate import render
     from sensorkit.generate.spec import load_spec
+    from sensorkit.lint.config import load_config
     from sensorkit.model.targets import is_gz
 
     try:

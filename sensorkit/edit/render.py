@@ -11,8 +11,8 @@ from collections.abc import Collection, Iterable, Sequence
 
 from lxml import etree
 
+from sensorkit.base.errors import EditRefused, UsageError
 from sensorkit.edit.layout import Layout
-from sensorkit.errors import EditRefused, UsageError
 
 Lines = list[tuple[int, str]]
 

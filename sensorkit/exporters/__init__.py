@@ -1,7 +1,7 @@
 """Exporters: pure functions from intrinsics and scan geometry to configuration text.
 
 Each returns a string (or, for JSON, a dict) and never touches the file system;
-:func:`sensorkit.atomic.write_text` publishes any of them safely. Reals are written exactly
+:func:`sensorkit.base.atomic.write_text` publishes any of them safely. Reals are written exactly
 (``repr``, always with a decimal point), ints without one, so each reader sees the
 kind it checks for.
 """

@@ -16,7 +16,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from sensorkit.intrinsics import (
+from sensorkit.describe.intrinsics import (
     InvalidValue,
     _finite,  # one definition of "a finite number"
 )

@@ -11,8 +11,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Literal, NamedTuple
 
+from sensorkit.describe.intrinsics import InvalidValue
 from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import InvalidValue
 
 __all__ = [
     "DIRECTIONS",

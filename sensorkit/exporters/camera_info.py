@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
 from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import Intrinsics, InvalidValue
 
 __all__ = ["camera_info_yaml", "stereo_camera_infos"]
 

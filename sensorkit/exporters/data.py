@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 
-from sensorkit.intrinsics import Intrinsics, InvalidValue, LaserScanParams
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue, LaserScanParams
 
 __all__ = ["camera_dict", "laser_scan_dict", "to_json"]
 

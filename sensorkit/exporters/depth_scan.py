@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
 from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import Intrinsics, InvalidValue
 
 __all__ = ["depthimage_to_laserscan_remappings", "depthimage_to_laserscan_yaml"]
 

@@ -20,8 +20,8 @@ import re
 import numpy as np
 import numpy.typing as npt
 
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
 from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import Intrinsics, InvalidValue
 
 __all__ = ["kalibr_camchain_yaml", "kalibr_stereo_camchain_yaml"]
 

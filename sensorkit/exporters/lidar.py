@@ -7,8 +7,8 @@ or never clears them.
 
 from __future__ import annotations
 
+from sensorkit.describe.intrinsics import InvalidValue, LaserScanParams
 from sensorkit.exporters import _text as t
-from sensorkit.intrinsics import InvalidValue, LaserScanParams
 
 __all__ = [
     "amcl_yaml",

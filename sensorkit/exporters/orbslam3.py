@@ -62,9 +62,9 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
 from sensorkit.exporters import _text as t
 from sensorkit.exporters.opencv import OPENCV_YAML_HEADER, opencv_matrix_lines
-from sensorkit.intrinsics import Intrinsics, InvalidValue
 
 __all__ = [
     "DEFAULT_RGBD_BASELINE",
@@ -292,7 +292,7 @@ class OrbImuSettings:
 
     ``T_b_c1`` maps left-camera (optical) coordinates into the IMU body frame ("Transformation
     from camera 0 to body-frame (imu)", Examples/Stereo-Inertial/EuRoC.yaml:63-64); the
-    noises are continuous-time densities and walks (see :mod:`sensorkit.imu_noise`).
+    noises are continuous-time densities and walks (see :mod:`sensorkit.describe.imu_noise`).
     """
 
     T_b_c1: npt.ArrayLike

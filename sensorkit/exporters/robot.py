@@ -1,6 +1,6 @@
 """A whole robot's exports: the ``intrinsics`` documents and the ``export`` folder.
 
-Built on :func:`sensorkit.sensorinfo.describe` (what each sensor publishes) and the format
+Built on :func:`sensorkit.describe.sensorinfo.describe` (what each sensor publishes) and the format
 writers of this package; :func:`publish_export` writes the folder atomically.
 """
 
@@ -12,14 +12,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal, get_args
 
-from sensorkit.errors import InputError, UsageError
-from sensorkit.intrinsics import Intrinsics, InvalidValue
-from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
+from sensorkit.base.errors import InputError, UsageError
+from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
+from sensorkit.describe.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
 
 if TYPE_CHECKING:
+    from sensorkit.describe.stereo import StereoPair
     from sensorkit.exporters.orbslam3 import OrbImuSettings
     from sensorkit.model.transforms_np import Mat
-    from sensorkit.stereo import StereoPair
 
 DEFAULT_FPS = 30
 """Frame rate written for ORB-SLAM3 when a camera's ``<update_rate>`` is 0 or missing."""
@@ -175,8 +175,8 @@ def _rgb(view: CameraView, notes: list[str]) -> bool:
 
 def _T_cam_imu(view: CameraView, info: RobotInfo, imu: SensorInfo | None) -> Mat | None:
     """Kalibr's ``T_cam_imu``: IMU frame to the camera's optical frame."""
+    from sensorkit.describe.stereo import T_world_optical
     from sensorkit.model.transforms_np import invert
-    from sensorkit.stereo import T_world_optical
 
     if imu is None or imu.T_world_render is None:
         return None
@@ -298,8 +298,8 @@ def _pair_record(pair: StereoPair) -> dict[str, object]:
 def _imu_settings(
     pair: StereoPair, info: RobotInfo, imu: SensorInfo, notes: list[str]
 ) -> OrbImuSettings:
+    from sensorkit.describe.imu_noise import imu_noise
     from sensorkit.exporters.orbslam3 import OrbImuSettings
-    from sensorkit.imu_noise import imu_noise
     from sensorkit.model.transforms_np import invert
 
     T_cam_imu = _T_cam_imu(pair.left, info, imu)
@@ -742,7 +742,7 @@ def publish_export(
             protected; a path in ``files`` is absolute or climbs out.
         OSError: the file system refused (nothing is left behind).
     """
-    from sensorkit.atomic import check_replaceable, staged_folder, write_text
+    from sensorkit.base.atomic import check_replaceable, staged_folder, write_text
 
     check_replaceable(out, force=force, inputs=inputs)
     given, out = out, out.absolute()

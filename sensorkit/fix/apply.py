@@ -22,17 +22,17 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from sensorkit.atomic import check_editable, editing, write_bytes
-from sensorkit.engine import FileReport, Options, validate_file
-from sensorkit.errors import EditRefused, InputError
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.atomic import check_editable, editing, write_bytes
+from sensorkit.base.errors import EditRefused, InputError
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.fix.registry import FIXERS, Deferred, Fix, FixContext, NotFixable, subject
 from sensorkit.fix.source import Edit, apply_edits, overlaps
+from sensorkit.lint.engine import FileReport, Options, validate_file
+from sensorkit.lint.rules.base import Context
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import own_package, package_name, workspace_roots
 from sensorkit.model.frames import sensor_frames
 from sensorkit.model.sdf import convert
-from sensorkit.rules.base import Context
 
 MAX_ROUNDS = 12
 
@@ -509,7 +509,7 @@ def fix_paths(
     """Fix every file of ``paths``; with ``write=False`` only plan (for ``--diff``).
 
     A file is planned without a lock; when the plan changes anything, the folder lock of
-    :func:`sensorkit.atomic.editing` is taken for every file it writes, and held to the
+    :func:`sensorkit.base.atomic.editing` is taken for every file it writes, and held to the
     last rename. If one of them changed since it was read, the plan is made again under
     the lock (from what the other writer left), so no update is lost.
     """

@@ -14,7 +14,7 @@ from xml.sax.saxutils import escape
 
 from lxml import etree
 
-from sensorkit.findings import Finding
+from sensorkit.base.findings import Finding
 from sensorkit.fix.registry import Fix, FixContext, Written, fixer
 from sensorkit.fix.source import Deferred, Edit, NotFixable
 from sensorkit.knowledge.gazebo_ros import (

@@ -1,7 +1,7 @@
 """The fixer registry, the fix a fixer returns, and what a fixer may read.
 
 A fixer is a pure function ``(FixContext, Finding) -> Fix``: it reads the model (the
-rules' :class:`~sensorkit.rules.base.Context`) and the files' bytes as the context holds
+rules' :class:`~sensorkit.lint.rules.base.Context`) and the files' bytes as the context holds
 them, never the disk, and returns byte edits, or raises :class:`NotFixable` saying why
 not. Register it with ``@fixer(rule id, safety, summary)``; ``safety`` is what
 ``sensorkit rules`` shows: ``safe``, ``unsafe`` or ``safe/unsafe`` (each returned
@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape
 
-from sensorkit.findings import Finding
+from sensorkit.base.findings import Finding
 from sensorkit.fix.source import Deferred, Edit, NotFixable, SourceFile, Tag
 from sensorkit.loading.document import display_path
 from sensorkit.loading.xacro_expand import LOC_ATTR
@@ -31,8 +31,8 @@ from sensorkit.model.robot import local
 if TYPE_CHECKING:
     from lxml import etree
 
+    from sensorkit.lint.rules.base import Context
     from sensorkit.model.robot import Robot
-    from sensorkit.rules.base import Context
 
 __all__ = [
     "FIXERS",

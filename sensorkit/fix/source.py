@@ -21,8 +21,8 @@ import re
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from sensorkit.base.errors import SensorkitError
 from sensorkit.edit.layout import detect_encoding, read_layout
-from sensorkit.errors import SensorkitError
 
 _NAME_RE = re.compile(r"[^\s/>=]+")
 _ATTR_RE = re.compile(r"""\s*([^\s=/>]+)\s*=\s*("([^"]*)"|'([^']*)')""")
@@ -107,8 +107,8 @@ def _skip(text: str, needle: str, start: int) -> int:
 
 def _tag_end(text: str, start: int) -> int:
     """``edit.layout``'s tag scanner, refusing as a fix does."""
+    from sensorkit.base.errors import EditRefused
     from sensorkit.edit.layout import _tag_end as tag_end
-    from sensorkit.errors import EditRefused
 
     try:
         return tag_end(text, start)

@@ -17,7 +17,7 @@ from typing import Literal
 
 from lxml import etree
 
-from sensorkit.resources import macros_dir, templates_dir
+from sensorkit.base.resources import macros_dir, templates_dir
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 

@@ -16,16 +16,16 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.atomic import check_replaceable, staged_folder
-from sensorkit.errors import InputError
+from sensorkit.base.atomic import check_replaceable, staged_folder
+from sensorkit.base.errors import InputError
+from sensorkit.describe.intrinsics import InvalidValue
 from sensorkit.exporters.bridge import BridgeEntry
 from sensorkit.generate import render, rviz
 from sensorkit.generate.bridge import bridge_entries, bridge_file_text
 from sensorkit.generate.spec import Mark, RobotSpec, load_spec
-from sensorkit.intrinsics import InvalidValue
 
 if TYPE_CHECKING:
-    from sensorkit.topics import Topic
+    from sensorkit.describe.topics import Topic
 
 
 @dataclass
@@ -88,9 +88,9 @@ def ros_topics(spec: RobotSpec, root: Path, urdf: str) -> list[Topic]:
     """
     if spec.sim not in ("classic", "gz"):
         return []
+    from sensorkit.describe.sensorinfo import describe, load
+    from sensorkit.describe.topics import BridgeConfig, robot_topics
     from sensorkit.loading.bridge import read_bridge
-    from sensorkit.sensorinfo import describe, load
-    from sensorkit.topics import BridgeConfig, robot_topics
 
     robot = load(root / urdf)
     info = describe(robot, "classic" if spec.sim == "classic" else spec.gz_version)
@@ -103,7 +103,7 @@ def ros_topics(spec: RobotSpec, root: Path, urdf: str) -> list[Topic]:
 
 def camera_images(topics: Sequence[Topic]) -> list[render.CameraImage]:
     """The camera image topics among ``topics``."""
-    from sensorkit.topics import IMAGE_ROLES
+    from sensorkit.describe.topics import IMAGE_ROLES
 
     return [
         render.CameraImage(t.name, t.encoding or "", t.sensor, t.role == "depth_image")

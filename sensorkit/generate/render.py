@@ -16,9 +16,9 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
+from sensorkit.base.resources import templates_dir
 from sensorkit.exporters.bridge import BridgeEntry
 from sensorkit.generate.spec import RobotSpec
-from sensorkit.resources import templates_dir
 
 if TYPE_CHECKING:
     from sensorkit.generate.rviz import Unshown

@@ -34,8 +34,8 @@ from sensorkit.knowledge.rviz import (
 if TYPE_CHECKING:
     from lxml import etree
 
+    from sensorkit.describe.topics import Topic
     from sensorkit.generate.spec import RobotSpec
-    from sensorkit.topics import Topic
 
 
 @dataclass(frozen=True)

@@ -38,7 +38,7 @@ from typing import Any, NoReturn
 
 import yaml
 
-from sensorkit.errors import InputError
+from sensorkit.base.errors import InputError
 from sensorkit.generate.catalog import (
     SENSOR_KEY_PARAMS,
     SHARED_PARAMS,

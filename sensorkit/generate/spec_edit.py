@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import yaml
 
-from sensorkit.errors import EditRefused
+from sensorkit.base.errors import EditRefused
 from sensorkit.generate.catalog import SHARED_PARAMS, sensor_macros
 
 _PLAIN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from sensorkit.record import FrozenRecord
+from sensorkit.base.record import FrozenRecord
 
 _set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 

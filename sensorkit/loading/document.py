@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.errors import InputError
-from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.base.errors import InputError
+from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted

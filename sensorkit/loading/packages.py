@@ -20,7 +20,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from sensorkit.record import FACTORY, Record
+from sensorkit.base.record import FACTORY, Record
 
 _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use

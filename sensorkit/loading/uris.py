@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from sensorkit.base.record import FrozenRecord
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.record import FrozenRecord
 
 _set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 

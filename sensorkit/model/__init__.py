@@ -7,10 +7,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from sensorkit.findings import Finding
+from sensorkit.base.findings import Finding
+from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading import PackageResolver, load_description
 from sensorkit.model.robot import Robot, build_robot
-from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted

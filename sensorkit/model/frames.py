@@ -13,9 +13,9 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from sensorkit.base.record import Record
 from sensorkit.knowledge import plugins as known
 from sensorkit.model.targets import is_gz
-from sensorkit.record import Record
 
 if TYPE_CHECKING:
     from sensorkit.knowledge.plugins import PluginSpec

@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from sensorkit.findings import SourceRef
+from sensorkit.base.findings import SourceRef
+from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading.document import Document
 from sensorkit.loading.marks import LOC_ATTR
-from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Plugin, Sensor

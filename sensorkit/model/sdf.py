@@ -13,8 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from sensorkit.base.record import FACTORY, Record
 from sensorkit.model.robot import text_of
-from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot

@@ -7,9 +7,9 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.findings import SourceRef
+from sensorkit.base.findings import SourceRef
+from sensorkit.base.record import FACTORY, Record
 from sensorkit.model.robot import Origin, child, children, local, parse_float, parse_vec, text_of
-from sensorkit.record import FACTORY, Record
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot

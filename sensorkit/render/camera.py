@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.intrinsics import Intrinsics
+from sensorkit.describe.intrinsics import Intrinsics
 from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
 from sensorkit.render._stats import median, percentile, unique
 from sensorkit.render.checks import Check
@@ -158,9 +158,9 @@ def render_camera(
 ) -> RenderCamera:
     """The camera the simulator actually renders (which camera_info may not describe).
 
-    ``published`` is the camera_info (``sensorkit.sensorinfo.published_intrinsics``).
+    ``published`` is the camera_info (``sensorkit.describe.sensorinfo.published_intrinsics``).
     """
-    from sensorkit.sensorinfo import SDF_DEFAULTS, camera_size, convention_of
+    from sensorkit.describe.sensorinfo import SDF_DEFAULTS, camera_size, convention_of
 
     notes: list[str] = []
     width, height, hfov = camera_size(cam, [])

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
 
 if TYPE_CHECKING:
     from sensorkit.render.checks import Check

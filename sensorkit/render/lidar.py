@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.intrinsics import LaserScanParams
+from sensorkit.describe.intrinsics import LaserScanParams
 from sensorkit.model.transforms_np import Mat
 from sensorkit.render._stats import median, unique
 from sensorkit.render.checks import Check
@@ -89,9 +89,9 @@ class LidarScan:
 
 
 def lidar_beams(spec: LidarSpec, notes: list[str] | None = None) -> LidarBeams:
-    """The beams of ``spec`` (``sensorkit.sensorinfo.lidar_scans``, so the preview casts
+    """The beams of ``spec`` (``sensorkit.describe.sensorinfo.lidar_scans``, so the preview casts
     exactly the scan the exports describe); raises InvalidValue when it cannot exist."""
-    from sensorkit.sensorinfo import lidar_scans
+    from sensorkit.describe.sensorinfo import lidar_scans
 
     h, v = lidar_scans(spec, notes)
     elevation = v.beam_angles() if v is not None else np.zeros(1)

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.atomic import write_bytes
+from sensorkit.base.atomic import write_bytes
 
 __all__ = ["encode_png", "read_png", "write_png"]
 

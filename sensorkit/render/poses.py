@@ -11,7 +11,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from sensorkit.errors import UsageError
+from sensorkit.base.errors import UsageError
 from sensorkit.model.robot import Joint, Robot, child, parse_float
 from sensorkit.model.transforms_np import Mat
 

@@ -27,14 +27,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.errors import InputError, UsageError
-from sensorkit.findings import Severity
+from sensorkit.base.errors import InputError, UsageError
+from sensorkit.base.findings import Severity
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
 from sensorkit.model.transforms_np import Mat, matrix_to_rpy
 from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
 
 if TYPE_CHECKING:
-    from sensorkit.findings import Finding
+    from sensorkit.base.findings import Finding
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model import Loaded
     from sensorkit.model.frames import SensorFrames
@@ -159,7 +159,7 @@ def _load(
 
 def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
     """Role -> ROS topic (``image``, ``camera_info``, ``scan``...), None when unknown."""
-    from sensorkit.sensorinfo import sensor_topics
+    from sensorkit.describe.sensorinfo import sensor_topics
 
     topics, _ = sensor_topics(sensor, target)
     return topics or None
@@ -234,9 +234,10 @@ class _Run:
 def _camera(
     run: _Run, job: _Job, progress: Progress | None
 ) -> tuple[SensorPreview, SensorDrawing | None]:
-    from sensorkit.atomic import write_text
+    from sensorkit.base.atomic import write_text
+    from sensorkit.describe.intrinsics import InvalidValue
+    from sensorkit.describe.sensorinfo import depth_range, published_intrinsics
     from sensorkit.exporters import camera_dict, camera_info_yaml
-    from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
     from sensorkit.render.camera import (
         PIXEL_ORIGIN,
@@ -250,7 +251,6 @@ def _camera(
     from sensorkit.render.pictures import at_far_clip, depth_colour_range, depth_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
-    from sensorkit.sensorinfo import depth_range, published_intrinsics
 
     sensor, name, cam = job.sensor, job.name, job.cam
     assert cam is not None
@@ -374,8 +374,8 @@ def _camera(
 def _lidar(
     run: _Run, job: _Job, progress: Progress | None
 ) -> tuple[SensorPreview, SensorDrawing | None]:
+    from sensorkit.describe.intrinsics import InvalidValue
     from sensorkit.exporters import laser_scan_dict
-    from sensorkit.intrinsics import InvalidValue
     from sensorkit.render._files import save_npy
     from sensorkit.render._stats import median
     from sensorkit.render.lidar import cast, lidar_beams, range_check
@@ -550,7 +550,7 @@ _RAY_COST = 12
 
 def _cost(job: _Job) -> int:
     """Rough CPU a job takes, in units of one TinyRenderer pixel."""
-    from sensorkit.sensorinfo import SDF_DEFAULTS
+    from sensorkit.describe.sensorinfo import SDF_DEFAULTS
 
     if job.cam is not None:
         w = job.cam.width if job.cam.width and job.cam.width > 0 else int(SDF_DEFAULTS["width"])
@@ -584,16 +584,16 @@ def _preload(jobs: list[_Job], target: str) -> None:
     from sensorkit.model.targets import is_gz
 
     names = [
-        "sensorkit.atomic",
+        "sensorkit.base.atomic",
         "sensorkit.exporters",
-        "sensorkit.intrinsics",
+        "sensorkit.describe.intrinsics",
         "sensorkit.model.frames",
         "sensorkit.render._files",
         "sensorkit.render.overview",
         "sensorkit.render.png",
         "sensorkit.render.raster",
         "sensorkit.render.rviz",
-        "sensorkit.sensorinfo",
+        "sensorkit.describe.sensorinfo",
     ]
     if any(j.cam is not None for j in jobs):
         names.append("sensorkit.render.camera")
@@ -710,7 +710,7 @@ def _validate(
     """validate's findings on the robot the preview loaded from ``path`` (``loaded``:
     read once, for both)."""
     try:
-        from sensorkit.engine import Options, validate_loaded
+        from sensorkit.lint.engine import Options, validate_loaded
     except ImportError as exc:
         return None, f"validate is not available ({exc})"
     options = Options(
@@ -745,8 +745,8 @@ def _beams(samples: int | None, resolution: float | None) -> float:
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
+    from sensorkit.describe.sensorinfo import SDF_DEFAULTS
     from sensorkit.model.transforms_np import render_pose_np
-    from sensorkit.sensorinfo import SDF_DEFAULTS
 
     for s in robot.sensors:
         if only and s.name not in only:
@@ -788,8 +788,8 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
 def check_structure(robot: Robot, target: str) -> None:
     """Never hand pybullet a structurally broken robot (a typeless joint segfaults it):
     validate's SK2xx errors stop the render with one line (exit 2)."""
-    from sensorkit.engine import Options, check_robot
-    from sensorkit.findings import Severity
+    from sensorkit.base.findings import Severity
+    from sensorkit.lint.engine import Options, check_robot
 
     report = check_robot(robot, Options(target=target, select=("SK2",)))
     errors = [f for f in report.findings if f.severity == Severity.ERROR]
@@ -806,7 +806,7 @@ def check_structure(robot: Robot, target: str) -> None:
 def _out_checker(out_dir: Path, force: bool, inputs: list[Path]) -> Callable[[], None]:
     """A check that ``out_dir`` may be replaced whole: missing, empty, an earlier preview
     and nothing else, or anything (not precious, not holding an input) with ``force``."""
-    from sensorkit.atomic import check_replaceable
+    from sensorkit.base.atomic import check_replaceable
     from sensorkit.render.report import is_preview
 
     def check() -> None:
@@ -916,7 +916,7 @@ def render_preview(
         raise UsageError(msg)
     check_budget(robot, sensors, max_pixels=max_pixels, max_rays=max_rays)
     check_structure(robot, target)
-    from sensorkit.engine import Options
+    from sensorkit.lint.engine import Options
 
     Options(target=target, select=tuple(select), ignore=tuple(ignore))  # unknown rules: exit 2
     positions = joint_positions(robot, dict(joints or {}))
@@ -969,7 +969,7 @@ def render_preview(
         cameras = any(s.is_camera and s.cameras for s in robot.sensors if _wanted(s, sensors))
         world_scene = default_scene(_reach(robot_shapes, poses), textured=cameras)
 
-    from sensorkit.atomic import staged_folder
+    from sensorkit.base.atomic import staged_folder
 
     check_out = _out_checker(out_dir, force, [path] if scene is None else [path, scene])
     check_out()  # before pybullet starts; again under the folder lock
@@ -1154,10 +1154,10 @@ def _robot_figures(
     notes: list[str],
 ) -> list[Figure]:
     """The robot close up with every sensor's mount, and each stereo pair side by side."""
-    from sensorkit.errors import SensorkitError
+    from sensorkit.base.errors import SensorkitError
+    from sensorkit.describe.sensorinfo import describe
     from sensorkit.render.pictures import Mount, closeup_figure, stereo_figure
     from sensorkit.render.png import read_png
-    from sensorkit.sensorinfo import describe
 
     mounts = []
     for p in previews:

@@ -14,7 +14,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from sensorkit import __version__
-from sensorkit.atomic import write_text
+from sensorkit.base.atomic import write_text
 
 if TYPE_CHECKING:
     from pathlib import Path

@@ -29,7 +29,7 @@ from typing import IO, Any
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.errors import InputError
+from sensorkit.base.errors import InputError
 from sensorkit.model.transforms_np import Mat
 from sensorkit.render.scene import GROUND, Scene, Shape, box_mesh
 from sensorkit.render.urdf_out import UrdfPart

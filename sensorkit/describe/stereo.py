@@ -1,6 +1,6 @@
 """Stereo pairs: which two cameras of a robot see as one rig, and how they sit.
 
-:func:`stereo_pairs` finds the pairs among the cameras :func:`sensorkit.sensorinfo.describe`
+:func:`stereo_pairs` finds the pairs among the cameras :func:`sensorkit.describe.sensorinfo.describe`
 already modelled (``RobotInfo.stereo_pairs``); the exporters write each pair's Kalibr
 camchain, ORB-SLAM3 stereo settings and camera_info files from it. Three shapes are
 recognised, each with the right eye at positive x in the left eye's optical frame:
@@ -37,8 +37,8 @@ import numpy as np
 from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
 
 if TYPE_CHECKING:
+    from sensorkit.describe.sensorinfo import CameraView, RobotInfo
     from sensorkit.model.robot import Robot
-    from sensorkit.sensorinfo import CameraView, RobotInfo
 
 __all__ = ["StereoPair", "T_world_optical", "stereo_pairs"]
 

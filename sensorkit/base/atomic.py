@@ -15,7 +15,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from sensorkit.errors import UsageError, WriteFailed
+from sensorkit.base.errors import UsageError, WriteFailed
 
 __all__ = [
     "check_editable",

@@ -6,9 +6,9 @@ from collections import defaultdict
 from typing import Any
 
 from sensorkit import __version__
-from sensorkit.engine import Report
-from sensorkit.findings import Finding, Severity
-from sensorkit.rules import RULES
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.lint.engine import Report
+from sensorkit.lint.rules import RULES
 
 FORMATS = ("text", "json", "sarif", "github")
 HOME = "https://github.com/sensorkit/sensorkit"

@@ -6,17 +6,17 @@ import math
 from collections import defaultdict
 from collections.abc import Iterator
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.limits import (
     PLAUSIBLE_CAMERA_PIXELS,
     PLAUSIBLE_LIDAR_RAYS,
     PROTOBUF_MAX_BYTES,
     frame_bytes,
 )
+from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.robot import local
 from sensorkit.model.sensors import CameraSpec, LidarSpec, Noise, Sensor
 from sensorkit.model.targets import is_gz
-from sensorkit.rules.base import Context, rule
 
 # sdformat's <image><format> values and the gz-rendering spellings it also accepts.
 IMAGE_FORMATS = {
@@ -58,7 +58,7 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
         ref = block.reference
         if ref is None or ref in robot.link_map or ref in robot.joint_map:
             continue
-        from sensorkit.suggest import closest
+        from sensorkit.base.suggest import closest
 
         close = closest(ref, [*robot.link_map, *robot.joint_map])
         has_sensor = any(s.block is block.element for s in robot.sensors)

@@ -16,13 +16,13 @@ the render preview compares against), without pybullet or any file written:
 - :func:`body_frame`: the x-forward link at a camera's pose (LaserScans built from a
   depth image are stamped with it, never with the optical frame).
 - :func:`describe`: all of the above for every sensor, as :class:`RobotInfo`, with its
-  stereo pairs (:mod:`sensorkit.stereo`).
+  stereo pairs (:mod:`sensorkit.describe.stereo`).
 
 ``sensorkit.exporters.robot`` turns a :class:`RobotInfo` into the ``intrinsics`` and
 ``export`` commands' documents.
 
-Errors are :class:`~sensorkit.errors.UsageError` (a bad request) or
-:class:`~sensorkit.errors.InputError` (a robot that cannot be read); a camera or lidar
+Errors are :class:`~sensorkit.base.errors.UsageError` (a bad request) or
+:class:`~sensorkit.base.errors.InputError` (a robot that cannot be read); a camera or lidar
 whose numbers cannot exist is kept with its ``error`` so that the other sensors still
 export.
 """
@@ -35,8 +35,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, get_args
 
-from sensorkit.errors import InputError, UsageError
-from sensorkit.intrinsics import (
+from sensorkit.base.errors import InputError, UsageError
+from sensorkit.describe.intrinsics import (
     Convention,
     Intrinsics,
     InvalidValue,
@@ -46,12 +46,12 @@ from sensorkit.intrinsics import (
 )
 
 if TYPE_CHECKING:
+    from sensorkit.describe.stereo import StereoPair
     from sensorkit.exporters.bridge import BridgeEntry
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
     from sensorkit.model.transforms_np import Mat
-    from sensorkit.stereo import StereoPair
 
 __all__ = [
     "LIDAR_DEFAULTS",
@@ -319,8 +319,8 @@ def _abs(topic: str) -> str:
 
 
 def _ros2_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
+    from sensorkit.lint.rules.plugins import resolved_topics
     from sensorkit.model.frames import ros_plugin
-    from sensorkit.rules.plugins import resolved_topics
 
     plugin = ros_plugin(sensor)
     if plugin is None:
@@ -552,7 +552,7 @@ class RobotInfo:
     target_reason: str
     convention: Convention
     sensors: list[SensorInfo]
-    stereo_pairs: list[StereoPair] = field(default_factory=list)  # see sensorkit.stereo
+    stereo_pairs: list[StereoPair] = field(default_factory=list)  # see sensorkit.describe.stereo
 
     @property
     def cameras(self) -> list[CameraView]:
@@ -699,7 +699,7 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
                 except InvalidValue as exc:
                     info.scan_error = str(exc)
         infos.append(info)
-    from sensorkit.stereo import stereo_pairs
+    from sensorkit.describe.stereo import stereo_pairs
 
     described = RobotInfo(robot, chosen, why, conv, infos)
     described.stereo_pairs = stereo_pairs(described)

@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from sensorkit.errors import UsageError
-from sensorkit.record import FACTORY, Record
+from sensorkit.base.errors import UsageError
+from sensorkit.base.record import FACTORY, Record
 
 KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterator
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.lint.rules.base import Context, declare, rule
 from sensorkit.model.robot import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN, local
-from sensorkit.rules.base import Context, declare, rule
 
 declare("SK101", "error", "XML is well-formed; report file:line:column", "all parsers")
 declare(

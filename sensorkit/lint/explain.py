@@ -75,7 +75,7 @@ EXAMPLES: dict[str, Example] = {
 def explain(rule_id: str) -> str:
     """The text of ``sensorkit rules ID``."""
     from sensorkit.fix import fixable
-    from sensorkit.rules import RULES
+    from sensorkit.lint.rules import RULES
 
     info = RULES[rule_id]
     fix = fixable(rule_id)

@@ -2,7 +2,7 @@
 
 Pure math: no I/O, no printing, no global state. Every function validates its inputs
 and raises :class:`InvalidValue` (a :class:`ValueError` and a
-:class:`~sensorkit.errors.UsageError`) with a message naming the offending value.
+:class:`~sensorkit.base.errors.UsageError`) with a message naming the offending value.
 
 Three conventions are modelled (see ``camera_intrinsics`` for the sources):
 
@@ -26,7 +26,7 @@ from typing import Literal, get_args
 import numpy as np
 import numpy.typing as npt
 
-from sensorkit.errors import UsageError
+from sensorkit.base.errors import UsageError
 
 __all__ = [
     "Convention",

@@ -6,18 +6,18 @@ import math
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
-from sensorkit.findings import Finding, Severity, SourceRef
+from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.knowledge.gazebo_sim import (
     GZ_FRAMED_KINDS,
     GZ_NAVSAT_TYPES,
     GZ_SENSOR_POSE_PARAM,
     GZ_UNSUPPORTED_SENSOR_TYPES,
 )
+from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.robot import Joint, Robot
 from sensorkit.model.targets import is_gz
-from sensorkit.rules.base import Context, rule
 
 if TYPE_CHECKING:
     from sensorkit.model.sensors import Sensor
@@ -206,7 +206,7 @@ WORLD_FRAMES = frozenset({"world", "map", "odom"})
 def _missing_frame(
     ctx: Context, frame: str, what: str, how: str | None, where: SourceRef, sensor: str | None
 ) -> Finding:
-    from sensorkit.suggest import closest
+    from sensorkit.base.suggest import closest
 
     close = closest(frame, ctx.robot.link_map)
     return ctx.finding(

@@ -11,8 +11,8 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from sensorkit.findings import Finding, Severity, SourceRef
-from sensorkit.record import FACTORY, FrozenRecord, Record
+from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.base.record import FACTORY, FrozenRecord, Record
 
 _set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 

@@ -14,8 +14,8 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from sensorkit.findings import Finding
-from sensorkit.record import FACTORY, Record
+from sensorkit.base.findings import Finding
+from sensorkit.base.record import FACTORY, Record
 
 # Compiled on first use (by re's cache): only files that mention sensorkit are searched.
 _COMMENT = r"<!--(.*?)-->"

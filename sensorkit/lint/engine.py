@@ -14,8 +14,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from sensorkit.errors import InputError, UsageError
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.errors import InputError, UsageError
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.base.record import FACTORY, Record
+from sensorkit.lint.rules import RULES, Context, MissingFile, RuleInfo
+from sensorkit.lint.rules.base import Bridge
+from sensorkit.lint.suppress import collect
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.uris import resolve_uri
@@ -24,10 +28,6 @@ from sensorkit.model.frames import sensor_frames
 from sensorkit.model.robot import Link, Robot
 from sensorkit.model.sdf import Conversion, convert
 from sensorkit.model.targets import TARGETS, detect_target, is_gz
-from sensorkit.record import FACTORY, Record
-from sensorkit.rules import RULES, Context, MissingFile, RuleInfo
-from sensorkit.rules.base import Bridge
-from sensorkit.suppress import collect
 
 if TYPE_CHECKING:
     from sensorkit.loading.bridge import BridgeTopic
@@ -452,12 +452,12 @@ def validate_paths(
     """Validate several files; reports in input order, each holding findings only.
 
     ``jobs`` > 1 validates one file per task in that many worker processes
-    (``sensorkit.fleet.run_pool``); the result is the same as with ``jobs=1``.
+    (``sensorkit.lint.fleet.run_pool``); the result is the same as with ``jobs=1``.
     ``keep`` takes the last file's model (see :func:`validate_one`).
     """
     options = options or Options()
     if jobs > 1 and len(paths) > 1:
-        from sensorkit.fleet import run_pool
+        from sensorkit.lint.fleet import run_pool
 
         return Report(run_pool(paths, options, jobs))
     last = len(paths) - 1

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from multiprocessing.connection import Connection
     from multiprocessing.process import BaseProcess
 
-    from sensorkit.engine import FileReport, Options
+    from sensorkit.lint.engine import FileReport, Options
 
 SKIP_DIRS = frozenset({"build", "install", "log"})
 IGNORE_MARKER = "COLCON_IGNORE"
@@ -113,7 +113,7 @@ def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     with contextlib.suppress(OSError):  # stopping the group stops xacro's children too
         os.setpgid(0, 0)
-    from sensorkit.engine import validate_one
+    from sensorkit.lint.engine import validate_one
 
     try:
         while True:
@@ -174,7 +174,7 @@ def _stop(proc: BaseProcess) -> None:
 
 
 def _crashed(path: Path, proc: BaseProcess) -> FileReport:
-    from sensorkit.engine import FileReport
+    from sensorkit.lint.engine import FileReport
     from sensorkit.loading.document import display_path
 
     code = proc.exitcode

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 
 from lxml import etree
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.base.record import Record
 from sensorkit.knowledge.gazebo_ros import (
     RAY_OUTPUT_TYPES,
     ROS1_ONLY,
@@ -22,12 +23,11 @@ from sensorkit.knowledge.gazebo_sim import (
     GZ_NAVSAT_TYPES,
     GZ_UNSUPPORTED_SENSOR_TYPES,
 )
+from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.robot import child, children, local
 from sensorkit.model.sensors import Plugin, Sensor, all_plugins
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
-from sensorkit.record import Record
-from sensorkit.rules.base import Context, rule
 
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
 
@@ -665,8 +665,8 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
         return
-    from sensorkit.findings import SourceRef
-    from sensorkit.suggest import closest
+    from sensorkit.base.findings import SourceRef
+    from sensorkit.base.suggest import closest
 
     explicit: set[str] = set()
     scoped: list[str] = []
@@ -798,8 +798,8 @@ def useless_remapping(ctx: Context) -> Iterator[Finding]:
 def unknown_plugin(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return  # Gazebo Sim sensors stamp and publish by themselves, whatever plugin rides along
+    from sensorkit.base.suggest import closest
     from sensorkit.knowledge.gazebo_ros import ROS1_LIBRARIES, ROS2_LIBRARIES
-    from sensorkit.suggest import closest
 
     for s in ctx.robot.sensors:
         fr = ctx.frames_of(s)

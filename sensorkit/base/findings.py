@@ -6,7 +6,7 @@ import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from sensorkit.record import FACTORY, FrozenRecord
+from sensorkit.base.record import FACTORY, FrozenRecord
 
 _set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 

@@ -2,7 +2,7 @@
 
 Every topic with its resolved name (namespace and remappings applied), ROS message type,
 frame_id, image encoding and rate. The names, frames and cameras come from
-:func:`sensorkit.sensorinfo.describe`, the same source ``validate``, ``export`` and the
+:func:`sensorkit.describe.sensorinfo.describe`, the same source ``validate``, ``export`` and the
 bridge generator use; message types and encodings from
 :mod:`sensorkit.knowledge.messages`.
 
@@ -26,11 +26,11 @@ from typing import TYPE_CHECKING, Any
 from sensorkit.knowledge import messages as msgs
 
 if TYPE_CHECKING:
+    from sensorkit.describe.sensorinfo import CameraView, RobotInfo, SensorInfo
     from sensorkit.exporters.bridge import BridgeEntry
     from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Plugin
-    from sensorkit.sensorinfo import CameraView, RobotInfo, SensorInfo
 
 __all__ = [
     "BridgeConfig",
@@ -183,7 +183,7 @@ def load_bridge(robot: Robot, target: str, files: Sequence[str] = ()) -> BridgeC
     Raises:
         UsageError: a file that is not a ros_gz_bridge configuration.
     """
-    from sensorkit.engine import Options, load_bridges
+    from sensorkit.lint.engine import Options, load_bridges
 
     found = load_bridges(robot, Options(target=target, bridges=tuple(files)))
     return BridgeConfig(list(found.files), list(found.topics))
@@ -287,8 +287,8 @@ def _classic_topics(info: SensorInfo, target: str, notes: list[str]) -> list[Top
 
 def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str | None:
     """What a gz sensor without ``<topic>`` publishes on: its scoped name plus the suffix
-    gz-sim gives its kind (see ``sensorkit.rules.plugins.GZ_DEFAULT_SUFFIX``)."""
-    from sensorkit.rules.plugins import GZ_DEFAULT_SUFFIX
+    gz-sim gives its kind (see ``sensorkit.lint.rules.plugins.GZ_DEFAULT_SUFFIX``)."""
+    from sensorkit.lint.rules.plugins import GZ_DEFAULT_SUFFIX
 
     kind = info.sensor.kind
     if kind not in GZ_DEFAULT_SUFFIX:
@@ -307,9 +307,9 @@ def _gz_topics(
     survivor: str | None,
     notes: list[str],
 ) -> list[Topic]:
+    from sensorkit.describe.sensorinfo import gz_roles
     from sensorkit.generate.bridge import published_entries
     from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
-    from sensorkit.sensorinfo import gz_roles
 
     sensor = info.sensor
     if sensor.type in GZ_UNSUPPORTED_SENSOR_TYPES:

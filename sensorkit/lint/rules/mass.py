@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
 from sensorkit.model.robot import Inertial
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
-from sensorkit.rules.base import Context, rule
 
 # gz-math MassMatrix3 compares with machine epsilon scaled by a tolerance of 10.
 _EPS = 10 * 2.220446049250313e-16

@@ -5,9 +5,9 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator
 
-from sensorkit.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.robot import JOINT_TYPES
-from sensorkit.rules.base import Context, rule
 
 
 @rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
@@ -61,7 +61,7 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
                     fix=f'add <{role} link="LINK"/> to the joint',
                 )
             elif name not in links:
-                from sensorkit.suggest import closest
+                from sensorkit.base.suggest import closest
 
                 close = closest(name, links)
                 yield ctx.finding(
