@@ -6,10 +6,6 @@ import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from sensorkit.base.record import FACTORY, FrozenRecord
-
-_set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
-
 
 class Severity(enum.IntEnum):
     """Ordered so that ``severity >= fail_on`` reads naturally."""
@@ -31,16 +27,12 @@ class Severity(enum.IntEnum):
             raise ValueError(msg) from None
 
 
-@dataclass(init=False, frozen=True, repr=False, eq=False)
-class SourceRef(FrozenRecord):
+@dataclass(frozen=True)
+class SourceRef:
     """Where an element came from: a file and a 1-based line (None when unknown)."""
 
     file: str | None
     line: int | None = None
-
-    def __init__(self, file: str | None, line: int | None = None) -> None:
-        _set(self, "file", file)
-        _set(self, "line", line)
 
     def __str__(self) -> str:
         if self.file is None:
@@ -48,8 +40,8 @@ class SourceRef(FrozenRecord):
         return f"{self.file}:{self.line}" if self.line else self.file
 
 
-@dataclass(init=False, frozen=True, repr=False, eq=False)
-class Finding(FrozenRecord):
+@dataclass(frozen=True)
+class Finding:
     """One problem found in a robot description.
 
     ``rule`` is the public id (``SK502``); ``fix`` is a sentence or a replacement the
@@ -66,30 +58,6 @@ class Finding(FrozenRecord):
     frame: str | None = None
     fix: str | None = None
     column: int | None = None
-
-    def __init__(
-        self,
-        rule: str,
-        severity: Severity,
-        message: str,
-        source: SourceRef = FACTORY,
-        link: str | None = None,
-        joint: str | None = None,
-        sensor: str | None = None,
-        frame: str | None = None,
-        fix: str | None = None,
-        column: int | None = None,
-    ) -> None:
-        _set(self, "rule", rule)
-        _set(self, "severity", severity)
-        _set(self, "message", message)
-        _set(self, "source", SourceRef(None) if source is FACTORY else source)
-        _set(self, "link", link)
-        _set(self, "joint", joint)
-        _set(self, "sensor", sensor)
-        _set(self, "frame", frame)
-        _set(self, "fix", fix)
-        _set(self, "column", column)
 
     @property
     def file(self) -> str | None:

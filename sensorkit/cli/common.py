@@ -14,7 +14,6 @@ from typing import Annotated, Any, TypeVar
 import typer
 
 from sensorkit.base.errors import SensorkitError
-from sensorkit.base.record import FACTORY, Record
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -115,8 +114,8 @@ def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     return Untrusted(env=frozenset(env or ()))
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Settings(Record):
+@dataclass
+class Settings:
     """What a command runs with: its flags, else the settings file, else the defaults."""
 
     target: str
@@ -125,22 +124,6 @@ class Settings(Record):
     untrusted: Any  # sensorkit.loading.untrusted.Untrusted | None
     config: Any  # sensorkit.lint.config.Config
     used: list[str] = field(default_factory=list)
-
-    def __init__(
-        self,
-        target: str,
-        package_paths: tuple[str, ...],
-        args: dict[str, str],
-        untrusted: Any,
-        config: Any,
-        used: list[str] = FACTORY,
-    ) -> None:
-        self.target = target
-        self.package_paths = package_paths
-        self.args = args
-        self.untrusted = untrusted
-        self.config = config
-        self.used = [] if used is FACTORY else used
 
     def origin(self, key: str) -> str:
         """``--target`` or ``sensorkit.toml``: where the value of ``key`` came from."""

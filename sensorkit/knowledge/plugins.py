@@ -11,10 +11,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from sensorkit.base.record import FrozenRecord
-
-_set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
-
 # Frame defaults (``PluginSpec.frame_default``):
 LINK = "link"  # the <gazebo reference> link, after fixed-joint lumping when ``lumped``
 WORLD = "world"  # the literal frame "world"
@@ -23,8 +19,8 @@ PARAM = "param"  # the default is another parameter's value (``frame_default_par
 LITERAL = "literal"  # a fixed string (``frame_default_value``)
 
 
-@dataclass(init=False, frozen=True, repr=False, eq=False)
-class PluginSpec(FrozenRecord):
+@dataclass(frozen=True)
+class PluginSpec:
     """What one plugin family does, as its source code says."""
 
     family: str  # a readable name: "gazebo_ros camera (ROS 2)"
@@ -56,44 +52,6 @@ class PluginSpec(FrozenRecord):
     # :func:`generation_params`, used by sensorkit.model.targets.ros1_evidence).
     params: frozenset[str] = frozenset()
     source: str = ""  # repo@path:line (branch) it was read from
-
-    def __init__(
-        self,
-        family: str,
-        libraries: tuple[str, ...],
-        ros: str,
-        level: str,
-        sensor_types: frozenset[str] = frozenset(),
-        frame_params: tuple[str, ...] = (),
-        frame_default: str = 'none',
-        frame_default_param: str | None = None,
-        frame_default_value: str | None = None,
-        lumped: bool = False,
-        world_frame_ok: bool = False,
-        topics: tuple[tuple[str | None, str | None], ...] = (),
-        topic_ns_param: str | None = None,
-        topic_ns_default: str | None = None,
-        sensor_params: tuple[str, ...] = (),
-        params: frozenset[str] = frozenset(),
-        source: str = '',
-    ) -> None:
-        _set(self, "family", family)
-        _set(self, "libraries", libraries)
-        _set(self, "ros", ros)
-        _set(self, "level", level)
-        _set(self, "sensor_types", sensor_types)
-        _set(self, "frame_params", frame_params)
-        _set(self, "frame_default", frame_default)
-        _set(self, "frame_default_param", frame_default_param)
-        _set(self, "frame_default_value", frame_default_value)
-        _set(self, "lumped", lumped)
-        _set(self, "world_frame_ok", world_frame_ok)
-        _set(self, "topics", topics)
-        _set(self, "topic_ns_param", topic_ns_param)
-        _set(self, "topic_ns_default", topic_ns_default)
-        _set(self, "sensor_params", sensor_params)
-        _set(self, "params", params)
-        _set(self, "source", source)
 
 
 # The parameters each velodyne_gazebo_plugins generation reads (PluginSpec.params).

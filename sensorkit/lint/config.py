@@ -23,13 +23,12 @@ from pathlib import Path
 from typing import Any
 
 from sensorkit.base.errors import UsageError
-from sensorkit.base.record import FACTORY, Record
 
 KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Config(Record):
+@dataclass
+class Config:
     """Settings read from a configuration file (``path``; None when there is none)."""
 
     path: Path | None = None
@@ -39,24 +38,6 @@ class Config(Record):
     fail_on: str | None = None
     package_paths: list[str] = field(default_factory=list)
     args: dict[str, str] = field(default_factory=dict)
-
-    def __init__(
-        self,
-        path: Path | None = None,
-        target: str | None = None,
-        select: list[str] = FACTORY,
-        ignore: list[str] = FACTORY,
-        fail_on: str | None = None,
-        package_paths: list[str] = FACTORY,
-        args: dict[str, str] = FACTORY,
-    ) -> None:
-        self.path = path
-        self.target = target
-        self.select = [] if select is FACTORY else select
-        self.ignore = [] if ignore is FACTORY else ignore
-        self.fail_on = fail_on
-        self.package_paths = [] if package_paths is FACTORY else package_paths
-        self.args = {} if args is FACTORY else args
 
 
     def describe(self, used: Iterable[str]) -> str | None:

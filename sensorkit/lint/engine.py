@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 
 from sensorkit.base.errors import InputError, UsageError
 from sensorkit.base.findings import Finding, Severity
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.lint.rules import RULES, Context, MissingFile, RuleInfo
 from sensorkit.lint.rules.base import Bridge
 from sensorkit.lint.suppress import collect
@@ -34,8 +33,8 @@ if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Options(Record):
+@dataclass
+class Options:
     """What to check and how. ``select``/``ignore`` take ids or prefixes (``SK5``)."""
 
     target: str = "auto"
@@ -53,35 +52,6 @@ class Options(Record):
     # Bridge entries not on disk yet, read as if in the first bridge file: add-* checks
     # a sensor together with the entries the same add appends to the package's bridge.
     bridge_pending: tuple[BridgeTopic, ...] = ()
-
-    def __init__(
-        self,
-        target: str = 'auto',
-        select: tuple[str, ...] = (),
-        ignore: tuple[str, ...] = (),
-        fail_on: Severity | None = Severity.ERROR,
-        args: dict[str, str] = FACTORY,
-        package_paths: tuple[str, ...] = (),
-        timeout: float = 60.0,
-        bridges: tuple[str, ...] = (),
-        untrusted: Untrusted | None = None,
-        target_origin: str = '--target',
-        overlay: dict[str, bytes] = FACTORY,
-        bridge_pending: tuple[BridgeTopic, ...] = (),
-    ) -> None:
-        self.target = target
-        self.select = select
-        self.ignore = ignore
-        self.fail_on = fail_on
-        self.args = {} if args is FACTORY else args
-        self.package_paths = package_paths
-        self.timeout = timeout
-        self.bridges = bridges
-        self.untrusted = untrusted
-        self.target_origin = target_origin
-        self.overlay = {} if overlay is FACTORY else overlay
-        self.bridge_pending = bridge_pending
-        self.__post_init__()
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -101,8 +71,8 @@ class Options(Record):
         return not any(rule_id.startswith(i.upper()) for i in self.ignore)
 
 
-@dataclass(init=False, repr=False, eq=False)
-class FileReport(Record):
+@dataclass
+class FileReport:
     """Findings for one file, with what was validated."""
 
     path: Path
@@ -116,30 +86,6 @@ class FileReport(Record):
     sensors_checked: int = 0  # kept when ``robot`` is dropped (validate_paths)
     macro_only: bool = False  # a xacro that only defines macros/properties: nothing to check
 
-    def __init__(
-        self,
-        path: Path,
-        findings: list[Finding] = FACTORY,
-        target: str | None = None,
-        target_reason: str = '',
-        robot: Robot | None = None,
-        error: str | None = None,
-        internal_errors: list[str] = FACTORY,
-        suppressed: int = 0,
-        sensors_checked: int = 0,
-        macro_only: bool = False,
-    ) -> None:
-        self.path = path
-        self.findings = [] if findings is FACTORY else findings
-        self.target = target
-        self.target_reason = target_reason
-        self.robot = robot
-        self.error = error
-        self.internal_errors = [] if internal_errors is FACTORY else internal_errors
-        self.suppressed = suppressed
-        self.sensors_checked = sensors_checked
-        self.macro_only = macro_only
-
     @property
     def display(self) -> str:
         return display_path(self.path)
@@ -149,14 +95,11 @@ class FileReport(Record):
         return len(self.robot.sensors) if self.robot is not None else self.sensors_checked
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Report(Record):
+@dataclass
+class Report:
     """The reports of the files one run validated, in input order."""
 
     files: list[FileReport] = field(default_factory=list)
-
-    def __init__(self, files: list[FileReport] = FACTORY) -> None:
-        self.files = [] if files is FACTORY else files
 
     @property
     def findings(self) -> list[Finding]:
@@ -249,8 +192,8 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
     return out
 
 
-@dataclass(init=False, repr=False, eq=False)
-class RuleRun(Record):
+@dataclass
+class RuleRun:
     """What ``check_robot`` worked out for one robot, kept so that a re-check after a small
     addition (``sensorkit.edit.check``) can reuse it instead of starting over."""
 
@@ -261,24 +204,6 @@ class RuleRun(Record):
     package_findings: list[Finding]  # SK103 from mesh URIs
     by_rule: dict[str, list[Finding]]  # each selected rule's findings, in rule order
     internal_errors: list[str]
-
-    def __init__(
-        self,
-        ctx: Context,
-        reason: str,
-        resolver: PackageResolver | None,
-        seen_packages: set[str],
-        package_findings: list[Finding],
-        by_rule: dict[str, list[Finding]],
-        internal_errors: list[str],
-    ) -> None:
-        self.ctx = ctx
-        self.reason = reason
-        self.resolver = resolver
-        self.seen_packages = seen_packages
-        self.package_findings = package_findings
-        self.by_rule = by_rule
-        self.internal_errors = internal_errors
 
     def findings(self) -> list[Finding]:
         return [*self.package_findings, *(f for fs in self.by_rule.values() for f in fs)]

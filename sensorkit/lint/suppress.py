@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sensorkit.base.findings import Finding
-from sensorkit.base.record import FACTORY, Record
 
 # Compiled on first use (by re's cache): only files that mention sensorkit are searched.
 _COMMENT = r"<!--(.*?)-->"
@@ -24,20 +23,12 @@ _ID = r"SK\d{3}"
 ALL = "*"
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Suppressions(Record):
+@dataclass
+class Suppressions:
     """The rules suppressed by line and by file."""
 
     by_line: dict[tuple[str, int], set[str]] = field(default_factory=dict)
     by_file: dict[str, set[str]] = field(default_factory=dict)
-
-    def __init__(
-        self,
-        by_line: dict[tuple[str, int], set[str]] = FACTORY,
-        by_file: dict[str, set[str]] = FACTORY,
-    ) -> None:
-        self.by_line = {} if by_line is FACTORY else by_line
-        self.by_file = {} if by_file is FACTORY else by_file
 
     def add_text(self, file: str, text: str) -> None:
         pos, pos_line = 0, 1  # count lines from the previous comment on: linear in the file

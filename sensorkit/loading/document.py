@@ -18,7 +18,6 @@ from lxml import etree
 
 from sensorkit.base.errors import InputError
 from sensorkit.base.findings import Finding, Severity, SourceRef
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
 
@@ -57,8 +56,8 @@ def strict_parser() -> etree.XMLParser:
     )
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Document(Record):
+@dataclass
+class Document:
     """An XML robot description with a way back to the file and line of each element."""
 
     path: Path
@@ -69,24 +68,6 @@ class Document(Record):
 
     _display: str | None = field(default=None, repr=False)
     _file_display: dict[int, str] = field(default_factory=dict, repr=False)
-
-    def __init__(
-        self,
-        path: Path,
-        root: etree._Element,
-        files: list[str] = FACTORY,
-        expanded: bool = False,
-        includes: list[str] = FACTORY,
-        _display: str | None = None,
-        _file_display: dict[int, str] = FACTORY,
-    ) -> None:
-        self.path = path
-        self.root = root
-        self.files = [] if files is FACTORY else files
-        self.expanded = expanded
-        self.includes = [] if includes is FACTORY else includes
-        self._display = _display
-        self._file_display = {} if _file_display is FACTORY else _file_display
 
     @property
     def display(self) -> str:
@@ -120,16 +101,12 @@ class Document(Record):
         return list(self.files) or [str(self.path)]
 
 
-@dataclass(init=False, repr=False, eq=False)
-class LoadResult(Record):
+@dataclass
+class LoadResult:
     """A document, or the findings that say why there is none (SK101..SK103)."""
 
     document: Document | None
     findings: list[Finding] = field(default_factory=list)
-
-    def __init__(self, document: Document | None, findings: list[Finding] = FACTORY) -> None:
-        self.document = document
-        self.findings = [] if findings is FACTORY else findings
 
 
 def looks_like_xacro(path: Path, data: bytes) -> bool:

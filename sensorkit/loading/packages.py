@@ -20,8 +20,6 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from sensorkit.base.record import FACTORY, Record
-
 _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use
 MAX_SCAN_DIRS = 5000
@@ -106,8 +104,8 @@ def workspace_roots(path: Path) -> list[Path]:
     return roots
 
 
-@dataclass(init=False, repr=False, eq=False)
-class PackageResolver(Record):
+@dataclass
+class PackageResolver:
     """Maps package names to folders; records every place it searched."""
 
     explicit: dict[str, Path] = field(default_factory=dict)
@@ -117,24 +115,6 @@ class PackageResolver(Record):
     frozen_env: dict[str, str] | None = None
     _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
     _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
-
-    def __init__(
-        self,
-        explicit: dict[str, Path] = FACTORY,
-        scan_dirs: list[Path] = FACTORY,
-        use_environment: bool = True,
-        workspace_of: Path | None = None,
-        frozen_env: dict[str, str] | None = None,
-        _cache: dict[str, Path | None] = FACTORY,
-        _scanned: dict[Path, dict[str, Path]] = FACTORY,
-    ) -> None:
-        self.explicit = {} if explicit is FACTORY else explicit
-        self.scan_dirs = [] if scan_dirs is FACTORY else scan_dirs
-        self.use_environment = use_environment
-        self.workspace_of = workspace_of
-        self.frozen_env = frozen_env
-        self._cache = {} if _cache is FACTORY else _cache
-        self._scanned = {} if _scanned is FACTORY else _scanned
 
     @classmethod
     def from_options(

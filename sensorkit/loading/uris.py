@@ -5,29 +5,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from sensorkit.base.record import FrozenRecord
 from sensorkit.loading.packages import PackageResolver
 
-_set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 
-
-@dataclass(init=False, frozen=True, repr=False, eq=False)
-class UriTarget(FrozenRecord):
+@dataclass(frozen=True)
+class UriTarget:
     """Where a reference points. ``path`` is None when it cannot be resolved here."""
 
     path: Path | None
     why: str = ""  # why not, when path is None
     missing_package: str | None = None
-
-    def __init__(
-        self,
-        path: Path | None,
-        why: str = '',
-        missing_package: str | None = None,
-    ) -> None:
-        _set(self, "path", path)
-        _set(self, "why", why)
-        _set(self, "missing_package", missing_package)
 
 
 def resolve_uri(uri: str, base: Path, resolver: PackageResolver) -> UriTarget:

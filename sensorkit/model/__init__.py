@@ -8,7 +8,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sensorkit.base.findings import Finding
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading import PackageResolver, load_description
 from sensorkit.model.robot import Robot, build_robot
 
@@ -16,16 +15,12 @@ if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Loaded(Record):
+@dataclass
+class Loaded:
     """A robot, or the findings (SK101..SK103) that say why it could not be read."""
 
     robot: Robot | None
     findings: list[Finding] = field(default_factory=list)
-
-    def __init__(self, robot: Robot | None, findings: list[Finding] = FACTORY) -> None:
-        self.robot = robot
-        self.findings = [] if findings is FACTORY else findings
 
 
 def load_robot(

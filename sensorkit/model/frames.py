@@ -13,7 +13,6 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from sensorkit.base.record import Record
 from sensorkit.knowledge import plugins as known
 from sensorkit.model.targets import is_gz
 
@@ -42,8 +41,8 @@ GZ_DEPRECATED_FRAME_TAGS: dict[str, tuple[str, ...]] = {"jetty": ("gz_frame_id",
 GZ_OPTICAL_FRAME_ID = ("fortress", "harmonic")
 
 
-@dataclass(init=False, repr=False, eq=False)
-class SensorFrames(Record):
+@dataclass
+class SensorFrames:
     """A sensor's render pose and published frame under one target."""
 
     sensor: Sensor
@@ -56,30 +55,6 @@ class SensorFrames(Record):
     image_frame: str | None = None  # gz <optical_frame_id> overrides for image data
     image_how: str | None = None
     spec: PluginSpec | None = None  # what sensorkit knows of ``plugin`` (None: unknown)
-
-    def __init__(
-        self,
-        sensor: Sensor,
-        link: str | None,
-        T_world_render: Mat | None,
-        published: str | None,
-        how: str,
-        is_default: bool,
-        plugin: Plugin | None,
-        image_frame: str | None = None,
-        image_how: str | None = None,
-        spec: PluginSpec | None = None,
-    ) -> None:
-        self.sensor = sensor
-        self.link = link
-        self.T_world_render = T_world_render
-        self.published = published
-        self.how = how
-        self.is_default = is_default
-        self.plugin = plugin
-        self.image_frame = image_frame
-        self.image_how = image_how
-        self.spec = spec
 
     @property
     def unknown(self) -> bool:

@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING, Any
 from lxml import etree
 
 from sensorkit.base.findings import SourceRef
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.loading.document import Document
 from sensorkit.loading.marks import LOC_ATTR
 
@@ -169,8 +168,8 @@ def text_of(el: etree._Element | None, *path: str) -> str | None:
 _ZERO: Vec3 = (0.0, 0.0, 0.0)
 
 
-@dataclass(init=False, slots=True, repr=False, eq=False)
-class Origin(Record):
+@dataclass(slots=True)
+class Origin:
     """A URDF ``<origin>``: xyz and rpy, zeros when absent; notes when unreadable.
 
     Read-only once made: the model builder hands one Origin to every element whose
@@ -183,21 +182,6 @@ class Origin(Record):
     rpy_text: str | None = None
     source: SourceRef | None = None
     _pose: Pose | None = field(default=None, init=False, repr=False, compare=False)
-
-    def __init__(
-        self,
-        xyz: Vec3 = (0.0, 0.0, 0.0),
-        rpy: Vec3 = (0.0, 0.0, 0.0),
-        problems: tuple[str, ...] = (),
-        rpy_text: str | None = None,
-        source: SourceRef | None = None,
-    ) -> None:
-        self.xyz = xyz
-        self.rpy = rpy
-        self.problems = problems
-        self.rpy_text = rpy_text
-        self.source = source
-        self._pose = None
 
     @classmethod
     def read(cls, el: etree._Element | None, source: SourceRef | None = None) -> Origin:
@@ -269,8 +253,8 @@ class _Located:
         return self.doc.locate(self.element)
 
 
-@dataclass(init=False, slots=True, repr=False, eq=False)
-class Inertial(_Located, Record):
+@dataclass(slots=True)
+class Inertial(_Located):
     """A link's ``<inertial>``: mass, inertia and origin (None where unreadable; see problems).
 
     ``inertia`` and ``origin`` are shared by every inertial whose text reads the same: read
@@ -284,25 +268,9 @@ class Inertial(_Located, Record):
     doc: Document
     problems: tuple[str, ...] = ()
 
-    def __init__(
-        self,
-        mass: float | None,
-        inertia: dict[str, float | None],
-        origin: Origin,
-        element: etree._Element,
-        doc: Document,
-        problems: tuple[str, ...] = (),
-    ) -> None:
-        self.mass = mass
-        self.inertia = inertia
-        self.origin = origin
-        self.element = element
-        self.doc = doc
-        self.problems = problems
 
-
-@dataclass(init=False, slots=True, repr=False, eq=False)
-class Link(_Located, Record):
+@dataclass(slots=True)
+class Link(_Located):
     """A ``<link>``: its first inertial and the mesh files its visuals and collisions name."""
 
     name: str
@@ -310,20 +278,6 @@ class Link(_Located, Record):
     doc: Document
     inertial: Inertial | None = None
     meshes: tuple[tuple[str, SourceRef], ...] = ()
-
-    def __init__(
-        self,
-        name: str,
-        element: etree._Element,
-        doc: Document,
-        inertial: Inertial | None = None,
-        meshes: tuple[tuple[str, SourceRef], ...] = (),
-    ) -> None:
-        self.name = name
-        self.element = element
-        self.doc = doc
-        self.inertial = inertial
-        self.meshes = meshes
 
     @property
     def mass(self) -> float:
@@ -333,8 +287,8 @@ class Link(_Located, Record):
         return self.inertial.mass
 
 
-@dataclass(init=False, slots=True, repr=False, eq=False)
-class Joint(_Located, Record):
+@dataclass(slots=True)
+class Joint(_Located):
     """A ``<joint>`` as urdfdom reads it (the first of each child element counts)."""
 
     name: str
@@ -351,57 +305,15 @@ class Joint(_Located, Record):
     mimic: str | None = None
     has_mimic: bool = False
 
-    def __init__(
-        self,
-        name: str,
-        type: str,
-        parent: str | None,
-        child: str | None,
-        origin: Origin,
-        element: etree._Element,
-        doc: Document,
-        axis: Vec3 | None = None,
-        axis_problem: str | None = None,
-        limit: dict[str, float | None] | None = None,
-        limit_problems: tuple[str, ...] = (),
-        mimic: str | None = None,
-        has_mimic: bool = False,
-    ) -> None:
-        self.name = name
-        self.type = type
-        self.parent = parent
-        self.child = child
-        self.origin = origin
-        self.element = element
-        self.doc = doc
-        self.axis = axis
-        self.axis_problem = axis_problem
-        self.limit = limit
-        self.limit_problems = limit_problems
-        self.mimic = mimic
-        self.has_mimic = has_mimic
 
-
-@dataclass(init=False, slots=True, repr=False, eq=False)
-class Stray(Record):
+@dataclass(slots=True)
+class Stray:
     """Something urdfdom silently ignores: an unknown child element, or attribute if ``attr``."""
 
     element: etree._Element
     parent_tag: str
     attr: str | None
     link: str | None
-
-    def __init__(
-        self,
-        element: etree._Element,
-        parent_tag: str,
-        attr: str | None,
-        link: str | None,
-    ) -> None:
-        self.element = element
-        self.parent_tag = parent_tag
-        self.attr = attr
-        self.link = link
 
 
 def _check_attrs(el: etree._Element, tag: str, link: str | None, strays: list[Stray]) -> None:
@@ -432,22 +344,17 @@ def _stray_child(c: etree._Element, parent_tag: str, link: str | None, strays: l
         strays.append(Stray(c, parent_tag, None, link))
 
 
-@dataclass(init=False, repr=False, eq=False)
-class GazeboBlock(Record):
+@dataclass
+class GazeboBlock:
     """A ``<gazebo>`` extension; ``reference`` is None for model-level blocks."""
 
     reference: str | None
     element: etree._Element
     source: SourceRef
 
-    def __init__(self, reference: str | None, element: etree._Element, source: SourceRef) -> None:
-        self.reference = reference
-        self.element = element
-        self.source = source
 
-
-@dataclass(init=False, repr=False, eq=False)
-class Robot(Record):
+@dataclass
+class Robot:
     """The whole description, with lazy forward kinematics at zero joint positions."""
 
     name: str
@@ -467,42 +374,6 @@ class Robot(Record):
     _up: dict[str, tuple[str, int]] = field(default_factory=dict, repr=False)
     _roots: list[str] | None = field(default=None, repr=False)
     cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
-
-    def __init__(
-        self,
-        name: str,
-        document: Document,
-        links: list[Link] = FACTORY,
-        joints: list[Joint] = FACTORY,
-        gazebo: list[GazeboBlock] = FACTORY,
-        sensors: list[Sensor] = FACTORY,
-        model_plugins: list[Plugin] = FACTORY,
-        strays: list[Stray] = FACTORY,
-        link_map: dict[str, Link] = FACTORY,
-        joint_map: dict[str, Joint] = FACTORY,
-        parent_joint: dict[str, Joint] = FACTORY,
-        child_joints: dict[str, list[Joint]] = FACTORY,
-        _T_world: dict[str, Pose | None] = FACTORY,
-        _up: dict[str, tuple[str, int]] = FACTORY,
-        _roots: list[str] | None = None,
-        cache: dict[Any, Any] = FACTORY,
-    ) -> None:
-        self.name = name
-        self.document = document
-        self.links = [] if links is FACTORY else links
-        self.joints = [] if joints is FACTORY else joints
-        self.gazebo = [] if gazebo is FACTORY else gazebo
-        self.sensors = [] if sensors is FACTORY else sensors
-        self.model_plugins = [] if model_plugins is FACTORY else model_plugins
-        self.strays = [] if strays is FACTORY else strays
-        self.link_map = {} if link_map is FACTORY else link_map
-        self.joint_map = {} if joint_map is FACTORY else joint_map
-        self.parent_joint = {} if parent_joint is FACTORY else parent_joint
-        self.child_joints = {} if child_joints is FACTORY else child_joints
-        self._T_world = {} if _T_world is FACTORY else _T_world
-        self._up = {} if _up is FACTORY else _up
-        self._roots = _roots
-        self.cache = {} if cache is FACTORY else cache
 
     @property
     def macros_only(self) -> bool:

@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.model.robot import text_of
 
 if TYPE_CHECKING:
@@ -23,26 +22,14 @@ _TRUE = {"true", "1"}
 MASS_EPSILON = 1e-6  # sdformat compares the (lumped) mass with 0 by math::equal
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Conversion(Record):
+@dataclass
+class Conversion:
     """Result of the conversion as far as frames and masses go."""
 
     target_of: dict[str, str] = field(default_factory=dict)  # link -> surviving link
     mass_of: dict[str, float] = field(default_factory=dict)  # surviving link -> lumped mass
     dropped: dict[str, str] = field(default_factory=dict)  # link -> massless link that drops it
     preserved_joints: set[str] = field(default_factory=set)
-
-    def __init__(
-        self,
-        target_of: dict[str, str] = FACTORY,
-        mass_of: dict[str, float] = FACTORY,
-        dropped: dict[str, str] = FACTORY,
-        preserved_joints: set[str] = FACTORY,
-    ) -> None:
-        self.target_of = {} if target_of is FACTORY else target_of
-        self.mass_of = {} if mass_of is FACTORY else mass_of
-        self.dropped = {} if dropped is FACTORY else dropped
-        self.preserved_joints = set() if preserved_joints is FACTORY else preserved_joints
 
     def survivor(self, link: str) -> str:
         return self.target_of.get(link, link)

@@ -8,7 +8,6 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from sensorkit.base.findings import SourceRef
-from sensorkit.base.record import FACTORY, Record
 from sensorkit.model.robot import Origin, child, children, local, parse_float, parse_vec, text_of
 
 if TYPE_CHECKING:
@@ -33,8 +32,8 @@ LIDAR_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar"}
 DEPTH_KINDS = {"depth", "rgbd"}
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Noise(Record):
+@dataclass
+class Noise:
     """A ``<noise>`` block as written."""
 
     type: str | None
@@ -43,23 +42,9 @@ class Noise(Record):
     source: SourceRef
     problems: list[str] = field(default_factory=list)
 
-    def __init__(
-        self,
-        type: str | None,
-        mean: float | None,
-        stddev: float | None,
-        source: SourceRef,
-        problems: list[str] = FACTORY,
-    ) -> None:
-        self.type = type
-        self.mean = mean
-        self.stddev = stddev
-        self.source = source
-        self.problems = [] if problems is FACTORY else problems
 
-
-@dataclass(init=False, repr=False, eq=False)
-class CameraSpec(Record):
+@dataclass
+class CameraSpec:
     """One ``<camera>`` block: image, fov, clip, lens and distortion as written."""
 
     element: etree._Element
@@ -83,53 +68,9 @@ class CameraSpec(Record):
     raw: dict[str, str | None] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 
-    def __init__(
-        self,
-        element: etree._Element,
-        source: SourceRef,
-        name: str | None,
-        width: int | None = None,
-        height: int | None = None,
-        format: str | None = None,
-        hfov: float | None = None,
-        near: float | None = None,
-        far: float | None = None,
-        depth_near: float | None = None,
-        depth_far: float | None = None,
-        lens_intrinsics: tuple[float, float, float, float, float] | None = None,
-        lens_projection: dict[str, float] = FACTORY,
-        distortion: dict[str, float] = FACTORY,
-        noise: Noise | None = None,
-        pose: Origin | None = None,
-        optical_frame_id: str | None = None,
-        camera_info_topic: str | None = None,
-        raw: dict[str, str | None] = FACTORY,
-        problems: list[str] = FACTORY,
-    ) -> None:
-        self.element = element
-        self.source = source
-        self.name = name
-        self.width = width
-        self.height = height
-        self.format = format
-        self.hfov = hfov
-        self.near = near
-        self.far = far
-        self.depth_near = depth_near
-        self.depth_far = depth_far
-        self.lens_intrinsics = lens_intrinsics
-        self.lens_projection = {} if lens_projection is FACTORY else lens_projection
-        self.distortion = {} if distortion is FACTORY else distortion
-        self.noise = noise
-        self.pose = pose
-        self.optical_frame_id = optical_frame_id
-        self.camera_info_topic = camera_info_topic
-        self.raw = {} if raw is FACTORY else raw
-        self.problems = [] if problems is FACTORY else problems
 
-
-@dataclass(init=False, repr=False, eq=False)
-class LidarSpec(Record):
+@dataclass
+class LidarSpec:
     """One ``<ray>`` or ``<lidar>`` block: horizontal and vertical scan, range, as written."""
 
     element: etree._Element
@@ -150,47 +91,9 @@ class LidarSpec(Record):
     raw: dict[str, str | None] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 
-    def __init__(
-        self,
-        element: etree._Element,
-        source: SourceRef,
-        samples: int | None = None,
-        resolution: float | None = None,
-        min_angle: float | None = None,
-        max_angle: float | None = None,
-        v_samples: int | None = None,
-        v_resolution: float | None = None,
-        v_min_angle: float | None = None,
-        v_max_angle: float | None = None,
-        has_vertical: bool = False,
-        range_min: float | None = None,
-        range_max: float | None = None,
-        range_resolution: float | None = None,
-        noise: Noise | None = None,
-        raw: dict[str, str | None] = FACTORY,
-        problems: list[str] = FACTORY,
-    ) -> None:
-        self.element = element
-        self.source = source
-        self.samples = samples
-        self.resolution = resolution
-        self.min_angle = min_angle
-        self.max_angle = max_angle
-        self.v_samples = v_samples
-        self.v_resolution = v_resolution
-        self.v_min_angle = v_min_angle
-        self.v_max_angle = v_max_angle
-        self.has_vertical = has_vertical
-        self.range_min = range_min
-        self.range_max = range_max
-        self.range_resolution = range_resolution
-        self.noise = noise
-        self.raw = {} if raw is FACTORY else raw
-        self.problems = [] if problems is FACTORY else problems
 
-
-@dataclass(init=False, repr=False, eq=False)
-class Plugin(Record):
+@dataclass
+class Plugin:
     """A ``<plugin>``; ``params`` maps child tag -> elements (order kept)."""
 
     filename: str
@@ -198,20 +101,6 @@ class Plugin(Record):
     element: etree._Element
     source: SourceRef
     sensor: Sensor | None = None
-
-    def __init__(
-        self,
-        filename: str,
-        name: str,
-        element: etree._Element,
-        source: SourceRef,
-        sensor: Sensor | None = None,
-    ) -> None:
-        self.filename = filename
-        self.name = name
-        self.element = element
-        self.source = source
-        self.sensor = sensor
 
     @property
     def library(self) -> str:
@@ -252,8 +141,8 @@ class Plugin(Record):
         return out
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Sensor(Record):
+@dataclass
+class Sensor:
     """A ``<sensor>`` in a ``<gazebo reference="...">`` block."""
 
     name: str
@@ -275,48 +164,6 @@ class Sensor(Record):
     imu_noise: list[Noise] = field(default_factory=list)
     plugins: list[Plugin] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
-
-    def __init__(
-        self,
-        name: str,
-        type: str,
-        kind: str,
-        reference: str | None,
-        element: etree._Element,
-        block: etree._Element,
-        source: SourceRef,
-        pose: Origin,
-        update_rate: float | None = None,
-        update_rate_text: str | None = None,
-        always_on: str | None = None,
-        topic: str | None = None,
-        frame_tags: dict[str, str] = FACTORY,
-        misplaced_frame_tags: list[tuple[str, str, etree._Element]] = FACTORY,
-        cameras: list[CameraSpec] = FACTORY,
-        lidar: LidarSpec | None = None,
-        imu_noise: list[Noise] = FACTORY,
-        plugins: list[Plugin] = FACTORY,
-        problems: list[str] = FACTORY,
-    ) -> None:
-        self.name = name
-        self.type = type
-        self.kind = kind
-        self.reference = reference
-        self.element = element
-        self.block = block
-        self.source = source
-        self.pose = pose
-        self.update_rate = update_rate
-        self.update_rate_text = update_rate_text
-        self.always_on = always_on
-        self.topic = topic
-        self.frame_tags = {} if frame_tags is FACTORY else frame_tags
-        self.misplaced_frame_tags = [] if misplaced_frame_tags is FACTORY else misplaced_frame_tags
-        self.cameras = [] if cameras is FACTORY else cameras
-        self.lidar = lidar
-        self.imu_noise = [] if imu_noise is FACTORY else imu_noise
-        self.plugins = [] if plugins is FACTORY else plugins
-        self.problems = [] if problems is FACTORY else problems
 
     @property
     def is_camera(self) -> bool:

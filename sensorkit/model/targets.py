@@ -5,8 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from sensorkit.base.record import FACTORY, Record
-
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
 
@@ -78,23 +76,13 @@ ROS1_MIN_EVIDENCE = (
 )
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Ros1Evidence(Record):
+@dataclass
+class Ros1Evidence:
     """What in a robot says ROS 1 (or ROS 2): the plugins and tags found."""
 
     plugins: list[str] = field(default_factory=list)  # ROS 1-only gazebo_ros plugins
     tags: list[str] = field(default_factory=list)  # ROS 1 parameter tags in gazebo_ros plugins
     ros2: list[str] = field(default_factory=list)  # anything only ROS 2 has
-
-    def __init__(
-        self,
-        plugins: list[str] = FACTORY,
-        tags: list[str] = FACTORY,
-        ros2: list[str] = FACTORY,
-    ) -> None:
-        self.plugins = [] if plugins is FACTORY else plugins
-        self.tags = [] if tags is FACTORY else tags
-        self.ros2 = [] if ros2 is FACTORY else ros2
 
     @property
     def is_ros1(self) -> bool:

@@ -12,9 +12,6 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
-from sensorkit.base.record import FACTORY, FrozenRecord, Record
-
-_set = object.__setattr__  # what a frozen dataclass's __init__ assigns with
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -28,8 +25,8 @@ if TYPE_CHECKING:
 RuleFunc = Callable[["Context"], Iterable[Finding]]
 
 
-@dataclass(init=False, frozen=True, repr=False, eq=False)
-class RuleInfo(FrozenRecord):
+@dataclass(frozen=True)
+class RuleInfo:
     """A rule in the registry: id, severity, title, the existing tool it mirrors, its check."""
 
     id: str
@@ -37,20 +34,6 @@ class RuleInfo(FrozenRecord):
     title: str
     existing: str
     func: RuleFunc | None = None
-
-    def __init__(
-        self,
-        id: str,
-        severity: str,
-        title: str,
-        existing: str,
-        func: RuleFunc | None = None,
-    ) -> None:
-        _set(self, "id", id)
-        _set(self, "severity", severity)
-        _set(self, "title", title)
-        _set(self, "existing", existing)
-        _set(self, "func", func)
 
     @property
     def family(self) -> str:
@@ -80,8 +63,8 @@ def declare(id: str, severity: str, title: str, existing: str = "none") -> None:
     RULES[id] = RuleInfo(id, severity, title, existing, None)
 
 
-@dataclass(init=False, repr=False, eq=False)
-class MissingFile(Record):
+@dataclass
+class MissingFile:
     """A file reference (mesh, texture) that does not resolve; found before rules run."""
 
     uri: str
@@ -89,27 +72,17 @@ class MissingFile(Record):
     reason: str
     link: str | None = None
 
-    def __init__(self, uri: str, source: SourceRef, reason: str, link: str | None = None) -> None:
-        self.uri = uri
-        self.source = source
-        self.reason = reason
-        self.link = link
 
-
-@dataclass(init=False, repr=False, eq=False)
-class Bridge(Record):
+@dataclass
+class Bridge:
     """The ros_gz_bridge configuration known for a Gazebo Sim robot (files may be none)."""
 
     files: list[str] = field(default_factory=list)
     topics: list[BridgeTopic] = field(default_factory=list)
 
-    def __init__(self, files: list[str] = FACTORY, topics: list[BridgeTopic] = FACTORY) -> None:
-        self.files = [] if files is FACTORY else files
-        self.topics = [] if topics is FACTORY else topics
 
-
-@dataclass(init=False, repr=False, eq=False)
-class Context(Record):
+@dataclass
+class Context:
     """Everything a rule may read. Computed once per robot by the engine."""
 
     robot: Robot
@@ -119,24 +92,6 @@ class Context(Record):
     missing_files: list[MissingFile] = field(default_factory=list)
     auto: bool = False  # the target was picked by --target auto
     bridge: Bridge | None = None  # gz targets: what the bridge carries to ROS
-
-    def __init__(
-        self,
-        robot: Robot,
-        target: str,
-        conversion: Conversion,
-        frames: dict[int, SensorFrames] = FACTORY,
-        missing_files: list[MissingFile] = FACTORY,
-        auto: bool = False,
-        bridge: Bridge | None = None,
-    ) -> None:
-        self.robot = robot
-        self.target = target
-        self.conversion = conversion
-        self.frames = {} if frames is FACTORY else frames
-        self.missing_files = [] if missing_files is FACTORY else missing_files
-        self.auto = auto
-        self.bridge = bridge
 
     def frames_of(self, sensor: Sensor) -> SensorFrames:
         return self.frames[id(sensor)]

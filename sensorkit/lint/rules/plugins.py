@@ -10,7 +10,6 @@ from dataclasses import dataclass
 from lxml import etree
 
 from sensorkit.base.findings import Finding, Severity
-from sensorkit.base.record import Record
 from sensorkit.knowledge.gazebo_ros import (
     RAY_OUTPUT_TYPES,
     ROS1_ONLY,
@@ -239,26 +238,14 @@ def _resolve(name: str, ns: str, node: str) -> str:
     return f"{ns}/{name.strip('/')}"
 
 
-@dataclass(init=False, repr=False, eq=False)
-class Topic(Record):
+@dataclass
+class Topic:
     """A resolved topic name and the sensor and plugin that publish it."""
 
     name: str  # resolved
     sensor: Sensor | None
     plugin: Plugin | None
     element: etree._Element
-
-    def __init__(
-        self,
-        name: str,
-        sensor: Sensor | None,
-        plugin: Plugin | None,
-        element: etree._Element,
-    ) -> None:
-        self.name = name
-        self.sensor = sensor
-        self.plugin = plugin
-        self.element = element
 
 
 def plugin_topics(p: Plugin, s: Sensor | None) -> list[str]:
