@@ -31,12 +31,14 @@ from sensorkit.model.targets import is_gz
 __all__ = ["explicit_frame", "frame_at_origin", "optical_frame"]
 
 
-def _sensor(fx: FixContext, f: Finding) -> Sensor:
+def _sensor(fx: FixContext, f: Finding) -> tuple[Sensor, SensorFrames]:
+    """The sensor a finding is about, and its frames."""
     matches = [s for s in fx.robot.sensors if s.name == f.sensor]
     exact = [s for s in matches if s.source == f.source]
     if not (exact or matches):
         raise NotFixable(f"sensor {f.sensor!r} not found")
-    return (exact or matches)[0]
+    s = (exact or matches)[0]
+    return s, fx.ctx.frames_of(s)
 
 
 def _name_sources(fx: FixContext, link: str) -> list[tuple[Written, str]]:
@@ -105,6 +107,12 @@ def _name_frame(
     return [w.file.set_text(w.tag, text)], claims
 
 
+def _publish_in(fx: FixContext, f: Finding, s: Sensor, frame: str, title: str) -> Fix:
+    """Name link ``frame`` in ``s``'s frame parameter, copied as the link's name is written."""
+    edits, claims = _name_frame(fx, s, frame, _name_sources(fx, frame))
+    return Fix(f, tuple(edits), title, claims=claims)
+
+
 def _body_frame_at(fx: FixContext, fr: SensorFrames) -> str | None:
     """A link at a lidar's render pose with the same orientation (x forward, z up)."""
     if fr.T_world_render is None:
@@ -129,13 +137,8 @@ def _body_frame_at(fx: FixContext, fr: SensorFrames) -> str | None:
 def _optical_frame(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) -> Fix:
     existing = optical_frame_at(fx.robot, fr.T_world_render)
     if existing is not None:
-        edits, claims = _name_frame(fx, s, existing, _name_sources(fx, existing))
-        return Fix(
-            f,
-            tuple(edits),
-            f"publish in {existing!r}, the optical frame at the camera",
-            claims=claims,
-        )
+        title = f"publish in {existing!r}, the optical frame at the camera"
+        return _publish_in(fx, f, s, existing, title)
     return _add_optical_frame(fx, f, s, fr)
 
 
@@ -204,8 +207,8 @@ def _add_optical_frame(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) 
     "`LINK_optical_frame` on a fixed joint with the exact rotation and point at it (unsafe)",
 )
 def optical_frame(fx: FixContext, f: Finding) -> Fix:
-    s = _sensor(fx, f)
-    return _optical_frame(fx, f, s, fx.ctx.frames_of(s))
+    s, fr = _sensor(fx, f)
+    return _optical_frame(fx, f, s, fr)
 
 
 @fixer(
@@ -215,15 +218,13 @@ def optical_frame(fx: FixContext, f: Finding) -> Fix:
     "lidar's own link (safe); a camera with none gets `LINK_optical_frame` (unsafe)",
 )
 def frame_at_origin(fx: FixContext, f: Finding) -> Fix:
-    s = _sensor(fx, f)
-    fr = fx.ctx.frames_of(s)
+    s, fr = _sensor(fx, f)
     if s.is_camera:
         return _optical_frame(fx, f, s, fr)
     body = _body_frame_at(fx, fr)
     if body is None:
         raise NotFixable(f"no link sits where {s.name!r} measures: add one at its <pose> by hand")
-    edits, claims = _name_frame(fx, s, body, _name_sources(fx, body))
-    return Fix(f, tuple(edits), f"publish in {body!r}, the link at the sensor", claims=claims)
+    return _publish_in(fx, f, s, body, f"publish in {body!r}, the link at the sensor")
 
 
 @fixer(
@@ -233,8 +234,7 @@ def frame_at_origin(fx: FixContext, f: Finding) -> Fix:
     "optical frame)",
 )
 def explicit_frame(fx: FixContext, f: Finding) -> Fix:
-    s = _sensor(fx, f)
-    fr = fx.ctx.frames_of(s)
+    s, fr = _sensor(fx, f)
     if fr.link is None:
         raise NotFixable("the sensor's link is not found")
     frame = fr.link
@@ -243,5 +243,4 @@ def explicit_frame(fx: FixContext, f: Finding) -> Fix:
         if found is None:
             raise NotFixable("no optical frame at the camera yet (SK502's unsafe fix adds one)")
         frame = found
-    edits, claims = _name_frame(fx, s, frame, _name_sources(fx, frame))
-    return Fix(f, tuple(edits), f"name the frame {frame!r} in the plugin", claims=claims)
+    return _publish_in(fx, f, s, frame, f"name the frame {frame!r} in the plugin")
