@@ -43,6 +43,7 @@ __all__ = [
     "NotFixable",
     "Written",
     "fixer",
+    "is_expr",
     "subject",
 ]
 
@@ -128,7 +129,12 @@ class Written:
         return self.tag.start < other.tag.start and other.tag.end <= self.tag.end
 
 
-_EXPR = re.compile(r"\$[{(]")
+EXPR = re.compile(r"\$[{(]")  # a xacro expression or substitution begins
+
+
+def is_expr(raw: str | None) -> bool:
+    """Text as written holds a xacro expression (``${...}``) or substitution (``$(...)``)."""
+    return raw is not None and bool(EXPR.search(raw))
 
 
 @dataclass
@@ -206,6 +212,14 @@ class FixContext:
             )
         return Written(sf, cands[0])
 
+    def written_text(self, el: etree._Element) -> tuple[Written, str]:
+        """Where a text-only element is written, and its text as written."""
+        w = self.written(el)
+        raw = w.file.raw_text(w.tag)
+        if raw is None:
+            raise NotFixable(f"<{w.tag.name}> at {w.where} holds more than text")
+        return w, raw
+
     def text_for(self, value: str, sources: list[tuple[Written, str]], scope: Written) -> str:
         """Text to write inside ``scope`` that evaluates to ``value``.
 
@@ -216,7 +230,7 @@ class FixContext:
         no literal (each copy would need another name).
         """
         for w, raw in sources:
-            if not _EXPR.search(raw):
+            if not is_expr(raw):
                 if self.copies_of(scope) > 1:
                     continue
                 return escape(value)
@@ -248,4 +262,4 @@ def _compatible(tag: Tag, el: etree._Element) -> bool:
     have = {str(k) for k in el.attrib if k != LOC_ATTR and not k.startswith("{")}
     if set(written) != have:
         return False
-    return all(_EXPR.search(a.raw) or a.value == el.get(n) for n, a in written.items())
+    return all(is_expr(a.raw) or a.value == el.get(n) for n, a in written.items())

@@ -3,10 +3,10 @@
 ``--fix`` never re-serialises a file. It finds the element a finding is about in the
 original text (the start tag at the line the loader recorded), then the attribute value,
 text or child to change, and describes the change as a byte :class:`Edit`. The scan is
-lexical like ``sensorkit.edit.layout``: comments, CDATA, processing instructions and the
-DOCTYPE are skipped, quotes are honoured inside tags, so nothing inside a comment or an
-attribute value is taken for markup. The file has passed a strict parse before, so the
-scan can rely on it being well-formed.
+lexical like ``sensorkit.edit.layout`` (whose tag and DOCTYPE scanners it uses): comments,
+CDATA, processing instructions and the DOCTYPE are skipped, quotes are honoured inside
+tags, so nothing inside a comment or an attribute value is taken for markup. The file
+has passed a strict parse before, so the scan can rely on it being well-formed.
 
 Lines: lxml (plain URDF) records an element at the line of its start tag's ``>`` and
 counts only LF; expat (xacro, ``sk_loc_``) records the line of its ``<`` and counts CR,
@@ -18,11 +18,14 @@ from __future__ import annotations
 import bisect
 import html
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 
-from sensorkit.base.errors import SensorkitError
-from sensorkit.edit.layout import detect_encoding, read_layout
+from sensorkit.base.errors import EditRefused, SensorkitError
+from sensorkit.edit.layout import Layout, detect_encoding, read_layout
+from sensorkit.edit.layout import _doctype_end as layout_doctype_end
+from sensorkit.edit.layout import _tag_end as layout_tag_end
 
 _NAME_RE = re.compile(r"[^\s/>=]+")
 _ATTR_RE = re.compile(r"""\s*([^\s=/>]+)\s*=\s*("([^"]*)"|'([^']*)')""")
@@ -105,37 +108,13 @@ def _skip(text: str, needle: str, start: int) -> int:
     return end + len(needle)
 
 
-def _tag_end(text: str, start: int) -> int:
-    """``edit.layout``'s tag scanner, refusing as a fix does."""
-    from sensorkit.base.errors import EditRefused
-    from sensorkit.edit.layout import _tag_end as tag_end
-
+def _end_of(construct: Callable[[str, int], int], text: str, start: int) -> int:
+    """Where an ``edit.layout`` scanner says the construct at ``start`` ends, refusing as
+    a fix does."""
     try:
-        return tag_end(text, start)
+        return construct(text, start)
     except EditRefused as exc:
         raise NotFixable(str(exc)) from None
-
-
-def _doctype_end(text: str, start: int) -> int:
-    i, depth, quote, n = start + 2, 0, "", len(text)
-    while i < n:
-        c = text[i]
-        if quote:
-            if c == quote:
-                quote = ""
-        elif text.startswith("<!--", i):
-            i = _skip(text, "-->", i + 4)
-            continue
-        elif c in "\"'":
-            quote = c
-        elif c == "[":
-            depth += 1
-        elif c == "]":
-            depth -= 1
-        elif c == ">" and depth <= 0:
-            return i + 1
-        i += 1
-    raise NotFixable("unterminated DOCTYPE")
 
 
 def scan(text: str) -> list[Tag]:
@@ -154,15 +133,15 @@ def scan(text: str) -> list[Tag]:
         elif text.startswith("<?", j):
             i = _skip(text, "?>", j + 2)
         elif text.startswith("<!", j):
-            i = _doctype_end(text, j)
+            i = _end_of(layout_doctype_end, text, j)
         elif text.startswith("</", j):
-            k = _tag_end(text, j)
+            k = _end_of(layout_tag_end, text, j)
             if stack:
                 t = tags[stack.pop()]
                 t.close_start, t.close_end = j, k
             i = k
         else:
-            k = _tag_end(text, j)
+            k = _end_of(layout_tag_end, text, j)
             m = _NAME_RE.match(text, j + 1)
             name = m.group(0) if m else ""
             empty = text[k - 2] == "/"
@@ -227,19 +206,19 @@ class SourceFile:
         """1-based line of offset ``at`` as libxml2 counts (LF only)."""
         return bisect.bisect_right(self._breaks_lf, at) + 1
 
-    @cached_property
-    def _by_expat_line(self) -> dict[int, list[Tag]]:
+    def _by_line(self, line_of: Callable[[Tag], int]) -> dict[int, list[Tag]]:
         out: dict[int, list[Tag]] = {}
         for t in self.tags:
-            out.setdefault(self.line_expat(t.start), []).append(t)
+            out.setdefault(line_of(t), []).append(t)
         return out
 
     @cached_property
+    def _by_expat_line(self) -> dict[int, list[Tag]]:
+        return self._by_line(lambda t: self.line_expat(t.start))
+
+    @cached_property
     def _by_lxml_line(self) -> dict[int, list[Tag]]:
-        out: dict[int, list[Tag]] = {}
-        for t in self.tags:
-            out.setdefault(self.line_lxml(t.head_end - 1), []).append(t)
-        return out
+        return self._by_line(lambda t: self.line_lxml(t.head_end - 1))
 
     def tags_at(self, line: int, *, expat: bool) -> list[Tag]:
         """Start tags the loader would record at ``line``."""
@@ -273,25 +252,25 @@ class SourceFile:
 
     # ---- layout -------------------------------------------------------------------------
     @cached_property
-    def newline(self) -> str:
+    def _layout(self) -> Layout | None:
+        """How ``edit.layout`` reads the file (None: it cannot; defaults apply)."""
         try:
-            return read_layout(self.data, self.display).newline
+            return read_layout(self.data, self.display)
         except SensorkitError:
-            return "\n"
+            return None
 
-    @cached_property
+    @property
+    def newline(self) -> str:
+        return self._layout.newline if self._layout is not None else "\n"
+
+    @property
     def unit(self) -> str:
         """One level of indentation as the file writes it."""
-        try:
-            return read_layout(self.data, self.display).unit
-        except SensorkitError:
-            return "  "
+        return self._layout.unit if self._layout is not None else "  "
 
     def indent_of(self, at: int) -> str | None:
         """The spaces/tabs before ``at`` when only they precede it on its line, else None."""
-        i = at
-        while i > 0 and self.text[i - 1] in " \t":
-            i -= 1
+        i = self._line_start(at)
         if i == 0 or self.text[i - 1] in "\r\n":
             return self.text[i:at]
         return None
@@ -377,7 +356,7 @@ class SourceFile:
         """Replace an element by ``lines`` (depth, text) at its own indentation."""
         indent = self.indent_of(tag.start)
         if indent is None:
-            return self.edit(tag.start, tag.end, "".join(t for _, t in lines))
+            return self.edit(tag.start, tag.end, _inline(lines))
         body = self.render(lines, indent)
         return self.edit(tag.start, tag.end, self.newline.join(body)[len(indent) :])
 
@@ -385,7 +364,7 @@ class SourceFile:
         """New siblings right after ``tag``, at its indentation."""
         indent = self.indent_of(tag.start)
         if indent is None:
-            return self.edit(tag.end, tag.end, "".join(t for _, t in lines))
+            return self.edit(tag.end, tag.end, _inline(lines))
         after = self._after_line(tag.end)
         body = self.render(lines, indent)
         if after is not None and after > tag.end:
@@ -396,7 +375,7 @@ class SourceFile:
         """New siblings right before ``tag``, at its indentation."""
         indent = self.indent_of(tag.start)
         if indent is None:
-            return self.edit(tag.start, tag.start, "".join(t for _, t in lines))
+            return self.edit(tag.start, tag.start, _inline(lines))
         at = self._line_start(tag.start)
         return self.edit(at, at, "".join(b + self.newline for b in self.render(lines, indent)))
 
@@ -412,7 +391,7 @@ class SourceFile:
         if child_indent is None and indent is not None and (not kids or tag.empty):
             child_indent = indent + self.unit
         if child_indent is None:
-            inline = "".join(t for _, t in lines)
+            inline = _inline(lines)
             if tag.empty:
                 return self._open_empty(tag, ">" + inline + f"</{tag.name}>")
             assert tag.close_start is not None
@@ -434,6 +413,11 @@ class SourceFile:
         """Turn ``<x .../>`` into ``<x ...>`` + ``text`` (which closes it)."""
         slash = self.text.rfind("/", tag.start, tag.head_end)
         return self.edit(slash, tag.head_end, text)
+
+
+def _inline(lines: list[tuple[int, str]]) -> str:
+    """``lines`` (depth, text) written on one line, where the element is not on its own."""
+    return "".join(t for _, t in lines)
 
 
 def apply_edits(data: bytes, edits: list[Edit]) -> bytes:
