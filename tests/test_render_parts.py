@@ -32,8 +32,8 @@ from sensorkit.render.lidar import (
 )
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
-from sensorkit.render.preview import SensorPreview
 from sensorkit.render.raster import Canvas
+from sensorkit.render.result import SensorPreview
 from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
 from sensorkit.render.urdf_out import prepare_urdf
 

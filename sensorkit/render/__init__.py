@@ -13,6 +13,7 @@ the side, IMU, close-up and stereo views), ``report`` (summary.json, index.html)
 
 from __future__ import annotations
 
-from sensorkit.render.preview import PreviewResult, SensorPreview, render_preview
+from sensorkit.render.preview import render_preview
+from sensorkit.render.result import PreviewResult, SensorPreview
 
 __all__ = ["PreviewResult", "SensorPreview", "render_preview"]

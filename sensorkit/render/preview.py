@@ -20,7 +20,7 @@ import re
 import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +31,8 @@ from sensorkit.base.errors import InputError, UsageError
 from sensorkit.base.findings import Severity
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
 from sensorkit.model.transforms_np import Mat, matrix_to_rpy
-from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check, worst
+from sensorkit.render.checks import Check, frame_check, pose_check, self_occlusion_check
+from sensorkit.render.result import PreviewResult, SensorPreview
 
 if TYPE_CHECKING:
     from sensorkit.base.findings import Finding
@@ -46,72 +47,12 @@ if TYPE_CHECKING:
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
 
-if TYPE_CHECKING:  # the gate and the RViz view
-    from sensorkit.render.gate import Verdict
+if TYPE_CHECKING:  # the RViz view
     from sensorkit.render.rviz import Misplaced
 
-__all__ = ["PreviewResult", "SensorPreview", "render_preview"]
+__all__ = ["render_preview"]
 
 Progress = Callable[[str], None]
-
-
-@dataclass
-class SensorPreview:
-    """What was rendered for one sensor (one camera of a multicamera), and how it checked."""
-
-    name: str  # the sensor name; "sensor/camera" for a camera of a multicamera
-    sensor: str
-    type: str
-    kind: str
-    link: str | None
-    directory: Path | None = None
-    files: dict[str, Path] = field(default_factory=dict)
-    findings: list[Finding] = field(default_factory=list)  # validate's, about this sensor
-    checks: list[Check] = field(default_factory=list)
-    notes: list[str] = field(default_factory=list)
-    skipped: str | None = None  # why nothing was rendered
-    info: dict[str, Any] = field(default_factory=dict)  # frames, intrinsics, scan, topics
-    figures: dict[str, Figure] = field(default_factory=dict)  # labelled pictures, by key
-
-    @property
-    def status(self) -> str:
-        return "skipped" if self.skipped else worst(self.checks)
-
-
-@dataclass
-class PreviewResult:
-    out_dir: Path
-    robot: str
-    source: Path
-    target: str
-    target_reason: str
-    scene: str
-    joints: dict[str, float]
-    sensors: list[SensorPreview]
-    files: dict[str, Path] = field(default_factory=dict)  # summary, overview, index
-    findings: list[Finding] | None = None  # validate's; None when it could not run
-    fail_on: Severity | None = Severity.ERROR  # the gate's threshold; None: never fail
-    findings_error: str | None = None
-    notes: list[str] = field(default_factory=list)
-    seconds: float = 0.0
-    figures: list[Figure] = field(default_factory=list)  # the robot close up, stereo pairs
-
-    @property
-    def status(self) -> str:
-        """The worst check's status (the findings are not in it; see ``verdict``)."""
-        return worst([c for s in self.sensors for c in s.checks])
-
-    @property
-    def verdict(self) -> Verdict:
-        """Pass or fail at ``fail_on``, from validate's findings and the checks."""
-        from sensorkit.render.gate import verdict
-
-        checks = [(s.name, c) for s in self.sensors for c in s.checks]
-        return verdict(self.findings, self.findings_error, checks, self.fail_on)
-
-    @property
-    def failed(self) -> bool:
-        return self.verdict.failed
 
 
 def _say(progress: Progress | None, message: str) -> None:
@@ -289,7 +230,7 @@ def _camera(
         shown = np.where(at_far_clip(published_depth, far), np.inf, published_depth)
         lo, hi = depth_colour_range(shown, near, far)
         png = write_png(out.files["depth_png"], colourise_depth(shown, lo=lo, hi=hi))
-        _add_figure(out, depth_figure(png, rc.width, rc.height, lo, hi, near, far))
+        out.add_figure(depth_figure(png, rc.width, rc.height, lo, hi, near, far))
     camera_name = None
     from sensorkit.model.frames import ros_plugin
 
@@ -1058,13 +999,6 @@ def render_preview(
     return result
 
 
-# ---- labelled pictures (sensorkit.render.pictures) -------------------------------------------
-def _add_figure(out: SensorPreview, figure: Figure) -> None:
-    """Show ``figure`` on the sensor's part of index.html; its numbers go to summary.json."""
-    out.figures[figure.key] = figure
-    out.info.setdefault("pictures", {})[figure.key] = figure.facts
-
-
 def _self_occluded(scan: LidarScan, self_hit: np.ndarray) -> list[tuple[float, float]]:
     """Azimuth sectors of the scan in which some beam meets the robot itself."""
     from sensorkit.render.pictures import occluded_sectors
@@ -1099,7 +1033,7 @@ def _lidar_figures(
 
     beams = scan.beams
     V = beams.shape[0]
-    _add_figure(out, scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
+    out.add_figure(scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
     if (V <= 1 and tilt <= 1.0) or out.directory is None:
         return
@@ -1113,7 +1047,7 @@ def _lidar_figures(
     facts["tilt_deg"] = tilt
     out.files["side_png"] = out.directory / "side.png"
     png = write_png(out.files["side_png"], image)
-    _add_figure(out, side_figure(png, side, facts))
+    out.add_figure(side_figure(png, side, facts))
 
 
 def _draw_imus(run: _Run, previews: list[SensorPreview]) -> None:
@@ -1140,9 +1074,7 @@ def _draw_imus(run: _Run, previews: list[SensorPreview]) -> None:
         fcheck = frame_check(T_render, T_frame, frame, frames.how, optical=False)
         imu.checks.append(fcheck)
         stamped = T_frame[:3, :3] if fcheck.status == "warn" and T_frame is not None else None
-        _add_figure(
-            imu, imu_figure(T_render[:3, :3], stamped, frame, fcheck.status, fcheck.message)
-        )
+        imu.add_figure(imu_figure(T_render[:3, :3], stamped, frame, fcheck.status, fcheck.message))
         previews[k] = imu
 
 

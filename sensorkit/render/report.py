@@ -19,7 +19,7 @@ from sensorkit.base.atomic import write_text
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from sensorkit.render.preview import PreviewResult, SensorPreview
+    from sensorkit.render.result import PreviewResult, SensorPreview
 
 __all__ = ["GENERATOR", "is_preview", "summary_dict", "write_index", "write_summary"]
 
