@@ -7,8 +7,10 @@ itself stays light.
 Modules: ``preview`` (``render_preview``, the entry point), ``sim`` (pybullet),
 ``camera`` and ``lidar`` (sensor geometry and checks), ``scene`` (shapes with exact
 geometry), ``poses`` (kinematics at given joints), ``urdf_out`` (the URDF pybullet
-loads), ``overview`` / ``raster`` / ``png`` (pictures), ``pictures`` (their labels,
-the side, IMU, close-up and stereo views), ``report`` (summary.json, index.html).
+loads), ``overview`` / ``raster`` / ``png`` (pictures), ``svg`` (the labelled figures'
+SVG), ``pictures`` (depth and scans, labelled; the side view), ``mount_pictures`` (IMU
+axes, the robot close up, stereo pairs), ``result`` (what a preview gives back),
+``report`` (summary.json, index.html).
 """
 
 from __future__ import annotations

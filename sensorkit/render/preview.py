@@ -43,9 +43,9 @@ if TYPE_CHECKING:
     from sensorkit.model.sensors import CameraSpec, Sensor
     from sensorkit.render.lidar import LidarScan
     from sensorkit.render.overview import ScanView, SensorDrawing
-    from sensorkit.render.pictures import Figure
     from sensorkit.render.scene import Scene, Shape
     from sensorkit.render.sim import World
+    from sensorkit.render.svg import Figure
 
 if TYPE_CHECKING:  # the RViz view
     from sensorkit.render.rviz import Misplaced
@@ -1052,7 +1052,7 @@ def _lidar_figures(
 
 def _draw_imus(run: _Run, previews: list[SensorPreview]) -> None:
     """Give each IMU (nothing to render) its frame checks and a picture of its axes."""
-    from sensorkit.render.pictures import imu_figure
+    from sensorkit.render.mount_pictures import imu_figure
 
     for k, p in enumerate(previews):
         sensor = next(
@@ -1088,7 +1088,7 @@ def _robot_figures(
     """The robot close up with every sensor's mount, and each stereo pair side by side."""
     from sensorkit.base.errors import SensorkitError
     from sensorkit.describe.sensorinfo import describe
-    from sensorkit.render.pictures import Mount, closeup_figure, stereo_figure
+    from sensorkit.render.mount_pictures import Mount, closeup_figure, stereo_figure
     from sensorkit.render.png import read_png
 
     mounts = []

@@ -16,7 +16,7 @@ from sensorkit.render.checks import Check, worst
 if TYPE_CHECKING:
     from sensorkit.base.findings import Finding
     from sensorkit.render.gate import Verdict
-    from sensorkit.render.pictures import Figure
+    from sensorkit.render.svg import Figure
 
 __all__ = ["PreviewResult", "SensorPreview"]
 
