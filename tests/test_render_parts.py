@@ -513,7 +513,8 @@ def test_rviz_places_data_by_the_stamped_frame() -> None:
 
 # ---- rendering in several processes --------------------------------------------------------
 def test_sensors_are_split_over_processes_by_work() -> None:
-    from sensorkit.render.preview import _cost, _groups, _plan
+    from sensorkit.render.plan import plan_jobs as _plan
+    from sensorkit.render.workers import _cost, _groups
 
     robot = load_robot(HERE / "gz_bot.urdf").robot
     assert robot is not None

@@ -15,6 +15,7 @@ from sensorkit.render.checks import Check, worst
 
 if TYPE_CHECKING:
     from sensorkit.base.findings import Finding
+    from sensorkit.model.sensors import Sensor
     from sensorkit.render.gate import Verdict
     from sensorkit.render.svg import Figure
 
@@ -38,6 +39,11 @@ class SensorPreview:
     skipped: str | None = None  # why nothing was rendered
     info: dict[str, Any] = field(default_factory=dict)  # frames, intrinsics, scan, topics
     figures: dict[str, Figure] = field(default_factory=dict)  # labelled pictures, by key
+
+    @classmethod
+    def of(cls, sensor: Sensor, name: str | None = None) -> SensorPreview:
+        """An empty record for ``sensor`` (``name``: a multicamera's camera's label)."""
+        return cls(name or sensor.name, sensor.name, sensor.type, sensor.kind, sensor.reference)
 
     @property
     def status(self) -> str:
