@@ -17,16 +17,7 @@ import numpy.typing as npt
 
 from sensorkit.render.checks import self_occlusion_check
 from sensorkit.render.result import SensorPreview
-from sensorkit.render.session import (
-    JobResult,
-    Progress,
-    Session,
-    open_folder,
-    say,
-    shown,
-    skipped,
-    topics_of,
-)
+from sensorkit.render.session import open_folder, say, shown, skipped, topics_of
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -36,6 +27,7 @@ if TYPE_CHECKING:
     from sensorkit.render.camera import RenderCamera
     from sensorkit.render.overview import SensorDrawing
     from sensorkit.render.plan import Job
+    from sensorkit.render.session import JobResult, Progress, Session
     from sensorkit.render.sim import CameraImage
 
 __all__ = ["render_camera_job"]

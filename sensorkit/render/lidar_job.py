@@ -17,16 +17,7 @@ import numpy.typing as npt
 
 from sensorkit.render.checks import self_occlusion_check
 from sensorkit.render.result import SensorPreview
-from sensorkit.render.session import (
-    JobResult,
-    Progress,
-    Session,
-    open_folder,
-    say,
-    shown,
-    skipped,
-    topics_of,
-)
+from sensorkit.render.session import open_folder, say, shown, skipped, topics_of
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -35,6 +26,7 @@ if TYPE_CHECKING:
     from sensorkit.render.lidar import LidarScan
     from sensorkit.render.overview import ScanView
     from sensorkit.render.plan import Job
+    from sensorkit.render.session import JobResult, Progress, Session
 
 __all__ = ["render_lidar_job"]
 
