@@ -32,8 +32,8 @@ from sensorkit.render.lidar import (
 )
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.poses import joint_positions, link_poses
-from sensorkit.render.preview import SensorPreview
 from sensorkit.render.raster import Canvas
+from sensorkit.render.result import SensorPreview
 from sensorkit.render.scene import GROUND, Scene, Shape, default_scene
 from sensorkit.render.urdf_out import prepare_urdf
 
@@ -513,7 +513,8 @@ def test_rviz_places_data_by_the_stamped_frame() -> None:
 
 # ---- rendering in several processes --------------------------------------------------------
 def test_sensors_are_split_over_processes_by_work() -> None:
-    from sensorkit.render.preview import _cost, _groups, _plan
+    from sensorkit.render.plan import plan_jobs as _plan
+    from sensorkit.render.workers import _cost, _groups
 
     robot = load_robot(HERE / "gz_bot.urdf").robot
     assert robot is not None

@@ -24,12 +24,12 @@ from sensorkit.render.pictures import (
     GROUND_HIT,
     depth_colour_range,
     draw_side,
-    nice_step,
     occluded_sectors,
     side_figure,
 )
 from sensorkit.render.png import encode_png, read_png
 from sensorkit.render.raster import colourise_depth
+from sensorkit.render.svg import nice_step
 
 HERE = Path(__file__).parent / "render_robots"
 WALL_SCENE = HERE / "wall_scene.urdf"

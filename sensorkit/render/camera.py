@@ -204,44 +204,11 @@ def reprojection_check(
     centres = np.array([m.centre for m, _, _ in markers])
     p_opt = camera.world_to_optical(centres)
     predicted = published.project(p_opt)  # in the convention's coordinates
-    from sensorkit.render.sim import seg_key
-
     rows: list[dict[str, float | str]] = []
-    W, H = camera.width, camera.height
     for (shape, body, link), p, uv in zip(markers, p_opt, predicted, strict=True):
-        if not np.isfinite(uv).all() or p[2] <= camera.near:
-            continue
-        radius = shape.size[0]
-        expected = math.pi * (camera.fx * radius / p[2]) * (camera.fy * radius / p[2])
-        u0, v0 = uv[0] - origin, uv[1] - origin
-        # where the renderer puts it (0-based), to look for it; K may disagree
-        ur = camera.fx * p[0] / p[2] + camera.skew * p[1] / p[2] + camera.cx
-        vr = camera.fy * p[1] / p[2] + camera.cy
-        r_px = max(camera.fx, camera.fy) * radius / p[2]
-        if not (r_px + 1 <= ur <= W - 2 - r_px and r_px + 1 <= vr <= H - 2 - r_px):
-            continue
-        reach = math.ceil(1.5 * r_px + 3)
-        c0, c1 = max(0, int(ur) - reach), min(W, int(ur) + reach + 2)
-        r0, r1 = max(0, int(vr) - reach), min(H, int(vr) + reach + 2)
-        mask = image.seg[r0:r1, c0:c1] == seg_key(body, link)
-        count = int(mask.sum())
-        if count < 12 or count < 0.7 * expected:
-            continue  # too small to measure to a fraction of a pixel, or partly hidden
-        ys, xs = np.nonzero(mask)
-        xs, ys = xs + c0, ys + r0
-        if xs.min() == 0 or ys.min() == 0 or xs.max() == W - 1 or ys.max() == H - 1:
-            continue
-        du, dv = float(xs.mean() - u0), float(ys.mean() - v0)
-        rows.append(
-            {
-                "marker": shape.name,
-                "u": float(xs.mean()),
-                "v": float(ys.mean()),
-                "du": du,
-                "dv": dv,
-                "pixels": count,
-            }
-        )
+        row = _marker_offset(camera, image, shape, body, link, p, uv, origin)
+        if row is not None:
+            rows.append(row)
     if not rows:
         return Check(
             "reprojection", "skipped", "no marker is fully in view (markers need 12 or more pixels)"
@@ -276,6 +243,56 @@ def reprojection_check(
             f"(predicted ({published.cx - camera.cx:+.2f}, {published.cy - camera.cy:+.2f}))"
         )
     return Check("reprojection", status, message, rms, "px", REPROJECTION_LIMIT_PX, details)
+
+
+def _marker_offset(
+    camera: RenderCamera,
+    image: CameraImage,
+    shape: Shape,
+    body: int,
+    link: int,
+    p: FloatArray,
+    uv: FloatArray,
+    origin: float,
+) -> dict[str, float | str] | None:
+    """Where marker ``shape`` (centre ``p`` in the optical frame) is in the image, and how
+    far from ``uv``, where camera_info's K puts it (in the convention's coordinates, whose
+    first pixel centre is at ``origin``); None when it cannot be measured to a fraction of
+    a pixel: behind the camera, at the image's border, too small, or partly hidden."""
+    from sensorkit.render.sim import seg_key
+
+    W, H = camera.width, camera.height
+    if not np.isfinite(uv).all() or p[2] <= camera.near:
+        return None
+    radius = shape.size[0]
+    expected = math.pi * (camera.fx * radius / p[2]) * (camera.fy * radius / p[2])
+    u0, v0 = uv[0] - origin, uv[1] - origin
+    # where the renderer puts it (0-based), to look for it; K may disagree
+    ur = camera.fx * p[0] / p[2] + camera.skew * p[1] / p[2] + camera.cx
+    vr = camera.fy * p[1] / p[2] + camera.cy
+    r_px = max(camera.fx, camera.fy) * radius / p[2]
+    if not (r_px + 1 <= ur <= W - 2 - r_px and r_px + 1 <= vr <= H - 2 - r_px):
+        return None
+    reach = math.ceil(1.5 * r_px + 3)
+    c0, c1 = max(0, int(ur) - reach), min(W, int(ur) + reach + 2)
+    r0, r1 = max(0, int(vr) - reach), min(H, int(vr) + reach + 2)
+    mask = image.seg[r0:r1, c0:c1] == seg_key(body, link)
+    count = int(mask.sum())
+    if count < 12 or count < 0.7 * expected:
+        return None  # too small to measure to a fraction of a pixel, or partly hidden
+    ys, xs = np.nonzero(mask)
+    xs, ys = xs + c0, ys + r0
+    if xs.min() == 0 or ys.min() == 0 or xs.max() == W - 1 or ys.max() == H - 1:
+        return None
+    du, dv = float(xs.mean() - u0), float(ys.mean() - v0)
+    return {
+        "marker": shape.name,
+        "u": float(xs.mean()),
+        "v": float(ys.mean()),
+        "du": du,
+        "dv": dv,
+        "pixels": count,
+    }
 
 
 def depth_check(

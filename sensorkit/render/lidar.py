@@ -248,9 +248,26 @@ def range_check(
     hit nothing while the whole footprint meets known shapes within range counts as
     missed.
     """
-    hits = scan.hits
-    rmin, rmax = scan.beams.range_min, scan.beams.range_max
+    known, owner = _known_shapes(shapes_of)
+    if not known:
+        return Check("ranges", "skipped", "the scene has no known shapes")
     V, H = scan.beams.shape
+    sample = check_sample(V, H, limit)
+    beams = _sample_exact(scan, known, sample)
+    err, looked, same = _errors(beams, owner)
+    missed_at = looked & ~np.isfinite(beams.ranges) & (err > RANGE_LIMIT_M)
+    compared = looked & np.isfinite(beams.ranges)
+    missed = int(missed_at.sum())
+    if int(compared.sum()) == 0 and missed == 0:
+        return Check("ranges", "skipped", "no beam reaches a known shape")
+    return _ranges_check(scan, len(sample), beams, err, compared, same, missed)
+
+
+def _known_shapes(
+    shapes_of: dict[tuple[int, int], list[Shape]],
+) -> tuple[list[Shape], list[tuple[int, int]]]:
+    """The shapes whose exact geometry is known (collision shapes but meshes), and the
+    (body, link) each belongs to."""
     known: list[Shape] = []
     owner: list[tuple[int, int]] = []  # the (body, link) of each known shape
     for key, shapes in shapes_of.items():
@@ -258,9 +275,30 @@ def range_check(
             if shape.collision and shape.kind != "mesh":
                 owner.append(key)
                 known.append(shape)
-    if not known:
-        return Check("ranges", "skipped", "the scene has no known shapes")
-    sample = check_sample(V, H, limit)
+    return known, owner
+
+
+@dataclass
+class _Sampled:
+    """The sampled beams against the exact geometry, an entry a beam."""
+
+    ranges: FloatArray  # pybullet's range (+inf: no return)
+    body: npt.NDArray[np.int32]  # what pybullet hit (body < 0: nothing)
+    link: npt.NDArray[np.int32]
+    exact: FloatArray  # the exact first hit's range (+inf: none within range)
+    in_range: npt.NDArray[np.bool_]  # the exact first hit is within range
+    shape: npt.NDArray[np.int64]  # the exact first hit's shape (index of known), or -1
+    lo: FloatArray  # the exact ranges across the beam's footprint, lowest
+    hi: FloatArray  # and highest
+    grazing: npt.NDArray[np.bool_]  # meets its surface beyond 75 degrees from the normal
+    interior: npt.NDArray[np.bool_]  # its whole footprint meets one shape, not grazing
+
+
+def _sample_exact(scan: LidarScan, known: list[Shape], sample: npt.NDArray[np.intp]) -> _Sampled:
+    """pybullet's ranges of the ``sample`` beams beside the exact first hits among
+    ``known``, along each beam and across its footprint (``_probe_dirs``)."""
+    hits = scan.hits
+    rmin, rmax = scan.beams.range_min, scan.beams.range_max
     dirs = scan.dirs_world[sample]
     best_t, best_i, best_n = _first_hits(known, scan.origin, dirs, rmin)
     span = rmax - rmin
@@ -280,38 +318,58 @@ def range_check(
     # a surface tolerance e moves a ray's range by e / cos(incidence): grazing is an edge
     grazing = in_range & (np.abs(np.einsum("ij,ij->i", best_n, dirs)) < GRAZING_COS)
     interior = (beside == label).all(axis=0) & ~grazing
-    on_known = np.zeros(len(sample), dtype=bool)
+    return _Sampled(ranges, body, link, exact, in_range, best_i, lo, hi, grazing, interior)
+
+
+def _errors(
+    b: _Sampled, owner: list[tuple[int, int]]
+) -> tuple[FloatArray, npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+    """Each beam's error (0 when both saw nothing), whether it is looked at (pybullet hit
+    a known shape or nothing, and something is within range), and whether pybullet hit
+    the exact first hit's shape."""
+    on_known = np.zeros(len(b.ranges), dtype=bool)
     for key in dict.fromkeys(owner):
-        on_known |= (body == key[0]) & (link == key[1])
+        on_known |= (b.body == key[0]) & (b.link == key[1])
     # pybullet hit the exact first hit's shape: the (body, link) that shape belongs to
     owner_body = np.array([key[0] for key in owner], dtype=np.int64)
     owner_link = np.array([key[1] for key in owner], dtype=np.int64)
-    first = np.maximum(best_i, 0)
-    same = (best_i >= 0) & (owner_body[first] == body) & (owner_link[first] == link)
-    looked = (on_known | (body < 0)) & (np.isfinite(ranges) | in_range)
+    first = np.maximum(b.shape, 0)
+    same = (b.shape >= 0) & (owner_body[first] == b.body) & (owner_link[first] == b.link)
+    looked = (on_known | (b.body < 0)) & (np.isfinite(b.ranges) | b.in_range)
+    ranges = b.ranges
     with np.errstate(invalid="ignore"):
         # interior: against the exact range; elsewhere: how far outside the footprint
         err = np.where(
-            interior,
-            np.abs(ranges - exact),
-            np.maximum(np.maximum(lo - ranges, ranges - hi), 0.0),
+            b.interior,
+            np.abs(ranges - b.exact),
+            np.maximum(np.maximum(b.lo - ranges, ranges - b.hi), 0.0),
         )
     err = np.where(np.isnan(err), 0.0, err)  # inf - inf: both saw nothing
-    missed_at = looked & ~np.isfinite(ranges) & (err > RANGE_LIMIT_M)
-    compared = looked & np.isfinite(ranges)
-    missed = int(missed_at.sum())
+    return err, looked, same
+
+
+def _ranges_check(
+    scan: LidarScan,
+    sampled: int,
+    b: _Sampled,
+    err: FloatArray,
+    compared: npt.NDArray[np.bool_],
+    same: npt.NDArray[np.bool_],
+    missed: int,
+) -> Check:
+    """The check's verdict, message and details from the errors of the ``compared``
+    beams (``sampled`` beams were looked at; ``missed`` returned nothing wrongly)."""
+    V, H = scan.beams.shape
     n = int(compared.sum())
-    if n == 0 and missed == 0:
-        return Check("ranges", "skipped", "no beam reaches a known shape")
     errs = err[compared] if n else np.zeros(1)
     worst_m = float(errs.max())
     status = "ok" if worst_m <= RANGE_LIMIT_M and missed == 0 else "fail"
-    edges = int((compared & ~interior).sum())
+    edges = int((compared & ~b.interior).sum())
     message = f"{n} beams on known shapes are within {worst_m * 1000:.2f} mm of the exact range" + (
         f" ({edges} at edges or grazing, across their footprint)" if edges else ""
     )
-    if len(sample) < V * H:
-        message += f" ({len(sample):,} of the {V * H:,} beams checked, from every row)"
+    if sampled < V * H:
+        message += f" ({sampled:,} of the {V * H:,} beams checked, from every row)"
     if missed:
         message += f"; {missed} beams returned nothing although a known shape is within range"
     other = compared & ~same
@@ -325,9 +383,9 @@ def range_check(
         "wrong_shape": int((other & (err > RANGE_LIMIT_M)).sum()),
         "other_shape_in_footprint": int((other & (err <= RANGE_LIMIT_M)).sum()),
         "edge_beams": edges,
-        "grazing": int((compared & grazing).sum()),
+        "grazing": int((compared & b.grazing).sum()),
         "rays": V * H,
-        "sampled": len(sample),
-        "batch_calls": hits.calls,
+        "sampled": sampled,
+        "batch_calls": scan.hits.calls,
     }
     return Check("ranges", status, message, worst_m, "m", RANGE_LIMIT_M, details)

@@ -19,7 +19,7 @@ from sensorkit.base.atomic import write_text
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from sensorkit.render.preview import PreviewResult, SensorPreview
+    from sensorkit.render.result import PreviewResult, SensorPreview
 
 __all__ = ["GENERATOR", "is_preview", "summary_dict", "write_index", "write_summary"]
 
@@ -185,6 +185,23 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
     if s.skipped:
         parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
         return "\n".join(parts)
+    figures = _figures_html(s)
+    if figures:
+        parts.append('<div class="imgs">' + "".join(figures) + "</div>")
+    parts.append(_checks_html(s))
+    facts = [*_frame_facts(s), *_camera_facts(s), *_scan_facts(s), *_file_facts(s, base)]
+    parts.append(
+        "<table>" + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts) + "</table>"
+    )
+    if s.notes:
+        parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
+    return "\n".join(parts)
+
+
+def _figures_html(s: SensorPreview) -> list[str]:
+    """The sensor's pictures: rgb, depth and scan first (labelled where a figure is),
+    then its other figures."""
+    e = html.escape
     figures = []
     labelled = {"depth_png": "depth", "scan_png": "scan"}  # files shown by s.figures
     for key, caption in (
@@ -199,17 +216,27 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
                 f"<figure>{_img(s.files[key], caption)}<figcaption>{e(caption)}</figcaption></figure>"
             )
     figures += [f.html() for k, f in s.figures.items() if k not in labelled.values()]
-    if figures:
-        parts.append('<div class="imgs">' + "".join(figures) + "</div>")
+    return figures
+
+
+def _checks_html(s: SensorPreview) -> str:
+    """The sensor's checks, one a row."""
+    e = html.escape
     rows = "".join(
         f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_fmt(c.value) if c.value is not None else ''} {e(c.unit)}</td>"
         f"<td>{_fmt(c.limit) if c.limit is not None else ''}</td><td>{e(c.message)}</td></tr>"
         for c in s.checks
     )
-    parts.append(
-        f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
-    )
-    facts: list[tuple[str, str]] = []
+    return f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
+
+
+# The facts table of a sensor: (heading, HTML) rows.
+_Facts = list[tuple[str, str]]
+
+
+def _frame_facts(s: SensorPreview) -> _Facts:
+    """Where the sensor is rendered from and the frames its data is stamped with."""
+    facts: _Facts = []
     frames = s.info.get("frames", {})
     if frames:
         pose = frames.get("render_pose", {})
@@ -224,37 +251,53 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
         )
         if frames.get("camera_frame") != frames.get("published_frame"):
             facts.append(("image frame", _fmt(frames.get("camera_frame"))))
+    return facts
+
+
+def _camera_facts(s: SensorPreview) -> _Facts:
+    """camera_info's K and what the simulator renders."""
     intr = s.info.get("intrinsics")
-    if intr:
-        facts.append(
-            (
-                "camera_info K",
-                f"fx {_fmt(intr['fx'])}, fy {_fmt(intr['fy'])}, cx {_fmt(intr['cx'])}, cy {_fmt(intr['cy'])} ({e(str(intr['convention']))})",
-            )
-        )
-        r = intr["rendered"]
-        facts.append(
-            (
-                "rendered",
-                f"fx {_fmt(r['fx'])}, fy {_fmt(r['fy'])}, principal point ({_fmt(r['cx'])}, {_fmt(r['cy'])}) 0-based; clip {_fmt(r['near'])}..{_fmt(r['far'])} m",
-            )
-        )
+    if not intr:
+        return []
+    r = intr["rendered"]
+    return [
+        (
+            "camera_info K",
+            f"fx {_fmt(intr['fx'])}, fy {_fmt(intr['fy'])}, cx {_fmt(intr['cx'])}, cy {_fmt(intr['cy'])} ({html.escape(str(intr['convention']))})",
+        ),
+        (
+            "rendered",
+            f"fx {_fmt(r['fx'])}, fy {_fmt(r['fy'])}, principal point ({_fmt(r['cx'])}, {_fmt(r['cy'])}) 0-based; clip {_fmt(r['near'])}..{_fmt(r['far'])} m",
+        ),
+    ]
+
+
+def _scan_facts(s: SensorPreview) -> _Facts:
+    """A lidar's beams, and its rows for a 3D one."""
     scan = s.info.get("scan")
-    if scan:
+    if not scan:
+        return []
+    facts = [
+        (
+            "scan",
+            f"{scan['samples']} beams, {_fmt(scan['angle_min'])}..{_fmt(scan['angle_max'])} rad, step {_fmt(scan['angle_increment'])}, range {_fmt(scan['range_min'])}..{_fmt(scan['range_max'])} m",
+        )
+    ]
+    if "vertical" in s.info:
+        v = s.info["vertical"]
         facts.append(
             (
-                "scan",
-                f"{scan['samples']} beams, {_fmt(scan['angle_min'])}..{_fmt(scan['angle_max'])} rad, step {_fmt(scan['angle_increment'])}, range {_fmt(scan['range_min'])}..{_fmt(scan['range_max'])} m",
+                "vertical",
+                f"{v['samples']} rows, {_fmt(v['angle_min'])}..{_fmt(v['angle_max'])} rad",
             )
         )
-        if "vertical" in s.info:
-            v = s.info["vertical"]
-            facts.append(
-                (
-                    "vertical",
-                    f"{v['samples']} rows, {_fmt(v['angle_min'])}..{_fmt(v['angle_max'])} rad",
-                )
-            )
+    return facts
+
+
+def _file_facts(s: SensorPreview, base: Path) -> _Facts:
+    """The sensor's topics, and its files, linked."""
+    e = html.escape
+    facts: _Facts = []
     if s.info.get("topics"):
         topics = s.info["topics"]
         facts.append(
@@ -264,12 +307,7 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
         f'<a href="{e(_rel(p, base))}">{e(_rel(p, base))}</a>' for p in s.files.values()
     )
     facts.append(("files", files))
-    parts.append(
-        "<table>" + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts) + "</table>"
-    )
-    if s.notes:
-        parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
-    return "\n".join(parts)
+    return facts
 
 
 def _counts(s: SensorPreview) -> str:

@@ -1,0 +1,143 @@
+"""The labelled pictures' common ground: a :class:`Figure` and the SVG it is drawn in.
+
+A figure is an inline SVG for index.html (PNG pixels where there are many dots, SVG for
+every label, tick and axis, so text stays sharp and needs no font library) and ``facts``,
+the numbers it draws (also written to summary.json). ``Svg`` builds the document as
+escaped text; ``num``, ``metres`` and ``hex_colour`` write numbers and colours the way
+every picture shows them; ``nice_step`` and ``ticks`` pick round values for scales.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["Figure", "Svg", "hex_colour", "metres", "nice_step", "num", "ticks"]
+
+FloatArray = npt.NDArray[np.float64]
+_FONT = "font-family:system-ui,sans-serif"
+
+
+@dataclass
+class Figure:
+    """One picture of index.html: an inline ``<svg>``, a caption, and the numbers drawn."""
+
+    key: str  # depth | scan | side | imu | closeup | stereo:<pair>
+    caption: str
+    svg: str
+    facts: dict[str, Any] = field(default_factory=dict)
+
+    def html(self) -> str:
+        return (
+            f'<figure class="picture" data-figure="{html.escape(self.key)}">{self.svg}'
+            f"<figcaption>{html.escape(self.caption)}</figcaption></figure>"
+        )
+
+
+def num(v: float) -> str:
+    return f"{v:.2f}".rstrip("0").rstrip(".") if math.isfinite(v) else str(v)
+
+
+def metres(v: float) -> str:
+    """``2.8 m``, ``0.25 m``, ``12 m``: as many decimals as the value needs (3 at most)."""
+    if not math.isfinite(v):
+        return f"{v} m"
+    text = f"{v:.3f}".rstrip("0").rstrip(".")
+    return f"{'0' if text == '-0' else text} m"
+
+
+class Svg:
+    """An SVG document built as text; every string is escaped."""
+
+    def __init__(self, width: float, height: float) -> None:
+        self.width = width
+        self.height = height
+        self.parts: list[str] = []
+
+    def add(self, tag: str, text: str | None = None, **attrs: Any) -> None:
+        def value(v: Any) -> str:
+            return num(v) if isinstance(v, float) else str(v)
+
+        a = "".join(
+            f' {k.rstrip("_").replace("_", "-")}="{html.escape(value(v))}"'
+            for k, v in attrs.items()
+            if v is not None
+        )
+        self.parts.append(
+            f"<{tag}{a}>{html.escape(text)}</{tag}>" if text is not None else f"<{tag}{a}/>"
+        )
+
+    def image(self, png: bytes, x: float, y: float, w: float, h: float) -> None:
+        data = base64.b64encode(png).decode("ascii")
+        self.add(
+            "image",
+            href=f"data:image/png;base64,{data}",
+            x=x,
+            y=y,
+            width=w,
+            height=h,
+            preserveAspectRatio="none",
+            style="image-rendering:pixelated",
+        )
+
+    def text(
+        self, x: float, y: float, s: str, *, size: float = 11, anchor: str = "start", **attrs: Any
+    ) -> None:
+        self.add("text", s, x=x, y=y, font_size=size, text_anchor=anchor, style=_FONT, **attrs)
+
+    def line(
+        self,
+        p: FloatArray | tuple[float, float],
+        q: FloatArray | tuple[float, float],
+        colour: str,
+        width: float = 1.0,
+        **attrs: Any,
+    ) -> None:
+        self.add(
+            "line",
+            x1=float(p[0]),
+            y1=float(p[1]),
+            x2=float(q[0]),
+            y2=float(q[1]),
+            stroke=colour,
+            stroke_width=width,
+            **attrs,
+        )
+
+    def __str__(self) -> str:
+        return (
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{num(self.width)}" '
+            f'height="{num(self.height)}" style="max-width:100%;height:auto" viewBox="0 0 {num(self.width)} {num(self.height)}">'
+            + "".join(self.parts)
+            + "</svg>"
+        )
+
+
+def hex_colour(colour: tuple[int, int, int] | npt.NDArray[np.uint8]) -> str:
+    return "#{:02x}{:02x}{:02x}".format(*(int(c) for c in colour))
+
+
+def nice_step(span: float, count: int = 5) -> float:
+    """A 1, 2 or 5 x 10^k step that cuts ``span`` into about ``count`` parts."""
+    if not span > 0 or not math.isfinite(span):
+        return 1.0
+    raw = span / count
+    base = 10.0 ** math.floor(math.log10(raw))
+    return next(m * base for m in (1.0, 2.0, 5.0, 10.0) if m * base >= raw * 0.999)
+
+
+def ticks(lo: float, hi: float, count: int = 5) -> list[float]:
+    """Round values from ``lo`` to ``hi``, about ``count`` of them (the ends when the span
+    is not a finite, positive number)."""
+    if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+        return [v for v in (lo, hi) if math.isfinite(v)]
+    step = nice_step(hi - lo, count)
+    first = math.ceil(lo / step - 1e-9) * step
+    out = [round(first + k * step, 10) for k in range(int((hi - first) / step + 1e-9) + 1)]
+    return [v for v in out if lo - 1e-9 <= v <= hi + 1e-9]
