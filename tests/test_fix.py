@@ -392,7 +392,7 @@ def test_sk602_ros1_tags_take_their_ros2_form(here: Path) -> None:
         "      </plugin>"
     )
     # The topics are where ROS 1 put them: /NS/CAMERA/TOPIC, an absolute name as it is.
-    from sensorkit.lint.rules.plugins import resolved_topics
+    from sensorkit.lint.rules.topic_names import resolved_topics
     from sensorkit.model import load_robot
 
     loaded = load_robot(path)
