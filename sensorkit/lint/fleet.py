@@ -1,5 +1,7 @@
 """Many files in one ``sensorkit validate``: folder arguments and a pool of worker processes.
 
+``validate_paths`` validates a list of files, in this process or (``jobs`` > 1) in the pool.
+
 Folders: ``find_robots`` walks a folder the way colcon does (no hidden folders, none that
 hold a ``COLCON_IGNORE``, no ``build``/``install``/``log``) and keeps the top-level robot
 descriptions: every ``*.urdf``, and every ``*.xacro`` (``*.urdf.xacro`` included) that is
@@ -28,11 +30,11 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
+from sensorkit.lint.engine import FileReport, Options, Report, validate_one
+
 if TYPE_CHECKING:
     from multiprocessing.connection import Connection
     from multiprocessing.process import BaseProcess
-
-    from sensorkit.lint.engine import FileReport, Options
 
 SKIP_DIRS = frozenset({"build", "install", "log"})
 IGNORE_MARKER = "COLCON_IGNORE"
@@ -113,8 +115,6 @@ def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     with contextlib.suppress(OSError):  # stopping the group stops xacro's children too
         os.setpgid(0, 0)
-    from sensorkit.lint.engine import validate_one
-
     try:
         while True:
             task = conn.recv()
@@ -174,7 +174,6 @@ def _stop(proc: BaseProcess) -> None:
 
 
 def _crashed(path: Path, proc: BaseProcess) -> FileReport:
-    from sensorkit.lint.engine import FileReport
     from sensorkit.loading.document import display_path
 
     code = proc.exitcode
@@ -345,3 +344,25 @@ def run_pool(
     out = [r for r in results if r is not None]
     assert len(out) == len(paths)
     return out
+
+
+def validate_paths(
+    paths: Sequence[Path],
+    options: Options | None = None,
+    *,
+    jobs: int = 1,
+    keep: list[object] | None = None,
+) -> Report:
+    """Validate several files; reports in input order, each holding findings only.
+
+    ``jobs`` > 1 validates one file per task in that many worker processes
+    (:func:`run_pool`); the result is the same as with ``jobs=1``.
+    ``keep`` takes the last file's model (see :func:`~sensorkit.lint.engine.validate_one`).
+    """
+    options = options or Options()
+    if jobs > 1 and len(paths) > 1:
+        return Report(run_pool(paths, options, jobs))
+    last = len(paths) - 1
+    return Report(
+        [validate_one(p, options, keep=keep if i == last else None) for i, p in enumerate(paths)]
+    )
