@@ -265,7 +265,7 @@ def rules(
             f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)"
         )
     if fmt == "markdown" and not wanted:
-        sys.stdout.write(rule_table())
+        sys.stdout.write(rule_table(fixable))
         return
     if fmt == "json":
         from sensorkit.lint.explain import EXAMPLES
@@ -289,7 +289,7 @@ def rules(
     if wanted:
         from sensorkit.lint.explain import explain
 
-        sys.stdout.write("\n".join(explain(rid) for rid in wanted))
+        sys.stdout.write("\n".join(explain(rid, fixable(rid)) for rid in wanted))
         return
     styles = {"error": "31", "warning": "33", "info": "36"}
     for rid in sorted(RULES):
