@@ -228,7 +228,7 @@ def t_validate(inp: FuzzInput, work: Path) -> Outcome:
 
 def t_validate_paths(inp: FuzzInput, work: Path) -> Outcome:
     """validate_paths on the robot, every other file of the case, and a missing file."""
-    from sensorkit.lint.engine import validate_paths
+    from sensorkit.lint.fleet import validate_paths
 
     path = inp.case.write(work)
     others = [work / rel for rel in inp.case.files if (work / rel) != path][:4]

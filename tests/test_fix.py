@@ -392,7 +392,7 @@ def test_sk602_ros1_tags_take_their_ros2_form(here: Path) -> None:
         "      </plugin>"
     )
     # The topics are where ROS 1 put them: /NS/CAMERA/TOPIC, an absolute name as it is.
-    from sensorkit.lint.rules.plugins import resolved_topics
+    from sensorkit.lint.rules.topic_names import resolved_topics
     from sensorkit.model import load_robot
 
     loaded = load_robot(path)
@@ -772,9 +772,10 @@ def test_rules_say_what_is_fixable() -> None:
         lines["SK505"] == "safe" and lines["SK301"] == "unsafe" and lines["SK502"] == "safe/unsafe"
     )
     assert lines["SK101"] == "-"
+    from sensorkit.fix import fixable
     from sensorkit.lint.report import rule_table
 
-    assert "| SK505 | info |" in rule_table() and rule_table().splitlines()[0].endswith(
+    assert "| SK505 | info |" in rule_table(fixable) and rule_table(fixable).splitlines()[0].endswith(
         "| `--fix` |"
     )
 

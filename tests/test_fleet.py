@@ -23,8 +23,8 @@ import pytest
 import sensorkit.lint.engine
 import sensorkit.model
 from sensorkit.base.errors import UsageError
-from sensorkit.lint.engine import Options, validate_paths
-from sensorkit.lint.fleet import find_robots, is_partial
+from sensorkit.lint.engine import Options
+from sensorkit.lint.fleet import find_robots, is_partial, validate_paths
 
 ROOT = Path(__file__).resolve().parent.parent
 ACCEPTANCE = ROOT / "tests" / "robots" / "acceptance"

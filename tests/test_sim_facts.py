@@ -163,7 +163,7 @@ def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None
 
     from sensorkit.describe.sensorinfo import depth_range
     from sensorkit.generate.bridge import sensor_entries
-    from sensorkit.lint.rules.plugins import gz_topics
+    from sensorkit.lint.rules.topic_names import gz_topics
 
     cam = ("<camera><horizontal_fov>1</horizontal_fov><image><width>64</width><height>48</height></image>"
            "<clip><near>0.1</near><far>10</far></clip><camera_info_topic>cam/info</camera_info_topic>"

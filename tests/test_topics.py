@@ -895,7 +895,7 @@ def test_a_triggered_camera_subscribes_to_image_trigger_under_its_name(tmp_path:
     # from the plugin element; a <triggered> inside <camera> is not what it reads.
     from builders import camera_sensor, robot
 
-    from sensorkit.lint.rules.plugins import plugin_topics
+    from sensorkit.lint.rules.topic_names import plugin_topics
     from sensorkit.model import load_robot
 
     def names(params: str, camera_extra: str = "") -> list[str]:

@@ -80,7 +80,7 @@ def run_fix(
             f.severity >= threshold for ff in run.files for f in ff.after
         )
         raise typer.Exit(exit_status(2 if failed else 1 if bad else 0, exit_zero=exit_zero))
-    from sensorkit.lint.engine import validate_paths
+    from sensorkit.lint.fleet import validate_paths
     from sensorkit.lint.report import render
 
     report = validate_paths(files, options)

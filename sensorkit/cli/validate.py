@@ -125,7 +125,8 @@ def validate(
     Exit status: 0 nothing at or above --fail-on (or --exit-zero), 1 findings, 2 could
     not run.
     """
-    from sensorkit.lint.engine import Options, validate_paths
+    from sensorkit.lint.engine import Options
+    from sensorkit.lint.fleet import validate_paths
 
     with collector_off():
         from sensorkit.base.errors import UsageError
@@ -215,7 +216,7 @@ def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
             out.append(item)
             continue
         from sensorkit.cli.common import die
-        from sensorkit.lint.fleet import find_robots  # folders only: not on the common path
+        from sensorkit.lint.fleet import find_robots
         from sensorkit.loading.document import display_path
 
         found = find_robots(item)
@@ -264,7 +265,7 @@ def rules(
             f"no rule {unknown[0]} (rule ids look like SK502; `sensorkit rules` lists them)"
         )
     if fmt == "markdown" and not wanted:
-        sys.stdout.write(rule_table())
+        sys.stdout.write(rule_table(fixable))
         return
     if fmt == "json":
         from sensorkit.lint.explain import EXAMPLES
@@ -288,7 +289,7 @@ def rules(
     if wanted:
         from sensorkit.lint.explain import explain
 
-        sys.stdout.write("\n".join(explain(rid) for rid in wanted))
+        sys.stdout.write("\n".join(explain(rid, fixable(rid)) for rid in wanted))
         return
     styles = {"error": "31", "warning": "33", "info": "36"}
     for rid in sorted(RULES):

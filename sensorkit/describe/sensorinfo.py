@@ -319,7 +319,7 @@ def _abs(topic: str) -> str:
 
 
 def _ros2_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
-    from sensorkit.lint.rules.plugins import resolved_topics
+    from sensorkit.lint.rules.topic_names import resolved_topics
     from sensorkit.model.frames import ros_plugin
 
     plugin = ros_plugin(sensor)

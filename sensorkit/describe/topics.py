@@ -287,8 +287,8 @@ def _classic_topics(info: SensorInfo, target: str, notes: list[str]) -> list[Top
 
 def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str | None:
     """What a gz sensor without ``<topic>`` publishes on: its scoped name plus the suffix
-    gz-sim gives its kind (see ``sensorkit.lint.rules.plugins.GZ_DEFAULT_SUFFIX``)."""
-    from sensorkit.lint.rules.plugins import GZ_DEFAULT_SUFFIX
+    gz-sim gives its kind (see ``sensorkit.lint.rules.topic_names.GZ_DEFAULT_SUFFIX``)."""
+    from sensorkit.lint.rules.topic_names import GZ_DEFAULT_SUFFIX
 
     kind = info.sensor.kind
     if kind not in GZ_DEFAULT_SUFFIX:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import gc
 import os
 import traceback
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -367,30 +367,6 @@ def validate_one(
     return report
 
 
-def validate_paths(
-    paths: Sequence[Path],
-    options: Options | None = None,
-    *,
-    jobs: int = 1,
-    keep: list[object] | None = None,
-) -> Report:
-    """Validate several files; reports in input order, each holding findings only.
-
-    ``jobs`` > 1 validates one file per task in that many worker processes
-    (``sensorkit.lint.fleet.run_pool``); the result is the same as with ``jobs=1``.
-    ``keep`` takes the last file's model (see :func:`validate_one`).
-    """
-    options = options or Options()
-    if jobs > 1 and len(paths) > 1:
-        from sensorkit.lint.fleet import run_pool
-
-        return Report(run_pool(paths, options, jobs))
-    last = len(paths) - 1
-    return Report(
-        [validate_one(p, options, keep=keep if i == last else None) for i, p in enumerate(paths)]
-    )
-
-
 __all__ = [
     "FileReport",
     "Options",
@@ -402,5 +378,4 @@ __all__ = [
     "validate_file",
     "validate_loaded",
     "validate_one",
-    "validate_paths",
 ]

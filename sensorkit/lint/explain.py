@@ -72,13 +72,12 @@ EXAMPLES: dict[str, Example] = {
 }
 
 
-def explain(rule_id: str) -> str:
-    """The text of ``sensorkit rules ID``."""
-    from sensorkit.fix import fixable
+def explain(rule_id: str, fix: str) -> str:
+    """The text of ``sensorkit rules ID``; ``fix``: how ``--fix`` fixes the rule (``safe``,
+    ``unsafe``, ``safe/unsafe``, or ``""``: by hand), which the fix layer above knows."""
     from sensorkit.lint.rules import RULES
 
     info = RULES[rule_id]
-    fix = fixable(rule_id)
     lines = [
         f"{rule_id} ({info.severity}): {info.title}",
         f"fix: {'with --fix (' + fix + ')' if fix else 'by hand'}",

@@ -1,5 +1,7 @@
 """Many files in one ``sensorkit validate``: folder arguments and a pool of worker processes.
 
+``validate_paths`` validates a list of files, in this process or (``jobs`` > 1) in the pool.
+
 Folders: ``find_robots`` walks a folder the way colcon does (no hidden folders, none that
 hold a ``COLCON_IGNORE``, no ``build``/``install``/``log``) and keeps the top-level robot
 descriptions: every ``*.urdf``, and every ``*.xacro`` (``*.urdf.xacro`` included) that is
@@ -21,6 +23,7 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
+from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,11 +31,11 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
+from sensorkit.lint.engine import FileReport, Options, Report, validate_one
+
 if TYPE_CHECKING:
     from multiprocessing.connection import Connection
     from multiprocessing.process import BaseProcess
-
-    from sensorkit.lint.engine import FileReport, Options
 
 SKIP_DIRS = frozenset({"build", "install", "log"})
 IGNORE_MARKER = "COLCON_IGNORE"
@@ -113,8 +116,6 @@ def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     with contextlib.suppress(OSError):  # stopping the group stops xacro's children too
         os.setpgid(0, 0)
-    from sensorkit.lint.engine import validate_one
-
     try:
         while True:
             task = conn.recv()
@@ -174,7 +175,6 @@ def _stop(proc: BaseProcess) -> None:
 
 
 def _crashed(path: Path, proc: BaseProcess) -> FileReport:
-    from sensorkit.lint.engine import FileReport
     from sensorkit.loading.document import display_path
 
     code = proc.exitcode
@@ -216,79 +216,127 @@ def run_pool(
     so that none holds a file another could validate now.
     """
     import multiprocessing as mp
-    from collections import deque
-    from multiprocessing.connection import wait
 
     method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
     ctx = mp.get_context(method)
     if method == "fork":
         _preload(paths)
-    results: list[FileReport | None] = [None] * len(paths)
-    next_task = 0
-    retry: list[int] = []  # files sent to a worker that died before it began them
+    return _Pool(paths, options, ctx, on_done).run(jobs)
+
+
+@dataclass
+class _Pool:
+    """One ``run_pool``: its workers, the files each holds, the files left to hand out."""
+
+    paths: Sequence[Path]
+    options: Options
+    ctx: Any  # the multiprocessing context workers start in
+    on_done: Callable[[int, FileReport], None] | None
+    results: list[FileReport | None] = field(default_factory=list)  # by file index
+    next_task: int = 0
+    # files sent to a worker that died before it began them
+    retry: list[int] = field(default_factory=list)
     # connection -> (its worker, the files sent to it and not answered yet, oldest first)
-    live: dict[Any, tuple[BaseProcess, deque[int]]] = {}
-    raised: dict[int, Exception] = {}  # file index -> what validating it raised
-    workers: list[tuple[BaseProcess, Connection]] = []
-    broken: set[Any] = set()  # connections a send failed on: their worker is gone
+    live: dict[Any, tuple[BaseProcess, deque[int]]] = field(default_factory=dict)
+    raised: dict[int, Exception] = field(default_factory=dict)  # file index -> what it raised
+    workers: list[tuple[BaseProcess, Connection]] = field(default_factory=list)
+    # connections a send failed on: their worker is gone
+    broken: set[Any] = field(default_factory=set)
 
-    def done(index: int, report: FileReport) -> None:
-        results[index] = report
-        if on_done is not None:
-            on_done(index, report)
+    def __post_init__(self) -> None:
+        self.results = [None] * len(self.paths)
 
-    def limit() -> int:
+    def run(self, jobs: int) -> list[FileReport]:
+        """Start the workers, keep them fed until every file is answered, stop them."""
+        from multiprocessing.connection import wait
+
+        live = self.live
+        try:
+            for _ in range(max(1, min(jobs, len(self.paths)))):
+                self.start()
+            for _ in range(QUEUED):  # one file each first, then the next ones
+                for conn in list(live):
+                    self.give(conn)
+            for conn in list(live):
+                self.feed(conn)
+            while live:
+                by_sentinel: dict[Any, Any] = {p.sentinel: c for c, (p, _) in live.items()}
+                for item in wait([*live, *by_sentinel]):
+                    conn = by_sentinel.get(item, item)
+                    if conn not in live:
+                        continue  # already handled through its other handle
+                    if self.collect(conn):
+                        self.feed(conn)
+                    else:
+                        self.bury(conn)
+            if self.raised:
+                raise self.raised[min(self.raised)]
+            for proc, _conn in self.workers:
+                proc.join(10)
+        finally:
+            for proc, conn in self.workers:
+                _stop(proc)
+                conn.close()
+        out = [r for r in self.results if r is not None]
+        assert len(out) == len(self.paths)
+        return out
+
+    def done(self, index: int, report: FileReport) -> None:
+        self.results[index] = report
+        if self.on_done is not None:
+            self.on_done(index, report)
+
+    def limit(self) -> int:
         # validate_file raised (a usage error, a bug): --jobs 1 stops at the first such
         # file, so no file after it is handed out; the earliest is raised at the end.
-        return min(raised) if raised else len(paths)
+        return min(self.raised) if self.raised else len(self.paths)
 
-    def left() -> int:
+    def left(self) -> int:
         """Files not handed out yet (and to be)."""
-        end = limit()
-        return sum(1 for i in retry if i < end) + max(0, end - next_task)
+        end = self.limit()
+        return sum(1 for i in self.retry if i < end) + max(0, end - self.next_task)
 
-    def give(conn: Connection) -> bool:
+    def give(self, conn: Connection) -> bool:
         """Send ``conn``'s worker one more file; False when it should get none now."""
-        nonlocal next_task
-        _proc, queue = live[conn]
-        if len(queue) >= QUEUED or (queue and left() <= len(live)):
+        _proc, queue = self.live[conn]
+        if len(queue) >= QUEUED or (queue and self.left() <= len(self.live)):
             return False
-        end = limit()
-        if retry and retry[0] < end:
-            index = retry.pop(0)
-        elif next_task < end:
-            index = next_task
-            next_task += 1
+        end = self.limit()
+        if self.retry and self.retry[0] < end:
+            index = self.retry.pop(0)
+        elif self.next_task < end:
+            index = self.next_task
+            self.next_task += 1
         else:
             return False
         try:
-            conn.send((index, paths[index]))
+            conn.send((index, self.paths[index]))
         except OSError:  # it died: collect() sees it, and bury() takes over
-            broken.add(conn)
-            retry.append(index)
-            retry.sort()
+            self.broken.add(conn)
+            self.retry.append(index)
+            self.retry.sort()
             return False
         queue.append(index)
         return True
 
-    def feed(conn: Connection) -> None:
+    def feed(self, conn: Connection) -> None:
         """Top up a worker's files; stop it (None) when it holds none and none is left."""
-        while give(conn):
+        while self.give(conn):
             pass
-        if not live[conn][1] and conn not in broken:
+        if not self.live[conn][1] and conn not in self.broken:
             with contextlib.suppress(OSError):
                 conn.send(None)
-            del live[conn]
+            del self.live[conn]
 
-    def start() -> Connection:
-        proc, conn = _start(ctx, options)
-        workers.append((proc, conn))
-        live[conn] = (proc, deque())
+    def start(self) -> Connection:
+        proc, conn = _start(self.ctx, self.options)
+        self.workers.append((proc, conn))
+        self.live[conn] = (proc, deque())
         return conn
 
-    def collect(conn: Connection) -> bool:
+    def collect(self, conn: Connection) -> bool:
         """Take every answer ``conn`` holds; False when its worker is gone."""
-        proc, queue = live[conn]
+        proc, queue = self.live[conn]
         try:
             while conn.poll():  # a worker speaks only to answer: else it is gone (EOF)
                 got, answer = conn.recv()
@@ -296,52 +344,44 @@ def run_pool(
                     return False
                 index = queue.popleft()
                 if isinstance(answer, Exception):
-                    raised[index] = answer
+                    self.raised[index] = answer
                 else:
-                    done(index, answer)
+                    self.done(index, answer)
         except (EOFError, OSError):
             return False
         return proc.exitcode is None
 
-    def bury(conn: Connection) -> None:
+    def bury(self, conn: Connection) -> None:
         """A worker died: the file it held becomes that file's error, the files queued
         behind it go to other workers, and a new worker takes its place."""
-        proc, queue = live.pop(conn)
+        proc, queue = self.live.pop(conn)
         _stop(proc)
         if queue:
             index = queue.popleft()
-            done(index, _crashed(paths[index], proc))
-            retry.extend(queue)
-            retry.sort()
-        if left():
-            feed(start())
+            self.done(index, _crashed(self.paths[index], proc))
+            self.retry.extend(queue)
+            self.retry.sort()
+        if self.left():
+            self.feed(self.start())
 
-    try:
-        for _ in range(max(1, min(jobs, len(paths)))):
-            start()
-        for _ in range(QUEUED):  # one file each first, then the next ones
-            for conn in list(live):
-                give(conn)
-        for conn in list(live):
-            feed(conn)
-        while live:
-            by_sentinel: dict[Any, Any] = {p.sentinel: c for c, (p, _) in live.items()}
-            for item in wait([*live, *by_sentinel]):
-                conn = by_sentinel.get(item, item)
-                if conn not in live:
-                    continue  # already handled through its other handle
-                if collect(conn):
-                    feed(conn)
-                else:
-                    bury(conn)
-        if raised:
-            raise raised[min(raised)]
-        for proc, _conn in workers:
-            proc.join(10)
-    finally:
-        for proc, conn in workers:
-            _stop(proc)
-            conn.close()
-    out = [r for r in results if r is not None]
-    assert len(out) == len(paths)
-    return out
+
+def validate_paths(
+    paths: Sequence[Path],
+    options: Options | None = None,
+    *,
+    jobs: int = 1,
+    keep: list[object] | None = None,
+) -> Report:
+    """Validate several files; reports in input order, each holding findings only.
+
+    ``jobs`` > 1 validates one file per task in that many worker processes
+    (:func:`run_pool`); the result is the same as with ``jobs=1``.
+    ``keep`` takes the last file's model (see :func:`~sensorkit.lint.engine.validate_one`).
+    """
+    options = options or Options()
+    if jobs > 1 and len(paths) > 1:
+        return Report(run_pool(paths, options, jobs))
+    last = len(paths) - 1
+    return Report(
+        [validate_one(p, options, keep=keep if i == last else None) for i, p in enumerate(paths)]
+    )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Callable
 from typing import Any
 
 from sensorkit import __version__
@@ -232,10 +233,9 @@ def render(report: Report, fmt: str, *, color: bool = False, quiet: bool = False
     return format_text(report, color=color, quiet=quiet)
 
 
-def rule_table() -> str:
-    """The Markdown rule table for the README, generated from the registry."""
-    from sensorkit.fix import fixable
-
+def rule_table(fixable: Callable[[str], str]) -> str:
+    """The Markdown rule table for the README, generated from the registry; ``fixable``
+    says how ``--fix`` fixes a rule (``sensorkit.fix.fixable``, from the layer above)."""
     lines = ["| id | severity | checks | existing tool | `--fix` |", "|---|---|---|---|---|"]
     for rid in sorted(RULES):
         info = RULES[rid]

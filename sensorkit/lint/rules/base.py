@@ -7,7 +7,7 @@ are a public contract (never renumber or reuse one).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -61,6 +61,16 @@ def rule(
 def declare(id: str, severity: str, title: str, existing: str = "none") -> None:
     """Register a rule whose findings come from loading (SK101..SK103), not a function."""
     RULES[id] = RuleInfo(id, severity, title, existing, None)
+
+
+def put_in_order(ids: Sequence[str]) -> None:
+    """Reorder ``RULES`` as ``ids`` lists them: every registered rule, each once."""
+    if sorted(ids) != sorted(RULES):
+        msg = f"the rule order lists {sorted(set(ids) ^ set(RULES))} wrongly"
+        raise RuntimeError(msg)
+    ordered = {rid: RULES[rid] for rid in ids}
+    RULES.clear()
+    RULES.update(ordered)
 
 
 @dataclass

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
@@ -223,6 +223,23 @@ def _missing_frame(
     )
 
 
+def _stamped(
+    ctx: Context, wanted: Callable[[Sensor], bool]
+) -> Iterator[tuple[Sensor, SensorFrames, str | None, Mat]]:
+    """The sensors ``wanted`` picks, each with its frames, the frame its data is stamped
+    with (a camera's image frame, else the published one) and that frame's pose from the
+    render pose; a sensor whose frame has no such pose is left out."""
+    robot = ctx.robot
+    for s in robot.sensors:
+        if not wanted(s):
+            continue
+        fr = ctx.frames_of(s)
+        frame = fr.camera_frame if s.is_camera else fr.published
+        T = fr.T_render_frame(robot, frame)
+        if T is not None:
+            yield s, fr, frame, T
+
+
 @rule(
     "SK502",
     "error",
@@ -231,13 +248,8 @@ def _missing_frame(
 )
 def camera_optical(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    for s in robot.sensors:
-        if not s.is_camera:
-            continue
-        fr = ctx.frames_of(s)
-        frame = fr.camera_frame
-        T = fr.T_render_frame(robot, frame)
-        if T is None or (fr.is_default and fr.image_frame is None and not fr.plugin):
+    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera):
+        if fr.is_default and fr.image_frame is None and not fr.plugin:
             continue
         R = tf.rotation(T)
         err = tf.angle_between(R, tf.R_BODY_OPTICAL)
@@ -275,14 +287,8 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
 )
 def frame_position(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    for s in robot.sensors:
-        if not (s.is_camera or s.kind == "lidar"):
-            continue  # an IMU's frame position only matters through its lever arm
-        fr = ctx.frames_of(s)
-        frame = fr.camera_frame if s.is_camera else fr.published
-        T = fr.T_render_frame(robot, frame)
-        if T is None:
-            continue
+    # an IMU's frame position only matters through its lever arm
+    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera or s.kind == "lidar"):
         off = tf.translation(T)  # in the sensor's own frame
         dist = tf.norm(off)
         if dist <= POSITION_TOL or _stereo_right_eye(s, fr, off):
@@ -333,14 +339,7 @@ def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, floa
     "lidar, IMU and other body sensors are published in a frame with identity rotation from the render pose (x forward, z up)",
 )
 def body_frame(ctx: Context) -> Iterator[Finding]:
-    robot = ctx.robot
-    for s in robot.sensors:
-        if s.kind not in ("lidar", "imu"):
-            continue
-        fr = ctx.frames_of(s)
-        T = fr.T_render_frame(robot, fr.published)
-        if T is None:
-            continue
+    for s, fr, _frame, T in _stamped(ctx, lambda s: s.kind in ("lidar", "imu")):
         R = tf.rotation(T)
         err = tf.rotation_angle(R)
         if err <= ANGLE_TOL:
@@ -413,15 +412,9 @@ def approximate_optical(ctx: Context) -> Iterator[Finding]:
 
 @rule("SK506", "info", "a frame used as optical frame lacks the REP 103 `_optical` naming")
 def optical_naming(ctx: Context) -> Iterator[Finding]:
-    robot = ctx.robot
     seen: set[str] = set()
-    for s in robot.sensors:
-        if not s.is_camera:
-            continue
-        fr = ctx.frames_of(s)
-        frame = fr.camera_frame
-        T = fr.T_render_frame(robot, frame)
-        if T is None or frame is None or frame in seen or "optical" in frame:
+    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera):
+        if frame is None or frame in seen or "optical" in frame:
             continue
         if tf.angle_between(tf.rotation(T), tf.R_BODY_OPTICAL) <= ANGLE_TOL:
             seen.add(frame)

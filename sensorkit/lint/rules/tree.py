@@ -7,7 +7,7 @@ from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.model.robot import JOINT_TYPES
+from sensorkit.model.robot import JOINT_TYPES, Robot
 
 
 @rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
@@ -151,11 +151,21 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 twice = True
             else:
                 children.add(c)
-    parents: dict[str, list[str]] = {}  # the parent joints of each child, when any has two
+    # Cycles over every joint (a second parent can close a loop too).
     if twice:
-        for j in robot.joints:
-            if j.child is not None and j.parent != j.child:
-                parents.setdefault(j.child, []).append(j.name)
+        yield from _second_parents(ctx)
+    elif _reaches_every_child(robot, children):
+        return
+    yield from _cycles(ctx)
+
+
+def _second_parents(ctx: Context) -> Iterator[Finding]:
+    """SK204 for each link that more than one joint (not a self-joint) hangs."""
+    robot = ctx.robot
+    parents: dict[str, list[str]] = {}  # the parent joints of each child
+    for j in robot.joints:
+        if j.child is not None and j.parent != j.child:
+            parents.setdefault(j.child, []).append(j.name)
     for child, joints in parents.items():
         if len(joints) > 1:
             yield ctx.finding(
@@ -167,23 +177,29 @@ def tree_shape(ctx: Context) -> Iterator[Finding]:
                 joint=joints[1],
                 fix="a URDF is a tree: keep one parent joint (model closed chains with a plugin)",
             )
-    # Cycles over every joint (a second parent can close a loop too): iterative DFS.
-    # Fast path: with one parent per link, a walk from the roots that reaches every child
-    # proves there is no cycle.
-    if not twice:
-        stack = robot.roots()
-        reached = set(stack)
-        child_joints = robot.child_joints
-        while stack:
-            kids = child_joints.get(stack.pop())
-            if kids:
-                for j in kids:
-                    c = j.child
-                    if c is not None and c not in reached and j.parent != c:
-                        reached.add(c)
-                        stack.append(c)
-        if reached.issuperset(children):
-            return
+
+
+def _reaches_every_child(robot: Robot, children: set[str]) -> bool:
+    """The fast path with one parent per link: a walk from the roots that reaches every
+    child proves there is no cycle."""
+    stack = robot.roots()
+    reached = set(stack)
+    child_joints = robot.child_joints
+    while stack:
+        kids = child_joints.get(stack.pop())
+        if kids:
+            for j in kids:
+                c = j.child
+                if c is not None and c not in reached and j.parent != c:
+                    reached.add(c)
+                    stack.append(c)
+    return reached.issuperset(children)
+
+
+def _cycles(ctx: Context) -> Iterator[Finding]:
+    """SK204 for each kinematic cycle, once: an iterative depth-first search (it must
+    terminate where check_urdf hangs)."""
+    robot = ctx.robot
     edges: dict[str, list[tuple[str, str]]] = {}
     for j in robot.joints:
         if j.parent is not None and j.child is not None and j.parent != j.child:

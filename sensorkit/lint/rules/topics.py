@@ -1,0 +1,154 @@
+"""SK605, SK606, SK609: the ROS topics sensors publish.
+
+Two sensors on one resolved topic, a ray plugin's message type, and a ``<remapping>`` that
+matches none of the plugin's topics.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from lxml import etree
+
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.knowledge.gazebo_ros import RAY_OUTPUT_TYPES
+from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.topic_names import (
+    gz_topics,
+    plugin_services,
+    plugin_topics,
+    resolve_name,
+    resolved_topics,
+)
+from sensorkit.model.sensors import Sensor
+from sensorkit.model.targets import is_gz
+
+
+def _is_range(s: Sensor) -> bool:
+    """Range sensors (sonar, IR): many on one topic is the ROS habit, each message carries its
+    own frame_id (sensor_msgs/Range), and consumers such as range_sensor_layer expect it."""
+    return any(
+        p.library == "gazebo_ros_ray_sensor" and (p.param("output_type") or "").endswith("/Range")
+        for p in s.plugins
+    ) or any(p.library == "gazebo_ros_range" for p in s.plugins)
+
+
+@rule(
+    "SK605",
+    "error",
+    "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)",
+)
+def topic_collisions(ctx: Context) -> Iterator[Finding]:
+    if ctx.target == "ros1":
+        return  # ROS 1 topic names (robotNamespace, *TopicName, tf_prefix) are not modelled
+    owners: dict[str, list[tuple[Sensor, etree._Element]]] = defaultdict(list)
+    for s in ctx.robot.sensors:
+        if is_gz(ctx.target):
+            for t in dict.fromkeys(gz_topics(s)):
+                owners[t].append((s, s.element))
+        else:
+            for p in s.plugins:
+                for _, full in dict.fromkeys(resolved_topics(p, s)):
+                    owners[full].append((s, p.element))
+    reported: set[tuple[int, int]] = set()
+    for items in owners.values():
+        if len(items) < 2:
+            continue
+        (first, _), (second, el) = items[0], items[1]
+        key = (id(first), id(second))
+        if first is second or key in reported or (_is_range(first) and _is_range(second)):
+            continue
+        reported.add(key)
+        shared = [
+            t
+            for t, its in owners.items()
+            if any(x is first for x, _ in its) and any(x is second for x, _ in its)
+        ]
+        yield ctx.finding(
+            "SK605",
+            Severity.ERROR,
+            f"sensors {first.name!r} (on {first.reference!r}) and {second.name!r} (on {second.reference!r}) "
+            f"both publish on {', '.join(shared)}: subscribers get both streams interleaved",
+            el,
+            sensor=second.name,
+            fix=(
+                "give each sensor its own <topic>"
+                if is_gz(ctx.target)
+                else "give each camera its own sensor name or <camera_name>, a <ros><namespace>, or a remapping"
+            ),
+        )
+
+
+@rule(
+    "SK606",
+    "warning/error",
+    "ray plugin output_type missing (defaults to PointCloud2: warning) or invalid (error)",
+    "gazebo_ros, at run time",
+)
+def ray_output_type(ctx: Context) -> Iterator[Finding]:
+    if ctx.target != "classic":
+        return
+    for s in ctx.robot.sensors:
+        for p in s.plugins:
+            if p.library != "gazebo_ros_ray_sensor":
+                continue
+            value = p.param("output_type")
+            if value is None:
+                yield ctx.finding(
+                    "SK606",
+                    Severity.WARNING,
+                    f"ray plugin {p.name!r} on {s.name!r} has no <output_type>: it publishes sensor_msgs/PointCloud2 "
+                    "(a 2D lidar usually wants LaserScan)",
+                    p.source,
+                    sensor=s.name,
+                    fix="add <output_type>sensor_msgs/LaserScan</output_type> (or PointCloud2 for a 3D lidar)",
+                )
+            elif value not in RAY_OUTPUT_TYPES:
+                yield ctx.finding(
+                    "SK606",
+                    Severity.ERROR,
+                    f"ray plugin {p.name!r}: <output_type>{value}</output_type> is not one gazebo_ros_ray_sensor knows; "
+                    "it publishes nothing",
+                    p.source,
+                    sensor=s.name,
+                    fix="use sensor_msgs/LaserScan, sensor_msgs/PointCloud2, sensor_msgs/PointCloud or sensor_msgs/Range"
+                    + (
+                        f" (without '/msg/': {value.replace('/msg/', '/')})"
+                        if "/msg/" in value
+                        else ""
+                    ),
+                )
+
+
+@rule(
+    "SK609",
+    "warning",
+    "a `<remapping>` whose source matches none of the topics the plugin publishes (it changes nothing: e.g. `scan:=...` on gazebo_ros_ray_sensor, which publishes `~/out`)",
+)
+def useless_remapping(ctx: Context) -> Iterator[Finding]:
+    if is_gz(ctx.target):
+        return
+    for s in ctx.robot.sensors:
+        for p in s.plugins:
+            names = plugin_topics(p, s)
+            if not names:
+                continue
+            ns, node = p.namespace(), p.name
+            published = {resolve_name(n, ns, node) for n in names}
+            services = {resolve_name(n, ns, node) for n in plugin_services(p)}
+            for src, dst, el in p.remappings():
+                if resolve_name(src, ns, node) in published | services:
+                    continue
+                hint = "~/out" if "~/out" in names else names[0]
+                yield ctx.finding(
+                    "SK609",
+                    Severity.WARNING,
+                    f"remapping {src}:={dst} on {p.filename} matches none of its topics "
+                    f"({', '.join(sorted(published))}): it changes nothing",
+                    el,
+                    sensor=s.name,
+                    fix=f"remap the name it publishes: <remapping>{hint}:={dst}</remapping>",
+                )
+
+
