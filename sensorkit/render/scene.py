@@ -344,8 +344,8 @@ def _geometry_shape(
 
 def scene_shapes_from_robot(scene: Robot, poses: dict[str, Mat] | None = None) -> list[Shape]:
     """Every visual and collision primitive of a URDF at ``poses`` (default: zero joints)."""
+    from sensorkit.model.frames_np import T_world_link_np
     from sensorkit.model.robot import children
-    from sensorkit.model.transforms_np import T_world_link_np
 
     shapes: list[Shape] = []
     for link in scene.links:
