@@ -27,8 +27,9 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS1_ZERO_MEANS_DEFAULT,
 )
 from sensorkit.model.frames import GZ_FRAME_TAGS, SensorFrames, optical_frame_at
-from sensorkit.model.robot import child, children, local
-from sensorkit.model.sensors import Plugin, Sensor, all_plugins
+from sensorkit.model.parse import child, children, local
+from sensorkit.model.robot import all_plugins
+from sensorkit.model.sensors import Plugin, Sensor
 from sensorkit.model.targets import is_gz
 
 _EXPR = re.compile(r"\$[{(]")

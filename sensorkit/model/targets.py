@@ -109,8 +109,8 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
         ROS2_ONLY,
     )
     from sensorkit.knowledge.plugins import generation_params
-    from sensorkit.model.robot import local
-    from sensorkit.model.sensors import all_plugins
+    from sensorkit.model.parse import local
+    from sensorkit.model.robot import all_plugins
 
     out = Ros1Evidence()
     for p in all_plugins(robot):
@@ -175,7 +175,7 @@ def detect_target(robot: Robot) -> tuple[str, str]:
 
 def _evidence(robot: Robot) -> tuple[list[str], list[str], str]:
     """(Gazebo Sim evidence, Gazebo Classic evidence, the gz version the former suggests)."""
-    from sensorkit.model.sensors import all_plugins
+    from sensorkit.model.robot import all_plugins
 
     gz: list[str] = []
     classic: list[str] = []

@@ -24,8 +24,9 @@ from sensorkit.knowledge.gazebo_sim import (
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
-from sensorkit.model.robot import child, children, local
-from sensorkit.model.sensors import Plugin, Sensor, all_plugins
+from sensorkit.model.parse import child, children, local
+from sensorkit.model.robot import all_plugins
+from sensorkit.model.sensors import Plugin, Sensor
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
 
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
