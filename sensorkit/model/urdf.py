@@ -8,7 +8,9 @@ model never raises on bad input.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from sys import intern
+from typing import Any, TypeVar
 
 from lxml import etree
 
@@ -106,7 +108,6 @@ def _stray_child(c: etree._Element, parent_tag: str, link: str | None, strays: l
         strays.append(Stray(c, parent_tag, None, link))
 
 
-
 _INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _MASS_ATTRS = URDF_ATTRS["mass"] | {LOC_ATTR}
 _INERTIA_ATTRS = URDF_ATTRS["inertia"] | {LOC_ATTR}
@@ -123,6 +124,7 @@ _JOINT_CHILD_ATTRS = {tag: URDF_ATTRS[tag] | {LOC_ATTR} for tag in URDF_CHILDREN
 # the model is read-only, and one object instead of thousands keeps a 100,000-link model
 # smaller (fewer allocations, fewer cache misses in every later pass over it).
 _Items = tuple[tuple[str, str], ...]
+_Hit = TypeVar("_Hit", bound=tuple[Any, ...])  # what a memo holds: its last item says clean
 _ORIGIN_MEMO: dict[_Items, tuple[Origin, bool]] = {}
 _MASS_MEMO: dict[_Items, tuple[float | None, tuple[str, ...], bool]] = {}
 _INERTIA_MEMO: dict[_Items, tuple[dict[str, float | None], tuple[str, ...], bool]] = {}
@@ -130,28 +132,31 @@ _LIMIT_MEMO: dict[_Items, tuple[dict[str, float | None], tuple[str, ...], bool]]
 _AXIS_MEMO: dict[str, tuple[Vec3 | None, str | None]] = {}
 
 
-def _items(el: etree._Element) -> _Items:
-    """``el``'s attributes as a memo key: the source mark xacro stamps last is left out."""
+def _read_memo(
+    el: etree._Element,
+    tag: str,
+    memo: dict[_Items, _Hit],
+    parts: Callable[[_Items], _Hit],
+    link: str | None,
+    strays: list[Stray],
+) -> _Hit:
+    """What ``parts`` reads from ``el``'s attributes, through ``memo``; the attributes are
+    checked for strays on the way when they are not all clean."""
     items = el.items()
-    if items and items[-1][0] == LOC_ATTR:
+    if items and items[-1][0] == LOC_ATTR:  # the source mark xacro stamps last: not a key
         del items[-1]
-    return tuple(items)
+    key = tuple(items)
+    hit = memo.get(key)
+    if hit is None:
+        hit = memo[key] = parts(key)
+    if not hit[-1]:
+        _check_attrs(el, tag, link, strays)
+    return hit
 
 
 def _origin_parts(items: _Items) -> tuple[Origin, bool]:
     attrs = dict(items)
     return Origin.from_text(attrs.get("xyz"), attrs.get("rpy")), _ORIGIN_ATTRS.issuperset(attrs)
-
-
-def _read_origin(el: etree._Element, link: str | None, strays: list[Stray]) -> Origin:
-    """``el`` read by ``Origin.from_text``, checking its attributes for strays on the way."""
-    key = _items(el)
-    hit = _ORIGIN_MEMO.get(key)
-    if hit is None:
-        hit = _ORIGIN_MEMO[key] = _origin_parts(key)
-    if not hit[1]:
-        _check_attrs(el, "origin", link, strays)
-    return hit[0]
 
 
 def _mass_parts(items: _Items) -> tuple[float | None, tuple[str, ...], bool]:
@@ -197,27 +202,17 @@ def _read_inertial(el: etree._Element, doc: Document, link: str, strays: list[St
         tag = c.tag
         if tag == "mass":
             if mass_hit is None:
-                key = _items(c)
-                mass_hit = _MASS_MEMO.get(key)
-                if mass_hit is None:
-                    mass_hit = _MASS_MEMO[key] = _mass_parts(key)
-                if not mass_hit[2]:
-                    _check_attrs(c, "mass", link, strays)
+                mass_hit = _read_memo(c, "mass", _MASS_MEMO, _mass_parts, link, strays)
             elif not _MASS_ATTRS.issuperset(c.keys()):
                 _check_attrs(c, "mass", link, strays)
         elif tag == "inertia":
             if inertia_hit is None:
-                key = _items(c)
-                inertia_hit = _INERTIA_MEMO.get(key)
-                if inertia_hit is None:
-                    inertia_hit = _INERTIA_MEMO[key] = _inertia_parts(key)
-                if not inertia_hit[2]:
-                    _check_attrs(c, "inertia", link, strays)
+                inertia_hit = _read_memo(c, "inertia", _INERTIA_MEMO, _inertia_parts, link, strays)
             elif not _INERTIA_ATTRS.issuperset(c.keys()):
                 _check_attrs(c, "inertia", link, strays)
         elif tag == "origin":
             if origin is None:
-                origin = _read_origin(c, link, strays)
+                origin = _read_memo(c, "origin", _ORIGIN_MEMO, _origin_parts, link, strays)[0]
             elif not _ORIGIN_ATTRS.issuperset(c.keys()):
                 _check_attrs(c, "origin", link, strays)
         else:
@@ -289,6 +284,24 @@ def _limit_parts(items: _Items) -> tuple[dict[str, float | None], tuple[str, ...
     return limit, tuple(problems), _JOINT_CHILD_ATTRS["limit"].issuperset(attrs)
 
 
+def _axis_parts(text: str) -> tuple[Vec3 | None, str | None]:
+    axis, why = parse_vec3(text)
+    if axis is not None and axis[0] == 0.0 and axis[1] == 0.0 and axis[2] == 0.0:
+        why = "axis is zero"
+    return axis, why
+
+
+def _name_and_type(
+    el: etree._Element, items: list[tuple[str, str]], strays: list[Stray]
+) -> tuple[str, str]:
+    """A joint's name and type from its attributes ``items`` (in another shape than name,
+    then type), checking them for strays."""
+    attrs = dict(items)
+    if not _JOINT_ATTRS.issuperset(attrs):
+        _stray_attrs(el, "joint", el.keys(), URDF_ATTRS["joint"], None, strays)
+    return attrs.get("name", ""), attrs.get("type", "")
+
+
 _ONE_ATTR = frozenset({"parent", "child", "axis"})  # joint children read for one attribute
 
 
@@ -307,10 +320,7 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
     if len(it) == 2 and it[0][0] == "name" and it[1][0] == "type":
         name, jtype = it[0][1], it[1][1]
     else:
-        attrs = dict(it)
-        name, jtype = attrs.get("name", ""), attrs.get("type", "")
-        if not _JOINT_ATTRS.issuperset(attrs):
-            _stray_attrs(el, "joint", el.keys(), URDF_ATTRS["joint"], None, strays)
+        name, jtype = _name_and_type(el, it, strays)
     for c in el:
         tag = c.tag
         if tag in _ONE_ATTR:
@@ -338,17 +348,12 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
             continue
         if tag == "origin":
             if origin is None:
-                origin = _read_origin(c, None, strays)
+                origin = _read_memo(c, "origin", _ORIGIN_MEMO, _origin_parts, None, strays)[0]
                 continue  # its attributes are checked
         elif tag == "limit":
             if limit_hit is None:
-                key = _items(c)
-                limit_hit = _LIMIT_MEMO.get(key)
-                if limit_hit is None:
-                    limit_hit = _LIMIT_MEMO[key] = _limit_parts(key)
-                if not limit_hit[2]:
-                    _check_attrs(c, "limit", None, strays)
-                continue
+                limit_hit = _read_memo(c, "limit", _LIMIT_MEMO, _limit_parts, None, strays)
+                continue  # its attributes are checked
         elif tag == "mimic" and not has_mimic:
             has_mimic, mimic = True, c.get("joint")
         attrs_ok = _JOINT_CHILD_ATTRS.get(tag)
@@ -372,10 +377,7 @@ def _read_joint(el: etree._Element, doc: Document, strays: list[Stray]) -> Joint
     if axis_text is not None:
         hit = _AXIS_MEMO.get(axis_text)
         if hit is None:
-            axis, why = parse_vec3(axis_text)
-            if axis is not None and axis[0] == 0.0 and axis[1] == 0.0 and axis[2] == 0.0:
-                why = "axis is zero"
-            hit = _AXIS_MEMO[axis_text] = (axis, why)
+            hit = _AXIS_MEMO[axis_text] = _axis_parts(axis_text)
         joint.axis, joint.axis_problem = hit
     if limit_hit is not None:
         joint.limit, joint.limit_problems = limit_hit[0], limit_hit[1]
