@@ -1,7 +1,7 @@
 """Where a robot's links are: world poses at zero joint positions, world positions of all
 links at once, and the transforms between two links' frames.
 
-:class:`Poses` is a part of :class:`~sensorkit.model.robot.Robot`. "World" is the root
+:class:`Poses` is a base of :class:`~sensorkit.model.robot.Robot`. "World" is the root
 link of the tree a link hangs in; poses are flat 12-tuples (see
 :mod:`sensorkit.model.transforms`), composed from the joint origins down each chain and
 memoised on the robot.

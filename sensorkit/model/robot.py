@@ -1,6 +1,9 @@
 """The robot model: the :class:`Robot` record, holding the links, joints, gazebo blocks
-and sensors read from a URDF (see :mod:`sensorkit.model.urdf`), with the tree questions
-(:mod:`sensorkit.model.tree`) and the poses (:mod:`sensorkit.model.poses`) it answers.
+and sensors read from a URDF, with the tree questions and the poses it answers.
+
+Its parts' records (Link, Joint, ...) are in :mod:`sensorkit.model.parts`, the reader in
+:mod:`sensorkit.model.urdf`, the answers in its bases :class:`~sensorkit.model.tree.Tree`
+and :class:`~sensorkit.model.poses.Poses`.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The kinematic tree of a robot: who hangs from whom, tree tops, depths and chains.
 
-:class:`Tree` is a part of :class:`~sensorkit.model.robot.Robot`: it fills the maps from
-parent to child joints and back, and answers from them. Duplicate names and cycles are
+:class:`Tree` is a base of :class:`~sensorkit.model.robot.Robot`: it fills the robot's maps
+from parent to child joints and back, and answers from them. Duplicate names and cycles are
 kept as written (the first of a name counts; walks stop on a cycle), so that the rules can
 report them.
 """
