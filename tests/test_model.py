@@ -12,9 +12,9 @@ from lxml import etree
 
 from sensorkit.loading.xacro_expand import LOC_ATTR
 from sensorkit.model import load_robot
-from sensorkit.model.robot import build_robot
 from sensorkit.model.sdf import convert
 from sensorkit.model.transforms import matrix_to_rpy, rpy_to_matrix, transform
+from sensorkit.model.urdf import build_robot
 
 ROBOTS = [
     pytest.param(p, marks=pytest.mark.skipif(not p.exists(), reason=NO_CORPUS), id=p.name)

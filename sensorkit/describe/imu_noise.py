@@ -28,7 +28,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from sensorkit.model.robot import child, parse_float, text_of
+from sensorkit.model.parse import child, parse_float, text_of
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:

@@ -472,7 +472,8 @@ def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) 
     """
     import numpy as np
 
-    from sensorkit.model.transforms_np import T_world_link_np, angle_between, render_pose_np
+    from sensorkit.model.frames_np import T_world_link_np, render_pose_np
+    from sensorkit.model.transforms_np import angle_between
 
     T_render = render_pose_np(robot, sensor)
     if T_render is None or sensor.reference is None:
@@ -658,9 +659,9 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
         UsageError: an unknown target or convention.
     """
     from sensorkit.model.frames import sensor_frames
+    from sensorkit.model.frames_np import render_pose_np
     from sensorkit.model.sdf import convert
     from sensorkit.model.targets import is_gz
-    from sensorkit.model.transforms_np import render_pose_np
 
     chosen, why = resolve_target(robot, target)
     if convention is not None and convention not in get_args(Convention):

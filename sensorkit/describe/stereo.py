@@ -116,7 +116,7 @@ def _snap(T: Mat) -> Mat:
 def T_world_optical(robot: Robot, view: CameraView) -> Mat | None:
     """Where ``view``'s images are rendered from, as an optical frame (z forward, x right,
     y down) in the root link's frame; ``None`` when the sensor is not on a known link."""
-    from sensorkit.model.transforms_np import render_pose_np
+    from sensorkit.model.frames_np import render_pose_np
 
     T = render_pose_np(robot, view.sensor)
     if T is None:

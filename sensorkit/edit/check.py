@@ -21,7 +21,7 @@ from sensorkit.base.errors import EditRefused
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.loading.document import Document, display_path
 from sensorkit.model import Robot
-from sensorkit.model.robot import Joint, Link
+from sensorkit.model.parts import Joint, Link
 from sensorkit.model.sensors import Sensor
 
 if TYPE_CHECKING:

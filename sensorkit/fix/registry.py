@@ -26,7 +26,7 @@ from sensorkit.base.findings import Finding
 from sensorkit.fix.source import Deferred, Edit, NotFixable, SourceFile, Tag
 from sensorkit.loading.document import display_path
 from sensorkit.loading.xacro_expand import LOC_ATTR
-from sensorkit.model.robot import local
+from sensorkit.model.parse import local
 
 if TYPE_CHECKING:
     from lxml import etree

@@ -24,7 +24,8 @@ from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import Loaded, load_robot
 from sensorkit.model.frames import sensor_frames
-from sensorkit.model.robot import Link, Robot
+from sensorkit.model.parts import Link
+from sensorkit.model.robot import Robot
 from sensorkit.model.sdf import Conversion, convert
 from sensorkit.model.targets import TARGETS, detect_target, is_gz
 

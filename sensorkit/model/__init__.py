@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING
 
 from sensorkit.base.findings import Finding
 from sensorkit.loading import PackageResolver, load_description
-from sensorkit.model.robot import Robot, build_robot
+from sensorkit.model.robot import Robot
+from sensorkit.model.urdf import build_robot
 
 if TYPE_CHECKING:
     from sensorkit.loading.untrusted import Untrusted

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from sensorkit.model.robot import text_of
+from sensorkit.model.parse import text_of
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot

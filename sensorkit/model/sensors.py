@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from sensorkit.base.findings import SourceRef
-from sensorkit.model.robot import Origin, child, children, local, parse_float, parse_vec, text_of
+from sensorkit.model.parse import Origin, child, children, local, parse_float, parse_vec, text_of
 
-if TYPE_CHECKING:
-    from sensorkit.model.robot import Robot
+Locate = Callable[[etree._Element], SourceRef]  # where an element was written
 
 CAMERA_TYPES = {
     "camera": "camera",
@@ -200,19 +199,19 @@ def _num(text: str | None, what: str, problems: list[str]) -> float | None:
     return value
 
 
-def read_noise(el: etree._Element | None, doc_locate: object) -> Noise | None:
+def read_noise(el: etree._Element | None, locate: Locate) -> Noise | None:
     if el is None:
         return None
     problems: list[str] = []
     ntype = el.get("type") or text_of(el, "type")
     mean = _num(text_of(el, "mean"), "noise mean", problems)
     stddev = _num(text_of(el, "stddev"), "noise stddev", problems)
-    src = doc_locate(el)  # type: ignore[operator]
+    src = locate(el)
     return Noise(ntype, mean, stddev, src, problems)
 
 
-def read_camera(el: etree._Element, locate: object) -> CameraSpec:
-    src = locate(el)  # type: ignore[operator]
+def read_camera(el: etree._Element, locate: Locate) -> CameraSpec:
+    src = locate(el)
     cam = CameraSpec(element=el, source=src, name=el.get("name"))
     p = cam.problems
     cam.raw = {
@@ -267,8 +266,8 @@ def read_camera(el: etree._Element, locate: object) -> CameraSpec:
     return cam
 
 
-def read_lidar(el: etree._Element, locate: object) -> LidarSpec:
-    src = locate(el)  # type: ignore[operator]
+def read_lidar(el: etree._Element, locate: Locate) -> LidarSpec:
+    src = locate(el)
     spec = LidarSpec(element=el, source=src)
     p = spec.problems
     h = child(child(el, "scan"), "horizontal")
@@ -298,9 +297,9 @@ def read_lidar(el: etree._Element, locate: object) -> LidarSpec:
     return spec
 
 
-def _sdf_pose(el: etree._Element, locate: object) -> Origin:
+def _sdf_pose(el: etree._Element, locate: Locate) -> Origin:
     """An SDF ``<pose>x y z r p y</pose>`` as an Origin."""
-    src = locate(el)  # type: ignore[operator]
+    src = locate(el)
     out = Origin(source=src)
     text = (el.text or "").strip()
     if not text:
@@ -319,9 +318,8 @@ FRAME_TAGS = ("gz_frame_id", "ignition_frame_id", "frame_id")
 
 
 def read_sensor(
-    el: etree._Element, block: etree._Element, reference: str | None, robot: Robot
+    el: etree._Element, block: etree._Element, reference: str | None, locate: Locate
 ) -> Sensor:
-    locate = robot.document.locate
     stype = el.get("type", "")
     if stype in CAMERA_TYPES:
         kind = CAMERA_TYPES[stype]
@@ -370,24 +368,3 @@ def read_sensor(
         sensor.plugins.append(plugin)
     return sensor
 
-
-def read_gazebo(robot: Robot) -> None:
-    """Fill ``robot.sensors`` and ``robot.model_plugins`` from its ``<gazebo>`` blocks."""
-    locate = robot.document.locate
-    for block in robot.gazebo:
-        for el in block.element:
-            tag = local(el)
-            if tag == "sensor":
-                robot.sensors.append(read_sensor(el, block.element, block.reference, robot))
-            elif tag == "plugin":
-                robot.model_plugins.append(
-                    Plugin(el.get("filename", ""), el.get("name", ""), el, locate(el))
-                )
-
-
-def all_plugins(robot: Robot) -> list[Plugin]:
-    """Every plugin: model-level first, then each sensor's, in document order."""
-    out = list(robot.model_plugins)
-    for s in robot.sensors:
-        out.extend(s.plugins)
-    return out

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Container
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
+    from sensorkit.model.sensors import Plugin
 
 TARGETS = ("classic", "ros1", "fortress", "harmonic", "jetty")
 GZ_TARGETS = ("fortress", "harmonic", "jetty")
@@ -98,6 +100,20 @@ class Ros1Evidence:
             parts.append(f"{len(self.tags)} ROS 1 tag{'s' if len(self.tags) > 1 else ''}")
         return ", ".join(parts)
 
+    def tally_params(
+        self, plugin: Plugin, ros1: Container[str], ros2: Container[str], where: str
+    ) -> None:
+        """Tally ``plugin``'s parameters: a tag in ``ros1`` under ``tags``, one in ``ros2``
+        under ``ros2`` as ``where<tag>``."""
+        from sensorkit.model.parse import local
+
+        for el in plugin.param_elements():
+            tag = local(el)
+            if tag in ros1:
+                self.tags.append(tag)
+            elif tag in ros2:
+                self.ros2.append(f"{where}<{tag}>")
+
 
 def ros1_evidence(robot: Robot) -> Ros1Evidence:
     """What marks the description's gazebo_ros plugins as ROS 1 or ROS 2."""
@@ -109,8 +125,8 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
         ROS2_ONLY,
     )
     from sensorkit.knowledge.plugins import generation_params
-    from sensorkit.model.robot import local
-    from sensorkit.model.sensors import all_plugins
+    from sensorkit.model.parse import local
+    from sensorkit.model.robot import all_plugins
 
     out = Ros1Evidence()
     for p in all_plugins(robot):
@@ -121,12 +137,7 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
         # <frame_name>; the sources are cited on the specs).
         ros1_only, ros2_only = generation_params(p.filename)
         if ros1_only or ros2_only:
-            for el in p.param_elements():
-                tag = local(el)
-                if tag in ros1_only:
-                    out.tags.append(tag)
-                elif tag in ros2_only:
-                    out.ros2.append(f"{p.filename} <{tag}>")
+            out.tally_params(p, ros1_only, ros2_only, f"{p.filename} ")
             continue
         if not lib.startswith("gazebo_ros"):
             continue
@@ -141,12 +152,7 @@ def ros1_evidence(robot: Robot) -> Ros1Evidence:
             if any(local(el) == "ros" for el in p.param_elements()):
                 out.ros2.append(f"{p.filename} <ros>")
             continue
-        for el in p.param_elements():
-            tag = local(el)
-            if tag in ROS1_TO_ROS2_PARAMS:
-                out.tags.append(tag)
-            elif tag in ROS2_PARAMS:
-                out.ros2.append(f"<{tag}>")
+        out.tally_params(p, ROS1_TO_ROS2_PARAMS, ROS2_PARAMS, "")
     return out
 
 
@@ -175,7 +181,7 @@ def detect_target(robot: Robot) -> tuple[str, str]:
 
 def _evidence(robot: Robot) -> tuple[list[str], list[str], str]:
     """(Gazebo Sim evidence, Gazebo Classic evidence, the gz version the former suggests)."""
-    from sensorkit.model.sensors import all_plugins
+    from sensorkit.model.robot import all_plugins
 
     gz: list[str] = []
     classic: list[str] = []

@@ -1,9 +1,8 @@
 """Numpy twins of :mod:`sensorkit.model.transforms`: 4x4 numpy arrays, ``T_a_b``.
 
 For rendering and export, which compute in numpy anyway and whose printed numbers keep
-every digit: :func:`T_world_link_np` and :func:`render_pose_np` compose the same chain of
-joint origins in numpy, so those numbers stay what numpy makes of them. ``sensorkit
-validate`` never imports this module.
+every digit (the robot's frames in numpy are in :mod:`sensorkit.model.frames_np`).
+``sensorkit validate`` never imports this module.
 
 URDF's ``rpy`` is fixed-axis roll, pitch, yaw: R = Rz(yaw) @ Ry(pitch) @ Rx(roll).
 """
@@ -12,14 +11,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
-
-if TYPE_CHECKING:
-    from sensorkit.model.robot import Robot
-    from sensorkit.model.sensors import Sensor
 
 Mat = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]
@@ -92,20 +86,3 @@ def angle_between(Ra: Mat, Rb: Mat) -> float:
     """Angle (rad) of the rotation taking Ra to Rb."""
     return rotation_angle(Ra.T @ Rb)
 
-
-def T_world_link_np(robot: Robot, link: str) -> Mat | None:
-    """:meth:`Robot.T_world_link <sensorkit.model.robot.Robot.T_world_link>` as a numpy
-    array (the walk and its memo are the robot's own)."""
-    T = robot.T_world_link(link)
-    return None if T is None else np.array(T, dtype=np.float64)
-
-
-def render_pose_np(robot: Robot, sensor: Sensor) -> Mat | None:
-    """:func:`sensorkit.model.frames.render_pose` in numpy."""
-    if sensor.reference is None or sensor.reference not in robot.link_map:
-        return None
-    T = T_world_link_np(robot, sensor.reference)
-    if T is None:
-        return None
-    out: Mat = T @ sensor.pose.matrix()
-    return out

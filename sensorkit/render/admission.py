@@ -81,7 +81,7 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
     from sensorkit.describe.sensorinfo import camera_size
-    from sensorkit.model.transforms_np import render_pose_np
+    from sensorkit.model.frames_np import render_pose_np
 
     for s in robot.sensors:
         if not wanted(s, only):

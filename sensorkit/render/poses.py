@@ -12,7 +12,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from sensorkit.base.errors import UsageError
-from sensorkit.model.robot import Joint, Robot, child, parse_float
+from sensorkit.model.parse import child, parse_float
+from sensorkit.model.parts import Joint
+from sensorkit.model.robot import Robot
 from sensorkit.model.transforms_np import Mat
 
 __all__ = ["MOVABLE", "joint_positions", "link_poses"]

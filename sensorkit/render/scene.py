@@ -312,7 +312,7 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
 def _geometry_shape(
     el: etree._Element, T_world: Mat, name: str, link: str, visual: bool
 ) -> Shape | None:
-    from sensorkit.model.robot import child, parse_float, parse_vec
+    from sensorkit.model.parse import child, parse_float, parse_vec
 
     geometry = child(el, "geometry")
     if geometry is None:
@@ -344,8 +344,8 @@ def _geometry_shape(
 
 def scene_shapes_from_robot(scene: Robot, poses: dict[str, Mat] | None = None) -> list[Shape]:
     """Every visual and collision primitive of a URDF at ``poses`` (default: zero joints)."""
-    from sensorkit.model.robot import children
-    from sensorkit.model.transforms_np import T_world_link_np
+    from sensorkit.model.frames_np import T_world_link_np
+    from sensorkit.model.parse import children
 
     shapes: list[Shape] = []
     for link in scene.links:

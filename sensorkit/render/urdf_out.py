@@ -22,7 +22,8 @@ from lxml import etree
 from sensorkit.loading import PackageResolver
 from sensorkit.loading.marks import LOC_ATTR
 from sensorkit.loading.uris import resolve_uri
-from sensorkit.model.robot import Robot, local
+from sensorkit.model.parse import local
+from sensorkit.model.robot import Robot
 
 __all__ = [
     "BODY_LINKS",

@@ -13,7 +13,7 @@ import re
 from sensorkit.base.findings import Finding
 from sensorkit.fix.registry import EXPR, Fix, FixContext, fixer, is_expr
 from sensorkit.fix.source import NotFixable
-from sensorkit.model.robot import child
+from sensorkit.model.parse import child
 
 __all__ = [
     "ANGLE_TOL",

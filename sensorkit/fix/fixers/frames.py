@@ -24,7 +24,7 @@ from sensorkit.fix.registry import Fix, FixContext, Written, fixer, is_expr
 from sensorkit.fix.source import Deferred, Edit, NotFixable
 from sensorkit.knowledge.gazebo_ros import ROS1_RENAMES
 from sensorkit.model.frames import GZ_FRAME_TAGS, SensorFrames, optical_frame_at
-from sensorkit.model.robot import child
+from sensorkit.model.parse import child
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 

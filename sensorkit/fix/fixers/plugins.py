@@ -11,8 +11,9 @@ from sensorkit.base.findings import Finding
 from sensorkit.fix.registry import Fix, FixContext, Written, fixer, is_expr
 from sensorkit.fix.source import Edit, NotFixable
 from sensorkit.knowledge.gazebo_ros import ROS1_ONLY
-from sensorkit.model.robot import child
-from sensorkit.model.sensors import Plugin, all_plugins
+from sensorkit.model.parse import child
+from sensorkit.model.robot import all_plugins
+from sensorkit.model.sensors import Plugin
 
 __all__ = ["port_plugin"]
 

@@ -24,8 +24,9 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS1_TOPIC_REMAPS,
     ROS1_ZERO_MEANS_DEFAULT,
 )
-from sensorkit.model.robot import child, children, local
-from sensorkit.model.sensors import Plugin, all_plugins
+from sensorkit.model.parse import child, children, local
+from sensorkit.model.robot import all_plugins
+from sensorkit.model.sensors import Plugin
 
 __all__ = ["port_ros1_param"]
 

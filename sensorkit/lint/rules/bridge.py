@@ -13,7 +13,7 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import gz_primary_topic, gz_topics, is_bridged, norm_topic
-from sensorkit.model.robot import local
+from sensorkit.model.parse import local
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 

@@ -16,7 +16,8 @@ from sensorkit.knowledge.gazebo_sim import (
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
-from sensorkit.model.robot import Joint, Robot
+from sensorkit.model.parts import Joint
+from sensorkit.model.robot import Robot
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:

@@ -12,7 +12,7 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import gz_topics, is_bridged, norm_topic
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
-from sensorkit.model.robot import child
+from sensorkit.model.parse import child
 from sensorkit.model.targets import is_gz
 
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")

@@ -7,7 +7,8 @@ from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, declare, rule
-from sensorkit.model.robot import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN, local
+from sensorkit.model.parse import local
+from sensorkit.model.urdf import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN
 
 declare("SK101", "error", "XML is well-formed; report file:line:column", "all parsers")
 declare(

@@ -8,7 +8,7 @@ from collections.abc import Iterator
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
-from sensorkit.model.robot import Inertial
+from sensorkit.model.parts import Inertial
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 

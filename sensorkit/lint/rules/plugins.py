@@ -13,7 +13,8 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import ROS1_ONLY, ROS2_ONLY
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import resolve_name
-from sensorkit.model.sensors import Plugin, Sensor, all_plugins
+from sensorkit.model.robot import all_plugins
+from sensorkit.model.sensors import Plugin, Sensor
 from sensorkit.model.targets import is_classic_plugin, is_gz, is_gz_plugin
 
 

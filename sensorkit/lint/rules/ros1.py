@@ -12,8 +12,8 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import ROS1_TO_ROS2_PARAMS, ROS2_PLUGINS
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.plugins import ros_name
-from sensorkit.model.robot import children, local
-from sensorkit.model.sensors import all_plugins
+from sensorkit.model.parse import children, local
+from sensorkit.model.robot import all_plugins
 
 
 @rule(

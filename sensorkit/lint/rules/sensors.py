@@ -14,7 +14,7 @@ from sensorkit.knowledge.limits import (
     frame_bytes,
 )
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.model.robot import local
+from sensorkit.model.parse import local
 from sensorkit.model.sensors import CameraSpec, LidarSpec, Noise, Sensor
 from sensorkit.model.targets import is_gz
 
@@ -341,7 +341,7 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
 
 def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     """min/max depth as the plugin (classic) or the depth clip (gz) writes it."""
-    from sensorkit.model.robot import parse_float
+    from sensorkit.model.parse import parse_float
 
     lo = hi = None
     for p in s.plugins:
@@ -503,7 +503,7 @@ def noise(ctx: Context) -> Iterator[Finding]:
     "gazebo_ros_camera, at run time",
 )
 def focal_length(ctx: Context) -> Iterator[Finding]:
-    from sensorkit.model.robot import parse_float
+    from sensorkit.model.parse import parse_float
 
     for s in _cameras(ctx):
         cam = s.camera

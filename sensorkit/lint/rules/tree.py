@@ -7,7 +7,8 @@ from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.model.robot import JOINT_TYPES, Robot
+from sensorkit.model.robot import Robot
+from sensorkit.model.urdf import JOINT_TYPES
 
 
 @rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
