@@ -14,15 +14,20 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from typer.core import TyperGroup
 
-try:  # typer 0.2x vendors click; older ones depend on it
+# typer 0.2x vendors click; older ones depend on it. The type checker reads the installed
+# typer's; at run time whichever of the two is there serves.
+if TYPE_CHECKING:
     from typer._click.exceptions import UsageError as ClickUsageError
-except ImportError:  # pragma: no cover - depends on the installed typer
-    from click.exceptions import UsageError as ClickUsageError  # type: ignore[no-redef]
+else:
+    try:
+        from typer._click.exceptions import UsageError as ClickUsageError
+    except ImportError:  # pragma: no cover - depends on the installed typer
+        from click.exceptions import UsageError as ClickUsageError
 
 from sensorkit.cli.common import (
     ArgOpt,
