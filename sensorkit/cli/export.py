@@ -13,7 +13,8 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import (
+from sensorkit.cli.common import RobotFlags, described_robot, handle_errors, note
+from sensorkit.cli.options import (
     ArgOpt,
     ColorOpt,
     ConfigOpt,
@@ -22,12 +23,8 @@ from sensorkit.cli.common import (
     PackagePathOpt,
     QuietOpt,
     StdinFilenameOpt,
+    TargetOpt,
     UntrustedOpt,
-    handle_errors,
-    note,
-    settings,
-    stdin_robot,
-    use_color,
 )
 
 ImuOpt = Annotated[
@@ -37,16 +34,6 @@ ImuOpt = Annotated[
         help="the IMU for Kalibr's T_cam_imu and the stereo-inertial files (default: the "
         "first; a note names it when there are several)",
         metavar="NAME",
-    ),
-]
-
-TargetOpt = Annotated[
-    str | None,
-    typer.Option(
-        "--target",
-        help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings file's, "
-        "else auto: detected as validate does)",
-        show_default=False,
     ),
 ]
 
@@ -102,19 +89,16 @@ def intrinsics(
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
-    use_color(color)  # checked; the document printed has no colour
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
+    flags = RobotFlags(config, arg, package_path, untrusted, env)
+    file, info = described_robot(
         file,
-        config=config,
+        flags,
         target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
+        stdin_filename=stdin_filename,
+        quiet=quiet,
+        color=color,
+        convention=convention,
     )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay, convention)
     text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
     sys.stdout.write(text)
     for said in notes:
@@ -158,19 +142,10 @@ def export(
     """
     from sensorkit.exporters.robot import export_files, publish_export
 
-    use_color(color)  # checked; nothing printed is coloured
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
+    flags = RobotFlags(config, arg, package_path, untrusted, env)
+    file, info = described_robot(
+        file, flags, target=target, stdin_filename=stdin_filename, quiet=quiet, color=color
     )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay)
     plan = export_files(info, imu=imu)
     inputs = [file, *(Path(f) for f in info.robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)

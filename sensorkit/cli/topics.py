@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sensorkit.cli.common import (
+from sensorkit.cli.common import RobotFlags, described_robot, handle_errors, note
+from sensorkit.cli.options import (
+    BRIDGE_HELP,
     ArgOpt,
     ColorOpt,
     ConfigOpt,
@@ -21,46 +23,35 @@ from sensorkit.cli.common import (
     PackagePathOpt,
     QuietOpt,
     StdinFilenameOpt,
+    TargetOpt,
     UntrustedOpt,
-    handle_errors,
-    note,
-    settings,
-    stdin_robot,
-    use_color,
 )
 
+if TYPE_CHECKING:
+    from sensorkit.describe.topics import RobotTopics
+
 FORMATS = ("text", "json")
+
+FormatOpt = Annotated[
+    str,
+    typer.Option(
+        "--format",
+        "-f",
+        help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
+        "sensor of each topic) or json",
+    ),
+]
+BridgeOpt = Annotated[
+    list[Path] | None, typer.Option("--bridge", help="Gazebo Sim: " + BRIDGE_HELP)
+]
 
 
 @handle_errors
 def topics(
     file: FileArg,
-    fmt: Annotated[
-        str,
-        typer.Option(
-            "--format",
-            "-f",
-            help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
-            "sensor of each topic) or json",
-        ),
-    ] = "text",
-    target: Annotated[
-        str | None,
-        typer.Option(
-            "--target",
-            help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings "
-            "file's, else auto: detected as validate does)",
-            show_default=False,
-        ),
-    ] = None,
-    bridge: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--bridge",
-            help="Gazebo Sim: ros_gz_bridge YAML that carries the robot's gz topics to ROS "
-            "(repeatable; default: parameter_bridge YAMLs in the robot package's config/)",
-        ),
-    ] = None,
+    fmt: FormatOpt = "text",
+    target: TargetOpt = None,
+    bridge: BridgeOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
     untrusted: UntrustedOpt = False,
@@ -82,19 +73,10 @@ def topics(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    use_color(color)  # checked; the table has no colour
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
+    flags = RobotFlags(config, arg, package_path, untrusted, env)
+    file, info = described_robot(
+        file, flags, target=target, stdin_filename=stdin_filename, quiet=quiet, color=color
     )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay)
     files = [str(b) for b in bridge or ()]
     config_read = None
     if is_gz(info.target):
@@ -103,8 +85,12 @@ def topics(
         note(f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", quiet)
     result = robot_topics(info, config_read)
     sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
-    if quiet:
-        return
+    if not quiet:
+        _say_notes_and_summary(result)
+
+
+def _say_notes_and_summary(result: RobotTopics) -> None:
+    """On stderr: the notes (each once) and a line counting the topics (not with -q)."""
     for text in result.notes:
         typer.echo(f"sensorkit: note: {text}", err=True)
     said: set[str] = set()

@@ -1,0 +1,89 @@
+"""The options several commands share, each declared once as a typer ``Annotated`` alias:
+a parameter ``arg: ArgOpt = None`` is the whole of ``--arg`` for the command that has it.
+
+An option only one command takes is declared beside that command.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+FileArg = Annotated[Path, typer.Argument(help="a URDF or xacro file", show_default=False)]
+ArgOpt = Annotated[
+    list[str] | None,
+    typer.Option("--arg", help="xacro argument NAME:=VALUE (repeatable)", metavar="NAME:=VALUE"),
+]
+PackagePathOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--package-path",
+        help="where ROS packages live: DIR (scanned for package.xml) or NAME=DIR (repeatable)",
+        metavar="DIR|NAME=DIR",
+    ),
+]
+UntrustedOpt = Annotated[
+    bool,
+    typer.Option(
+        "--untrusted",
+        help="input from people you do not trust (pull-request CI): xacro sees no environment "
+        "but --env names and reads no file outside the workspace and resolved packages",
+    ),
+]
+EnvOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--env",
+        help="with --untrusted: an environment variable xacro may read (repeatable)",
+        metavar="NAME",
+    ),
+]
+ConfigOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--config",
+        help="settings file (sensorkit.toml, or pyproject.toml with [tool.sensorkit]); "
+        "default: the nearest one above the robot file",
+        metavar="FILE",
+    ),
+]
+ColorOpt = Annotated[
+    str,
+    typer.Option(
+        "--color",
+        help="auto (on a terminal, unless NO_COLOR is set), always or never",
+        metavar="auto|always|never",
+    ),
+]
+QuietOpt = Annotated[
+    bool,
+    typer.Option(
+        "--quiet", "-q", help="print only results and errors: no summary, notes or progress"
+    ),
+]
+StdinFilenameOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--stdin-filename",
+        help="with - as the file: the path the text on stdin stands for (messages, relative "
+        "includes, packages and the settings file are found from it)",
+        metavar="PATH",
+    ),
+]
+# intrinsics, export and topics: validate's and render preview's say it their own way
+TargetOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--target",
+        help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings file's, "
+        "else auto: detected as validate does)",
+        show_default=False,
+    ),
+]
+# validate's --bridge; topics' says "Gazebo Sim: " first
+BRIDGE_HELP = (
+    "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; default: "
+    "parameter_bridge YAMLs in the robot package's config/)"
+)
