@@ -3,6 +3,7 @@ robot file, colour, and the one error path. The shared options are in ``options`
 
 from __future__ import annotations
 
+import inspect
 import os
 import sys
 from collections.abc import Callable, Iterator
@@ -15,6 +16,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import typer
 
 from sensorkit.base.errors import SensorkitError
+from sensorkit.cli.options import READING, ROBOT_FLAGS
 
 if TYPE_CHECKING:
     from sensorkit.lint.engine import Report
@@ -141,25 +143,50 @@ def settings(
     return Settings(target, paths, args, trust, cfg, used)
 
 
+def robot_flags(values: dict[str, Any]) -> RobotFlags:
+    """The values of ``options.ROBOT_FLAGS`` taken out of a command's ``values``."""
+    return RobotFlags(**{p.name: values.pop(p.name) for p in ROBOT_FLAGS})
+
+
+@dataclass
+class Reading:
+    """The options intrinsics, export and topics end with (``options.READING``), as
+    given: how to read the robot, -q, --color and --stdin-filename."""
+
+    flags: RobotFlags
+    quiet: bool
+    color: str
+    stdin_filename: Path | None
+
+
+def reads_robot(func: Callable[..., None]) -> Callable[..., None]:
+    """A command that ends with the options of ``options.READING``: typer sees those in
+    place of the function's parameter ``reading``, which gets them as one ``Reading``."""
+    signature = inspect.signature(func, eval_str=True)
+    own = [p for name, p in signature.parameters.items() if name != "reading"]
+
+    @wraps(func)
+    def command(**values: Any) -> None:
+        flags = robot_flags(values)
+        quiet, color, stdin_filename = (values.pop(k) for k in ("quiet", "color", "stdin_filename"))
+        func(**values, reading=Reading(flags, quiet, color, stdin_filename))
+
+    command.__signature__ = signature.replace(parameters=[*own, *READING])  # type: ignore[attr-defined]
+    return command
+
+
 def described_robot(
-    file: Path,
-    flags: RobotFlags,
-    *,
-    target: str | None,
-    stdin_filename: Path | None,
-    quiet: bool,
-    color: str,
-    convention: str | None = None,
+    file: Path, reading: Reading, *, target: str | None, convention: str | None = None
 ) -> tuple[Path, Any]:
     """The robot of ``file`` described under its target, as intrinsics, export and topics
     read it: ``-`` is stdin; the settings file found upward from the robot (``--config``
     wins) fills what the flags leave out, and one stderr line names what it gave (not
     with -q). Returns the robot's path and its ``RobotInfo``. ``--color`` is checked;
     nothing these commands print is coloured."""
-    use_color(color)
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(file, flags, target=target)
-    st.say_where(quiet=quiet)
+    use_color(reading.color)
+    file, overlay = stdin_robot(file, reading.stdin_filename)
+    st = settings(file, reading.flags, target=target)
+    st.say_where(quiet=reading.quiet)
     return file, st.describe(file, overlay, convention)
 
 

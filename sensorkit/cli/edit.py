@@ -27,6 +27,7 @@ from sensorkit.cli.common import (
     handle_errors,
     note,
     refuse_stdin,
+    robot_flags,
     settings,
     target_simulator,
     use_color,
@@ -61,17 +62,9 @@ class _Given:
     param: list[str] | None
     diff: bool
     output: Path | None
-    arg: list[str] | None
-    package_path: list[str] | None
-    untrusted: bool
-    env: list[str] | None
-    config: Path | None
+    flags: RobotFlags
     quiet: bool
     color: str
-
-    def flags(self) -> RobotFlags:
-        """How to read the robot, as given."""
-        return RobotFlags(self.config, self.arg, self.package_path, self.untrusted, self.env)
 
 
 def _add_command(
@@ -84,7 +77,7 @@ def _add_command(
     def add(**values: Any) -> None:
         chosen = _lidar_kind(values.pop("three_d"), values) if "three_d" in values else kind
         options = {key: values.pop(key) for key in macro_keys}
-        _run(command, chosen, options, _Given(**values))
+        _run(command, chosen, options, _Given(flags=robot_flags(values), **values))
 
     add.__name__ = add.__qualname__ = command.replace("-", "_")
     add.__doc__ = doc
@@ -127,7 +120,7 @@ def _run(command: str, kind: str, options: dict[str, object], given: _Given) -> 
     _check_radians(given.rpy)
     params = _macro_params(options, given.param)
     # Validate the way `sensorkit validate` would here: the settings file applies.
-    st = settings(given.file, given.flags(), target=None)
+    st = settings(given.file, given.flags, target=None)
     if "sim" not in params and st.config.target:  # the project's simulator, unless --sim says
         for key, value in target_simulator(st.config.target).items():
             params.setdefault(key, value)

@@ -11,20 +11,11 @@ from __future__ import annotations
 import enum
 import inspect
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
-from sensorkit.cli.options import (
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FileArg,
-    PackagePathOpt,
-    QuietOpt,
-    UntrustedOpt,
-)
+from sensorkit.cli.options import PRINTING, ROBOT_FLAGS, FileArg, parameter
 
 
 class Sim(str, enum.Enum):
@@ -43,6 +34,14 @@ Vec3 = tuple[float, float, float]
 _SENSOR = "sensor"
 _MOUNT = "mount"
 _OUT = "output"
+
+
+def _sensor(flag: str, help: str, metavar: str | None = None) -> Any:
+    """An option of the sensor panel. Left out, the macro's default holds: none is shown."""
+    return typer.Option(
+        flag, help=help, metavar=metavar, show_default=False, rich_help_panel=_SENSOR
+    )
+
 
 NameOpt = Annotated[
     str,
@@ -101,133 +100,26 @@ NamespaceOpt = Annotated[
     str | None,
     typer.Option("--namespace", help="ROS namespace of the sensor's topics", show_default=False),
 ]
-MassOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--mass", help="sensor body mass (kg)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-SizeOpt = Annotated[
-    Vec3 | None,
-    typer.Option(
-        "--size",
-        help="sensor body box size (m)",
-        metavar="X Y Z",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-UpdateRateOpt = Annotated[
-    float | None,
-    typer.Option("--update-rate", help="Hz", show_default=False, rich_help_panel=_SENSOR),
-]
-WidthOpt = Annotated[
-    int | None,
-    typer.Option("--width", help="image width (px)", show_default=False, rich_help_panel=_SENSOR),
-]
-HeightOpt = Annotated[
-    int | None,
-    typer.Option("--height", help="image height (px)", show_default=False, rich_help_panel=_SENSOR),
-]
-HfovOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--hfov", help="horizontal field of view (rad)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-FormatOpt = Annotated[
-    str | None,
-    typer.Option(
-        "--format", help="pixel format, e.g. R8G8B8", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-NearOpt = Annotated[
-    float | None,
-    typer.Option("--near", help="near clip (m)", show_default=False, rich_help_panel=_SENSOR),
-]
-FarOpt = Annotated[
-    float | None,
-    typer.Option("--far", help="far clip (m)", show_default=False, rich_help_panel=_SENSOR),
-]
-NoiseOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--noise-stddev", help="gaussian noise stddev", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-MinDepthOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--min-depth", help="depth/point cloud min (m)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-MaxDepthOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--max-depth", help="depth/point cloud max (m)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-BaselineOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--baseline",
-        help="distance between the two cameras (m)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-SamplesOpt = Annotated[
-    int | None,
-    typer.Option("--samples", help="horizontal beams", show_default=False, rich_help_panel=_SENSOR),
-]
-ResolutionOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--resolution",
-        help="horizontal resolution factor",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-MinAngleOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--min-angle",
-        help="horizontal start angle (rad)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-MaxAngleOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--max-angle",
-        help="horizontal end angle (rad)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-RangeMinOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--range-min", help="minimum range (m)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-RangeMaxOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--range-max", help="maximum range (m)", show_default=False, rich_help_panel=_SENSOR
-    ),
-]
-RangeResOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--range-resolution",
-        help="range resolution (m)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
+MassOpt = Annotated[float | None, _sensor("--mass", "sensor body mass (kg)")]
+SizeOpt = Annotated[Vec3 | None, _sensor("--size", "sensor body box size (m)", "X Y Z")]
+UpdateRateOpt = Annotated[float | None, _sensor("--update-rate", "Hz")]
+WidthOpt = Annotated[int | None, _sensor("--width", "image width (px)")]
+HeightOpt = Annotated[int | None, _sensor("--height", "image height (px)")]
+HfovOpt = Annotated[float | None, _sensor("--hfov", "horizontal field of view (rad)")]
+FormatOpt = Annotated[str | None, _sensor("--format", "pixel format, e.g. R8G8B8")]
+NearOpt = Annotated[float | None, _sensor("--near", "near clip (m)")]
+FarOpt = Annotated[float | None, _sensor("--far", "far clip (m)")]
+NoiseOpt = Annotated[float | None, _sensor("--noise-stddev", "gaussian noise stddev")]
+MinDepthOpt = Annotated[float | None, _sensor("--min-depth", "depth/point cloud min (m)")]
+MaxDepthOpt = Annotated[float | None, _sensor("--max-depth", "depth/point cloud max (m)")]
+BaselineOpt = Annotated[float | None, _sensor("--baseline", "distance between the two cameras (m)")]
+SamplesOpt = Annotated[int | None, _sensor("--samples", "horizontal beams")]
+ResolutionOpt = Annotated[float | None, _sensor("--resolution", "horizontal resolution factor")]
+MinAngleOpt = Annotated[float | None, _sensor("--min-angle", "horizontal start angle (rad)")]
+MaxAngleOpt = Annotated[float | None, _sensor("--max-angle", "horizontal end angle (rad)")]
+RangeMinOpt = Annotated[float | None, _sensor("--range-min", "minimum range (m)")]
+RangeMaxOpt = Annotated[float | None, _sensor("--range-max", "maximum range (m)")]
+RangeResOpt = Annotated[float | None, _sensor("--range-resolution", "range resolution (m)")]
 ThreeDOpt = Annotated[
     bool,
     typer.Option(
@@ -236,50 +128,14 @@ ThreeDOpt = Annotated[
         rich_help_panel=_SENSOR,
     ),
 ]
-VSamplesOpt = Annotated[
-    int | None,
-    typer.Option(
-        "--vertical-samples",
-        help="vertical beams (needs --3d)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-VMinOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--vertical-min-angle",
-        help="lowest beam (rad, needs --3d)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-VMaxOpt = Annotated[
-    float | None,
-    typer.Option(
-        "--vertical-max-angle",
-        help="highest beam (rad, needs --3d)",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
-]
-GyroOpt = Annotated[
-    float | None,
-    typer.Option("--gyro-noise-stddev", help="rad/s", show_default=False, rich_help_panel=_SENSOR),
-]
-AccelOpt = Annotated[
-    float | None,
-    typer.Option("--accel-noise-stddev", help="m/s^2", show_default=False, rich_help_panel=_SENSOR),
-]
+VSamplesOpt = Annotated[int | None, _sensor("--vertical-samples", "vertical beams (needs --3d)")]
+VMinOpt = Annotated[float | None, _sensor("--vertical-min-angle", "lowest beam (rad, needs --3d)")]
+VMaxOpt = Annotated[float | None, _sensor("--vertical-max-angle", "highest beam (rad, needs --3d)")]
+GyroOpt = Annotated[float | None, _sensor("--gyro-noise-stddev", "rad/s")]
+AccelOpt = Annotated[float | None, _sensor("--accel-noise-stddev", "m/s^2")]
 ParamOpt = Annotated[
     list[str] | None,
-    typer.Option(
-        "--param",
-        help="any other macro parameter NAME=VALUE (repeatable)",
-        metavar="NAME=VALUE",
-        show_default=False,
-        rich_help_panel=_SENSOR,
-    ),
+    _sensor("--param", "any other macro parameter NAME=VALUE (repeatable)", "NAME=VALUE"),
 ]
 DiffOpt = Annotated[
     bool,
@@ -296,74 +152,65 @@ OutOpt = Annotated[
     ),
 ]
 
-
-def _option(name: str, annotation: object, default: object = None) -> inspect.Parameter:
-    """Parameter ``name`` of an add-* command: ``annotation`` says which option fills it."""
-    return inspect.Parameter(
-        name, inspect.Parameter.KEYWORD_ONLY, annotation=annotation, default=default
-    )
-
-
 _REQUIRED = inspect.Parameter.empty
 _ORIGIN = (0.0, 0.0, 0.0)
 
 MOUNT = (
-    _option("file", FileArg, _REQUIRED),
-    _option("name", NameOpt, _REQUIRED),
-    _option("parent", ParentOpt, _REQUIRED),
-    _option("xyz", XyzOpt, _ORIGIN),
-    _option("rpy", RpyOpt, _ORIGIN),
+    parameter("file", FileArg, _REQUIRED),
+    parameter("name", NameOpt, _REQUIRED),
+    parameter("parent", ParentOpt, _REQUIRED),
+    parameter("xyz", XyzOpt, _ORIGIN),
+    parameter("rpy", RpyOpt, _ORIGIN),
 )
 # the sensor options of each command, in --help order
 CAMERA = (
-    _option("update_rate", UpdateRateOpt),
-    _option("width", WidthOpt),
-    _option("height", HeightOpt),
-    _option("hfov", HfovOpt),
-    _option("format", FormatOpt),
-    _option("near", NearOpt),
-    _option("far", FarOpt),
-    _option("noise_stddev", NoiseOpt),
+    parameter("update_rate", UpdateRateOpt),
+    parameter("width", WidthOpt),
+    parameter("height", HeightOpt),
+    parameter("hfov", HfovOpt),
+    parameter("format", FormatOpt),
+    parameter("near", NearOpt),
+    parameter("far", FarOpt),
+    parameter("noise_stddev", NoiseOpt),
 )
-DEPTH_CAMERA = (*CAMERA, _option("min_depth", MinDepthOpt), _option("max_depth", MaxDepthOpt))
-STEREO_CAMERA = (*CAMERA, _option("baseline", BaselineOpt))
+DEPTH_CAMERA = (
+    *CAMERA,
+    parameter("min_depth", MinDepthOpt),
+    parameter("max_depth", MaxDepthOpt),
+)
+STEREO_CAMERA = (*CAMERA, parameter("baseline", BaselineOpt))
 LIDAR = (
-    _option("three_d", ThreeDOpt, False),
-    _option("update_rate", UpdateRateOpt),
-    _option("samples", SamplesOpt),
-    _option("resolution", ResolutionOpt),
-    _option("min_angle", MinAngleOpt),
-    _option("max_angle", MaxAngleOpt),
-    _option("range_min", RangeMinOpt),
-    _option("range_max", RangeMaxOpt),
-    _option("range_resolution", RangeResOpt),
-    _option("noise_stddev", NoiseOpt),
-    _option("vertical_samples", VSamplesOpt),
-    _option("vertical_min_angle", VMinOpt),
-    _option("vertical_max_angle", VMaxOpt),
+    parameter("three_d", ThreeDOpt, False),
+    parameter("update_rate", UpdateRateOpt),
+    parameter("samples", SamplesOpt),
+    parameter("resolution", ResolutionOpt),
+    parameter("min_angle", MinAngleOpt),
+    parameter("max_angle", MaxAngleOpt),
+    parameter("range_min", RangeMinOpt),
+    parameter("range_max", RangeMaxOpt),
+    parameter("range_resolution", RangeResOpt),
+    parameter("noise_stddev", NoiseOpt),
+    parameter("vertical_samples", VSamplesOpt),
+    parameter("vertical_min_angle", VMinOpt),
+    parameter("vertical_max_angle", VMaxOpt),
 )
 IMU = (
-    _option("update_rate", UpdateRateOpt),
-    _option("gyro_noise_stddev", GyroOpt),
-    _option("accel_noise_stddev", AccelOpt),
+    parameter("update_rate", UpdateRateOpt),
+    parameter("gyro_noise_stddev", GyroOpt),
+    parameter("accel_noise_stddev", AccelOpt),
 )
 # the options every add-* takes after its own
 SHARED = (
-    _option("mass", MassOpt),
-    _option("size", SizeOpt),
-    _option("sim", SimOpt),
-    _option("gz_version", GzVersionOpt),
-    _option("namespace", NamespaceOpt),
-    _option("param", ParamOpt),
-    _option("diff", DiffOpt, False),
-    _option("output", OutOpt),
-    _option("arg", ArgOpt),
-    _option("package_path", PackagePathOpt),
-    _option("untrusted", UntrustedOpt, False),
-    _option("env", EnvOpt),
-    _option("config", ConfigOpt),
-    _option("quiet", QuietOpt, False),
-    _option("color", ColorOpt, "auto"),
+    parameter("mass", MassOpt),
+    parameter("size", SizeOpt),
+    parameter("sim", SimOpt),
+    parameter("gz_version", GzVersionOpt),
+    parameter("namespace", NamespaceOpt),
+    parameter("param", ParamOpt),
+    parameter("diff", DiffOpt, False),
+    parameter("output", OutOpt),
+    *ROBOT_FLAGS,
+    *PRINTING,
 )
 # the shared options that are macro parameters too, in the order the macro call lists them
 SHARED_MACRO = ("sim", "gz_version", "namespace", "mass", "size")

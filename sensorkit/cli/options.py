@@ -1,11 +1,15 @@
 """The options several commands share, each declared once as a typer ``Annotated`` alias:
 a parameter ``arg: ArgOpt = None`` is the whole of ``--arg`` for the command that has it.
 
-An option only one command takes is declared beside that command.
+An option only one command takes is declared beside that command. Options that
+several commands end with alike are also listed as parameters (``ROBOT_FLAGS``,
+``PRINTING``, ``READING``), for the commands whose signature is put together from them
+(``common.reads_robot``, the add-* table).
 """
 
 from __future__ import annotations
 
+import inspect
 from pathlib import Path
 from typing import Annotated
 
@@ -87,3 +91,25 @@ BRIDGE_HELP = (
     "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; default: "
     "parameter_bridge YAMLs in the robot package's config/)"
 )
+
+
+def parameter(name: str, annotation: object, default: object = None) -> inspect.Parameter:
+    """Parameter ``name`` of a command whose signature is put together from parts:
+    ``annotation`` says which option fills it (typer reads the signature)."""
+    return inspect.Parameter(
+        name, inspect.Parameter.KEYWORD_ONLY, annotation=annotation, default=default
+    )
+
+
+# how to read the robot (``common.RobotFlags``)
+ROBOT_FLAGS = (
+    parameter("arg", ArgOpt),
+    parameter("package_path", PackagePathOpt),
+    parameter("untrusted", UntrustedOpt, False),
+    parameter("env", EnvOpt),
+    parameter("config", ConfigOpt),
+)
+# what to print
+PRINTING = (parameter("quiet", QuietOpt, False), parameter("color", ColorOpt, "auto"))
+# what intrinsics, export and topics end with (``common.Reading``)
+READING = (*ROBOT_FLAGS, *PRINTING, parameter("stdin_filename", StdinFilenameOpt))

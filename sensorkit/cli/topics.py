@@ -12,20 +12,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sensorkit.cli.common import RobotFlags, described_robot, handle_errors, note
-from sensorkit.cli.options import (
-    BRIDGE_HELP,
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FileArg,
-    PackagePathOpt,
-    QuietOpt,
-    StdinFilenameOpt,
-    TargetOpt,
-    UntrustedOpt,
-)
+from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.options import BRIDGE_HELP, FileArg, TargetOpt
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
@@ -47,19 +35,14 @@ BridgeOpt = Annotated[
 
 
 @handle_errors
+@reads_robot
 def topics(
     file: FileArg,
     fmt: FormatOpt = "text",
     target: TargetOpt = None,
     bridge: BridgeOpt = None,
-    arg: ArgOpt = None,
-    package_path: PackagePathOpt = None,
-    untrusted: UntrustedOpt = False,
-    env: EnvOpt = None,
-    config: ConfigOpt = None,
-    quiet: QuietOpt = False,
-    color: ColorOpt = "auto",
-    stdin_filename: StdinFilenameOpt = None,
+    *,
+    reading: Reading,
 ) -> None:
     """List every topic the sensors of FILE will publish: resolved name, message type,
     frame_id, image encoding and rate; on Gazebo Sim with the gz topic and the ROS name
@@ -73,19 +56,19 @@ def topics(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    flags = RobotFlags(config, arg, package_path, untrusted, env)
-    file, info = described_robot(
-        file, flags, target=target, stdin_filename=stdin_filename, quiet=quiet, color=color
-    )
+    file, info = described_robot(file, reading, target=target)
     files = [str(b) for b in bridge or ()]
     config_read = None
     if is_gz(info.target):
         config_read = load_bridge(info.robot, info.target, files)
     elif files:
-        note(f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", quiet)
+        note(
+            f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim",
+            reading.quiet,
+        )
     result = robot_topics(info, config_read)
     sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
-    if not quiet:
+    if not reading.quiet:
         _say_notes_and_summary(result)
 
 
