@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import typer
 
 from sensorkit.base.errors import SensorkitError
-from sensorkit.cli.options import READING, ROBOT_FLAGS
+from sensorkit.cli.options import READING, ROBOT_FLAGS, with_parameters
 
 if TYPE_CHECKING:
     from sensorkit.lint.engine import Report
@@ -168,11 +168,10 @@ def reads_robot(func: Callable[..., None]) -> Callable[..., None]:
     @wraps(func)
     def command(**values: Any) -> None:
         flags = robot_flags(values)
-        quiet, color, stdin_filename = (values.pop(k) for k in ("quiet", "color", "stdin_filename"))
-        func(**values, reading=Reading(flags, quiet, color, stdin_filename))
+        quiet, color, stdin = values.pop("quiet"), values.pop("color"), values.pop("stdin_filename")
+        func(**values, reading=Reading(flags, quiet, color, stdin))
 
-    command.__signature__ = signature.replace(parameters=[*own, *READING])  # type: ignore[attr-defined]
-    return command
+    return with_parameters(command, [*own, *READING])
 
 
 def described_robot(

@@ -43,6 +43,7 @@ from sensorkit.cli.edit_options import (
     Vec3,
     parameters,
 )
+from sensorkit.cli.options import with_parameters
 
 if TYPE_CHECKING:
     from sensorkit.cli.common import Settings
@@ -81,8 +82,7 @@ def _add_command(
 
     add.__name__ = add.__qualname__ = command.replace("-", "_")
     add.__doc__ = doc
-    add.__signature__ = inspect.Signature(parameters(own))  # type: ignore[attr-defined]
-    return handle_errors(add)
+    return handle_errors(with_parameters(add, parameters(own)))
 
 
 def _lidar_kind(three_d: bool, values: dict[str, Any]) -> str:

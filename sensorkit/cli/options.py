@@ -10,8 +10,9 @@ several commands end with alike are also listed as parameters (``ROBOT_FLAGS``,
 from __future__ import annotations
 
 import inspect
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any, TypeVar
 
 import typer
 
@@ -91,6 +92,15 @@ BRIDGE_HELP = (
     "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; default: "
     "parameter_bridge YAMLs in the robot package's config/)"
 )
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def with_parameters(func: F, parameters: Sequence[inspect.Parameter]) -> F:
+    """``func``, whose signature as typer reads it is ``parameters``."""
+    func.__signature__ = inspect.Signature(parameters)  # type: ignore[attr-defined]
+    return func
 
 
 def parameter(name: str, annotation: object, default: object = None) -> inspect.Parameter:
