@@ -10,9 +10,10 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from sensorkit.base.errors import EditRefused, InputError
-from sensorkit.edit.add import _splice, unified_diff
+from sensorkit.edit.diff import unified_diff
 from sensorkit.edit.layout import read_layout
 from sensorkit.edit.render import format_number, render_block, xacro_literal, xml_attr
+from sensorkit.edit.splice import _splice
 
 
 def layout_of(text: str, encoding: str = "utf-8", bom: bytes = b""):  # type: ignore[no-untyped-def]

@@ -1,7 +1,9 @@
-"""Shared CLI pieces: option aliases, argument parsing, and the one error path."""
+"""Shared CLI pieces: the settings a command runs with, argument parsing, stdin as the
+robot file, colour, and the one error path. The shared options are in ``options``."""
 
 from __future__ import annotations
 
+import inspect
 import os
 import sys
 from collections.abc import Callable, Iterator
@@ -9,85 +11,17 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import wraps
 from pathlib import Path
-from typing import Annotated, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 
 from sensorkit.base.errors import SensorkitError
+from sensorkit.cli.options import READING, ROBOT_FLAGS, with_parameters
+
+if TYPE_CHECKING:
+    from sensorkit.lint.engine import Report
 
 F = TypeVar("F", bound=Callable[..., Any])
-
-ArgOpt = Annotated[
-    list[str] | None,
-    typer.Option("--arg", help="xacro argument NAME:=VALUE (repeatable)", metavar="NAME:=VALUE"),
-]
-PackagePathOpt = Annotated[
-    list[str] | None,
-    typer.Option(
-        "--package-path",
-        help="where ROS packages live: DIR (scanned for package.xml) or NAME=DIR (repeatable)",
-        metavar="DIR|NAME=DIR",
-    ),
-]
-UntrustedOpt = Annotated[
-    bool,
-    typer.Option(
-        "--untrusted",
-        help="input from people you do not trust (pull-request CI): xacro sees no environment "
-        "but --env names and reads no file outside the workspace and resolved packages",
-    ),
-]
-EnvOpt = Annotated[
-    list[str] | None,
-    typer.Option(
-        "--env",
-        help="with --untrusted: an environment variable xacro may read (repeatable)",
-        metavar="NAME",
-    ),
-]
-ConfigOpt = Annotated[
-    Path | None,
-    typer.Option(
-        "--config",
-        help="settings file (sensorkit.toml, or pyproject.toml with [tool.sensorkit]); "
-        "default: the nearest one above the robot file",
-        metavar="FILE",
-    ),
-]
-ColorOpt = Annotated[
-    str,
-    typer.Option(
-        "--color",
-        help="auto (on a terminal, unless NO_COLOR is set), always or never",
-        metavar="auto|always|never",
-    ),
-]
-QuietOpt = Annotated[
-    bool,
-    typer.Option(
-        "--quiet", "-q", help="print only results and errors: no summary, notes or progress"
-    ),
-]
-StdinFilenameOpt = Annotated[
-    Path | None,
-    typer.Option(
-        "--stdin-filename",
-        help="with - as the file: the path the text on stdin stands for (messages, relative "
-        "includes, packages and the settings file are found from it)",
-        metavar="PATH",
-    ),
-]
-FailOnOpt = Annotated[
-    str | None,
-    typer.Option(
-        "--fail-on",
-        help="lowest severity that fails: error | warning | info | never (default: the "
-        "settings file's, else error)",
-        show_default=False,
-    ),
-]
-FilesArg = Annotated[list[Path], typer.Argument(help="URDF or xacro files", show_default=False)]
-FileArg = Annotated[Path, typer.Argument(help="a URDF or xacro file", show_default=False)]
 
 
 def parse_xacro_args(items: list[str] | None) -> dict[str, str]:
@@ -112,6 +46,18 @@ def make_untrusted(untrusted: bool, env: list[str] | None) -> Any:
     from sensorkit.loading.untrusted import Untrusted
 
     return Untrusted(env=frozenset(env or ()))
+
+
+@dataclass
+class RobotFlags:
+    """The flags that say how to read the robot (--config, --arg, --package-path,
+    --untrusted, --env), as given: ``settings`` merges them over the settings file."""
+
+    config: Path | None = None
+    arg: list[str] | None = None
+    package_path: list[str] | None = None
+    untrusted: bool = False
+    env: list[str] | None = None
 
 
 @dataclass
@@ -157,46 +103,99 @@ class Settings:
             typer.echo(f"sensorkit: {said}", err=True)
 
 
+def _package_folder(item: str) -> str:
+    """The folder of a package-path item: ``DIR``, or the DIR of ``NAME=DIR``."""
+    name, sep, folder = item.partition("=")
+    return folder if sep and name and "/" not in name else item
+
+
 def settings(
     near: Path | None,
+    flags: RobotFlags,
     *,
-    config: Path | None,
     target: str | None,
-    package_path: list[str] | None,
-    arg: list[str] | None,
-    untrusted: bool = False,
-    env: list[str] | None = None,
     default_target: str = "auto",
 ) -> Settings:
     """Merge flags over the settings file found from ``near`` (``--config`` wins)."""
     from sensorkit.lint.config import load_config
 
-    cfg = load_config(near, explicit=config)
-    trust = make_untrusted(untrusted, env)
+    cfg = load_config(near, explicit=flags.config)
+    trust = make_untrusted(flags.untrusted, flags.env)
     used: list[str] = []
     if target is None:
         target = cfg.target or default_target
         if cfg.target:
             used.append("target")
-    for item in package_path or ():
-        name, sep, folder = item.partition("=")
-        folder = folder if sep and name and "/" not in name else item
-        if not Path(folder).expanduser().is_dir():
+    for item in flags.package_path or ():
+        if not Path(_package_folder(item)).expanduser().is_dir():
             die(f"--package-path {item}: no such folder")
     for item in cfg.package_paths:
-        name, sep, folder = item.partition("=")
-        folder = folder if sep and name and "/" not in name else item
-        if not Path(folder).is_dir():
+        if not Path(_package_folder(item)).is_dir():
             die(f"{cfg.path}: package-path {item}: no such folder")
-    paths = tuple(package_path or ())
+    paths = tuple(flags.package_path or ())
     if not paths and cfg.package_paths:
         paths = cfg.confined_package_paths() if trust is not None else tuple(cfg.package_paths)
         used.append("package-path")
     args = dict(cfg.args)
     if cfg.args:
         used.append("args")
-    args.update(parse_xacro_args(arg))
+    args.update(parse_xacro_args(flags.arg))
     return Settings(target, paths, args, trust, cfg, used)
+
+
+def robot_flags(values: dict[str, Any]) -> RobotFlags:
+    """The values of ``options.ROBOT_FLAGS`` taken out of a command's ``values``."""
+    return RobotFlags(**{p.name: values.pop(p.name) for p in ROBOT_FLAGS})
+
+
+@dataclass
+class Reading:
+    """The options intrinsics, export and topics end with (``options.READING``), as
+    given: how to read the robot, -q, --color and --stdin-filename."""
+
+    flags: RobotFlags
+    quiet: bool
+    color: str
+    stdin_filename: Path | None
+
+
+def reads_robot(func: Callable[..., None]) -> Callable[..., None]:
+    """A command that ends with the options of ``options.READING``: typer sees those in
+    place of the function's parameter ``reading``, which gets them as one ``Reading``."""
+    signature = inspect.signature(func, eval_str=True)
+    own = [p for name, p in signature.parameters.items() if name != "reading"]
+
+    @wraps(func)
+    def command(**values: Any) -> None:
+        flags = robot_flags(values)
+        quiet, color, stdin = values.pop("quiet"), values.pop("color"), values.pop("stdin_filename")
+        func(**values, reading=Reading(flags, quiet, color, stdin))
+
+    return with_parameters(command, [*own, *READING])
+
+
+def described_robot(
+    file: Path, reading: Reading, *, target: str | None, convention: str | None = None
+) -> tuple[Path, Any]:
+    """The robot of ``file`` described under its target, as intrinsics, export and topics
+    read it: ``-`` is stdin; the settings file found upward from the robot (``--config``
+    wins) fills what the flags leave out, and one stderr line names what it gave (not
+    with -q). Returns the robot's path and its ``RobotInfo``. ``--color`` is checked;
+    nothing these commands print is coloured."""
+    use_color(reading.color)
+    file, overlay = stdin_robot(file, reading.stdin_filename)
+    st = settings(file, reading.flags, target=target)
+    st.say_where(quiet=reading.quiet)
+    return file, st.describe(file, overlay, convention)
+
+
+def target_simulator(target: str) -> dict[str, str]:
+    """The macro ``sim`` (and ``gz_version``) a settings file's target stands for."""
+    from sensorkit.model.targets import is_gz
+
+    if is_gz(target):
+        return {"sim": "gz", "gz_version": target}
+    return {"sim": "classic"}
 
 
 def fail_on_threshold(flag: str | None, cfg: Any) -> Any:
@@ -279,6 +278,15 @@ def use_color(choice: str, stream: Any = None) -> bool:
 def exit_status(code: int, *, exit_zero: bool) -> int:
     """``--exit-zero``: findings (1) become 0; could-not-run (2) stays."""
     return 0 if exit_zero and code == 1 else code
+
+
+def say_file_errors(report: Report) -> None:
+    """On stderr, why each file that could not be checked was not, and each internal error."""
+    for fr in report.files:
+        if fr.error:
+            typer.echo(f"sensorkit: {fr.error}", err=True)
+        for err in fr.internal_errors:
+            typer.echo(f"sensorkit: internal error: {err}", err=True)
 
 
 STDIN = "-"

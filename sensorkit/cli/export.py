@@ -13,22 +13,8 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import (
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FileArg,
-    PackagePathOpt,
-    QuietOpt,
-    StdinFilenameOpt,
-    UntrustedOpt,
-    handle_errors,
-    note,
-    settings,
-    stdin_robot,
-    use_color,
-)
+from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.options import FileArg, TargetOpt
 
 ImuOpt = Annotated[
     str | None,
@@ -40,18 +26,9 @@ ImuOpt = Annotated[
     ),
 ]
 
-TargetOpt = Annotated[
-    str | None,
-    typer.Option(
-        "--target",
-        help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings file's, "
-        "else auto: detected as validate does)",
-        show_default=False,
-    ),
-]
-
 
 @handle_errors
+@reads_robot
 def intrinsics(
     file: FileArg,
     sensor: Annotated[
@@ -82,14 +59,8 @@ def intrinsics(
     ] = "json",
     imu: ImuOpt = None,
     target: TargetOpt = None,
-    arg: ArgOpt = None,
-    package_path: PackagePathOpt = None,
-    untrusted: UntrustedOpt = False,
-    env: EnvOpt = None,
-    config: ConfigOpt = None,
-    quiet: QuietOpt = False,
-    color: ColorOpt = "auto",
-    stdin_filename: StdinFilenameOpt = None,
+    *,
+    reading: Reading,
 ) -> None:
     """Print the camera_info each camera of FILE publishes, for a tool to read.
 
@@ -102,26 +73,15 @@ def intrinsics(
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
-    use_color(color)  # checked; the document printed has no colour
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
-    )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay, convention)
+    file, info = described_robot(file, reading, target=target, convention=convention)
     text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
     sys.stdout.write(text)
     for said in notes:
-        note(f"sensorkit: note: {said}", quiet)
+        note(f"sensorkit: note: {said}", reading.quiet)
 
 
 @handle_errors
+@reads_robot
 def export(
     file: FileArg,
     out: Annotated[
@@ -135,14 +95,8 @@ def export(
     ] = False,
     imu: ImuOpt = None,
     target: TargetOpt = None,
-    arg: ArgOpt = None,
-    package_path: PackagePathOpt = None,
-    untrusted: UntrustedOpt = False,
-    env: EnvOpt = None,
-    config: ConfigOpt = None,
-    quiet: QuietOpt = False,
-    color: ColorOpt = "auto",
-    stdin_filename: StdinFilenameOpt = None,
+    *,
+    reading: Reading,
 ) -> None:
     """Write each sensor's config files into one folder per sensor.
 
@@ -158,32 +112,20 @@ def export(
     """
     from sensorkit.exporters.robot import export_files, publish_export
 
-    use_color(color)  # checked; nothing printed is coloured
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
-    )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay)
+    file, info = described_robot(file, reading, target=target)
     plan = export_files(info, imu=imu)
     inputs = [file, *(Path(f) for f in info.robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:
         typer.echo(path.as_posix())
     for said in plan.notes:
-        note(f"sensorkit: note: {said}", quiet)
+        note(f"sensorkit: note: {said}", reading.quiet)
     for skipped in plan.skipped:  # why the exit status is 1: said with -q too
         typer.echo(f"sensorkit: not written: {skipped}", err=True)
     note(
         f"sensorkit: wrote {len(written)} files for {len(info.sensors)} sensors of "
         f"{info.robot.name} into {out} (target {info.target}, {info.target_reason})",
-        quiet,
+        reading.quiet,
     )
     if plan.skipped:
         raise typer.Exit(1)

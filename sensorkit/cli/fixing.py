@@ -43,7 +43,7 @@ def run_fix(
 
     if unsafe and not (fix or diff):
         raise UsageError("--unsafe-fixes only means something with --fix or --diff")
-    from sensorkit.cli.common import exit_status, note
+    from sensorkit.cli.common import exit_status, note, say_file_errors
     from sensorkit.fix.apply import fix_paths
 
     run = fix_paths(files, options, unsafe=unsafe, write=not diff)
@@ -85,10 +85,6 @@ def run_fix(
 
     report = validate_paths(files, options)
     sys.stdout.write(render(report, fmt, color=color, quiet=quiet))
-    for fr in report.files:
-        if fr.error:
-            typer.echo(f"sensorkit: {fr.error}", err=True)
-        for err in fr.internal_errors:
-            typer.echo(f"sensorkit: internal error: {err}", err=True)
+    say_file_errors(report)
     note(f"fixed {_plural(run.fixed)} ({len(report.findings)} remain)", quiet)
     raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))

@@ -7,8 +7,9 @@ from typing import Annotated
 
 import typer
 
-from sensorkit.cli.common import ColorOpt, ConfigOpt, QuietOpt, handle_errors, settings, use_color
+from sensorkit.cli.common import RobotFlags, handle_errors, settings, target_simulator, use_color
 from sensorkit.cli.common import note as say
+from sensorkit.cli.options import ColorOpt, ConfigOpt, QuietOpt
 
 
 @handle_errors
@@ -41,15 +42,12 @@ def new(
     xacro with the base and sensor macros, launch files and, for Gazebo Sim, the
     ros_gz_bridge config and a world."""
     from sensorkit.generate import new_package
-    from sensorkit.model.targets import is_gz
 
     use_color(color)  # checked; nothing printed is coloured
-    st = settings(spec, config=config, target=None, package_path=None, arg=None)
+    st = settings(spec, RobotFlags(config), target=None)
     defaults: dict[str, str] = {}
     if st.config.target:  # the simulator a robot.yaml without `sim:` is generated for
-        defaults["sim"] = "gz" if is_gz(st.config.target) else "classic"
-        if is_gz(st.config.target):
-            defaults["gz_version"] = st.config.target
+        defaults.update(target_simulator(st.config.target))
         note = st.config.describe(["target"])
         say(f"sensorkit: {note} (for a robot.yaml that names no sim)", quiet)
     result = new_package(spec, output, force=force, dry_run=dry_run, defaults=defaults)

@@ -14,25 +14,23 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from typer.core import TyperGroup
 
-try:  # typer 0.2x vendors click; older ones depend on it
+# typer 0.2x vendors click; older ones depend on it. The type checker reads the installed
+# typer's; at run time whichever of the two is there serves.
+if TYPE_CHECKING:
     from typer._click.exceptions import UsageError as ClickUsageError
-except ImportError:  # pragma: no cover - depends on the installed typer
-    from click.exceptions import UsageError as ClickUsageError  # type: ignore[no-redef]
+else:
+    try:
+        from typer._click.exceptions import UsageError as ClickUsageError
+    except ImportError:  # pragma: no cover - depends on the installed typer
+        from click.exceptions import UsageError as ClickUsageError
 
 from sensorkit.cli.common import (
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FileArg,
-    PackagePathOpt,
-    QuietOpt,
-    UntrustedOpt,
+    RobotFlags,
     collector_off,
     die,
     exit_status,
@@ -43,6 +41,21 @@ from sensorkit.cli.common import (
     settings,
     use_color,
 )
+from sensorkit.cli.options import (
+    ArgOpt,
+    ColorOpt,
+    ConfigOpt,
+    EnvOpt,
+    FileArg,
+    PackagePathOpt,
+    QuietOpt,
+    UntrustedOpt,
+)
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from sensorkit.render import PreviewResult
 
 
 class _RenderGroup(TyperGroup):
@@ -89,86 +102,95 @@ def parse_joints(items: list[str] | None) -> dict[str, float]:
     return out
 
 
+OutOpt = Annotated[
+    Path,
+    typer.Option(
+        "--out",
+        "-o",
+        "--output",
+        help="folder to write; replaced whole at the end (an earlier preview is replaced)",
+    ),
+]
+SceneOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--scene",
+        help="a URDF of static objects to use instead of the default room (the ground stays)",
+    ),
+]
+SensorOpt = Annotated[
+    list[str] | None,
+    typer.Option("--sensor", help="only this sensor (repeatable; default: all)", metavar="NAME"),
+]
+JointOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--joint",
+        help="joint position NAME=VALUE in radians or metres (repeatable; default 0)",
+        metavar="NAME=VALUE",
+    ),
+]
+TargetOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--target",
+        help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, "
+        "frames; default: the settings file's, else auto)",
+        show_default=False,
+    ),
+]
+MaxPixelsOpt = Annotated[
+    int, typer.Option("--max-pixels", help="most pixels one camera may have (default 4096x4096)")
+]
+MaxRaysOpt = Annotated[
+    int, typer.Option("--max-rays", help="most rays one lidar may cast per scan")
+]
+ForceOpt = Annotated[
+    bool,
+    typer.Option(
+        "--force", help="replace a non-empty --out that is not an earlier sensorkit preview"
+    ),
+]
+FailOnOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--fail-on",
+        help="lowest severity of validate's findings that fails, and of checks (a failed "
+        "check is an error, a warned one a warning): error | warning | info | never "
+        "(default: the settings file's, else error)",
+        show_default=False,
+    ),
+]
+ExitZeroOpt = Annotated[
+    bool,
+    typer.Option(
+        "--exit-zero",
+        help="exit 0 even when the verdict fails (still 2 when the preview cannot run)",
+    ),
+]
+
+
 @render_app.command("preview")
 @handle_errors
 def preview(
     file: FileArg,
-    out: Annotated[
-        Path,
-        typer.Option(
-            "--out",
-            "-o",
-            "--output",
-            help="folder to write; replaced whole at the end (an earlier preview is replaced)",
-        ),
-    ] = Path("sensorkit-preview"),
-    scene: Annotated[
-        Path | None,
-        typer.Option(
-            "--scene",
-            help="a URDF of static objects to use instead of the default room (the ground stays)",
-        ),
-    ] = None,
-    sensor: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--sensor", help="only this sensor (repeatable; default: all)", metavar="NAME"
-        ),
-    ] = None,
-    joint: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--joint",
-            help="joint position NAME=VALUE in radians or metres (repeatable; default 0)",
-            metavar="NAME=VALUE",
-        ),
-    ] = None,
+    out: OutOpt = Path("sensorkit-preview"),
+    scene: SceneOpt = None,
+    sensor: SensorOpt = None,
+    joint: JointOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
-    target: Annotated[
-        str | None,
-        typer.Option(
-            "--target",
-            help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, "
-            "frames; default: the settings file's, else auto)",
-            show_default=False,
-        ),
-    ] = None,
-    max_pixels: Annotated[
-        int,
-        typer.Option("--max-pixels", help="most pixels one camera may have (default 4096x4096)"),
-    ] = 4096 * 4096,
-    max_rays: Annotated[
-        int, typer.Option("--max-rays", help="most rays one lidar may cast per scan")
-    ] = 1_000_000,
-    force: Annotated[
-        bool,
-        typer.Option(
-            "--force", help="replace a non-empty --out that is not an earlier sensorkit preview"
-        ),
-    ] = False,
+    target: TargetOpt = None,
+    max_pixels: MaxPixelsOpt = 4096 * 4096,
+    max_rays: MaxRaysOpt = 1_000_000,
+    force: ForceOpt = False,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
     quiet: QuietOpt = False,
     color: ColorOpt = "auto",
-    fail_on: Annotated[
-        str | None,
-        typer.Option(
-            "--fail-on",
-            help="lowest severity of validate's findings that fails, and of checks (a failed "
-            "check is an error, a warned one a warning): error | warning | info | never "
-            "(default: the settings file's, else error)",
-            show_default=False,
-        ),
-    ] = None,
-    exit_zero: Annotated[
-        bool,
-        typer.Option(
-            "--exit-zero",
-            help="exit 0 even when the verdict fails (still 2 when the preview cannot run)",
-        ),
-    ] = False,
+    fail_on: FailOnOpt = None,
+    exit_zero: ExitZeroOpt = False,
 ) -> None:
     """Render every camera and cast every lidar of FILE into --out, with checks: a gate.
 
@@ -180,15 +202,7 @@ def preview(
     """
     refuse_stdin(file, "render preview renders a file")
     colored = use_color(color, sys.stderr)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
-    )
+    st = settings(file, RobotFlags(config, arg, package_path, untrusted, env), target=target)
     threshold = fail_on_threshold(fail_on, st.config)
     st.say_where(() if fail_on else ("fail-on", "select", "ignore"), quiet=quiet)
     joints = parse_joints(joint)
@@ -198,21 +212,7 @@ def preview(
             if not scene.exists()
             else f"--scene {scene}: not a file"
         )
-
-    def say(message: str) -> None:
-        note(message, quiet)
-
-    log = say  # with -q, say is silent: no progress
-    if colored and not quiet:  # rich's timestamps and colour for people; plain lines for logs
-        from rich.console import Console
-
-        console = Console(
-            stderr=True, highlight=False, log_path=False, force_terminal=True, no_color=False
-        )
-
-        def log(message: str) -> None:
-            console.log(message, markup=False)
-
+    log = _progress(colored, quiet)
     # the model, the scene and a lidar's ray results: many small objects (collector_off)
     with collector_off():
         from sensorkit.render import render_preview
@@ -238,6 +238,38 @@ def preview(
             select=tuple(st.config.select),
             ignore=tuple(st.config.ignore),
         )
+    _print_result(result, quiet)
+    from sensorkit.cli import leave_quickly
+
+    leave_quickly()  # everything is written and pybullet disconnected: skip teardown
+    if result.verdict.failed:
+        raise typer.Exit(exit_status(1, exit_zero=exit_zero))
+
+
+def _progress(colored: bool, quiet: bool) -> Callable[[str], None]:
+    """Where the progress lines go: with -q nowhere; else stderr, with rich's timestamps
+    and colour for people, plain lines for logs."""
+
+    def say(message: str) -> None:
+        note(message, quiet)
+
+    if not colored or quiet:
+        return say
+    from rich.console import Console
+
+    console = Console(
+        stderr=True, highlight=False, log_path=False, force_terminal=True, no_color=False
+    )
+
+    def log(message: str) -> None:
+        console.log(message, markup=False)
+
+    return log
+
+
+def _print_result(result: PreviewResult, quiet: bool) -> None:
+    """Each sensor's status, findings and checks that did not pass, the notes (stderr),
+    the index written and the verdict last."""
     from sensorkit.render.gate import found_text
 
     for s in result.sensors:
@@ -253,17 +285,12 @@ def preview(
             if c.status in ("warn", "fail"):
                 typer.echo(f"  {c.status}: {c.name}: {c.message}")
     for said in result.notes:
-        say(f"note: {said}")
+        note(f"note: {said}", quiet)
     typer.echo(f"wrote {result.files['index']}")
     verdict = result.verdict
     typer.echo(verdict.text)
     for reason in verdict.reasons if verdict.failed else ():
         typer.echo(f"  {reason}")
-    from sensorkit.cli import leave_quickly
-
-    leave_quickly()  # everything is written and pybullet disconnected: skip teardown
-    if verdict.failed:
-        raise typer.Exit(exit_status(1, exit_zero=exit_zero))
 
 
 def register(app: typer.Typer) -> None:

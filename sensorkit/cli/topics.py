@@ -8,67 +8,41 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sensorkit.cli.common import (
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FileArg,
-    PackagePathOpt,
-    QuietOpt,
-    StdinFilenameOpt,
-    UntrustedOpt,
-    handle_errors,
-    note,
-    settings,
-    stdin_robot,
-    use_color,
-)
+from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.options import BRIDGE_HELP, FileArg, TargetOpt
+
+if TYPE_CHECKING:
+    from sensorkit.describe.topics import RobotTopics
 
 FORMATS = ("text", "json")
 
+FormatOpt = Annotated[
+    str,
+    typer.Option(
+        "--format",
+        "-f",
+        help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
+        "sensor of each topic) or json",
+    ),
+]
+BridgeOpt = Annotated[
+    list[Path] | None, typer.Option("--bridge", help="Gazebo Sim: " + BRIDGE_HELP)
+]
+
 
 @handle_errors
+@reads_robot
 def topics(
     file: FileArg,
-    fmt: Annotated[
-        str,
-        typer.Option(
-            "--format",
-            "-f",
-            help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
-            "sensor of each topic) or json",
-        ),
-    ] = "text",
-    target: Annotated[
-        str | None,
-        typer.Option(
-            "--target",
-            help="auto, classic, ros1, fortress, harmonic or jetty (default: the settings "
-            "file's, else auto: detected as validate does)",
-            show_default=False,
-        ),
-    ] = None,
-    bridge: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--bridge",
-            help="Gazebo Sim: ros_gz_bridge YAML that carries the robot's gz topics to ROS "
-            "(repeatable; default: parameter_bridge YAMLs in the robot package's config/)",
-        ),
-    ] = None,
-    arg: ArgOpt = None,
-    package_path: PackagePathOpt = None,
-    untrusted: UntrustedOpt = False,
-    env: EnvOpt = None,
-    config: ConfigOpt = None,
-    quiet: QuietOpt = False,
-    color: ColorOpt = "auto",
-    stdin_filename: StdinFilenameOpt = None,
+    fmt: FormatOpt = "text",
+    target: TargetOpt = None,
+    bridge: BridgeOpt = None,
+    *,
+    reading: Reading,
 ) -> None:
     """List every topic the sensors of FILE will publish: resolved name, message type,
     frame_id, image encoding and rate; on Gazebo Sim with the gz topic and the ROS name
@@ -82,29 +56,24 @@ def topics(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    use_color(color)  # checked; the table has no colour
-    file, overlay = stdin_robot(file, stdin_filename)
-    st = settings(
-        file,
-        config=config,
-        target=target,
-        package_path=package_path,
-        arg=arg,
-        untrusted=untrusted,
-        env=env,
-    )
-    st.say_where(quiet=quiet)
-    info = st.describe(file, overlay)
+    file, info = described_robot(file, reading, target=target)
     files = [str(b) for b in bridge or ()]
     config_read = None
     if is_gz(info.target):
         config_read = load_bridge(info.robot, info.target, files)
     elif files:
-        note(f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim", quiet)
+        note(
+            f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim",
+            reading.quiet,
+        )
     result = robot_topics(info, config_read)
     sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
-    if quiet:
-        return
+    if not reading.quiet:
+        _say_notes_and_summary(result)
+
+
+def _say_notes_and_summary(result: RobotTopics) -> None:
+    """On stderr: the notes (each once) and a line counting the topics (not with -q)."""
     for text in result.notes:
         typer.echo(f"sensorkit: note: {text}", err=True)
     said: set[str] = set()

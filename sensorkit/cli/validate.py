@@ -1,31 +1,41 @@
 """``sensorkit validate`` and ``sensorkit rules``."""
 
+from __future__ import annotations
+
 import sys
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated, NoReturn
 
 import typer
 
 from sensorkit.cli.common import (
     STDIN,
-    ArgOpt,
-    ColorOpt,
-    ConfigOpt,
-    EnvOpt,
-    FailOnOpt,
-    PackagePathOpt,
-    QuietOpt,
-    StdinFilenameOpt,
-    UntrustedOpt,
+    RobotFlags,
     collector_off,
     exit_status,
     fail_on_threshold,
     handle_errors,
     note,
+    say_file_errors,
     settings,
     stdin_robots,
     use_color,
 )
+from sensorkit.cli.options import (
+    BRIDGE_HELP,
+    ArgOpt,
+    ColorOpt,
+    ConfigOpt,
+    EnvOpt,
+    PackagePathOpt,
+    QuietOpt,
+    StdinFilenameOpt,
+    UntrustedOpt,
+)
+
+if TYPE_CHECKING:
+    from sensorkit.lint.engine import Options
 
 _KEPT: list[object] = []  # see validate(): models left for the process exit to drop
 
@@ -44,72 +54,82 @@ PathsArg = Annotated[
         show_default=False,
     ),
 ]
+TargetOpt = Annotated[
+    str | None,
+    typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
+]
+FormatOpt = Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)]
+FailOnOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--fail-on",
+        help="lowest severity that fails: error | warning | info | never (default: the "
+        "settings file's, else error)",
+        show_default=False,
+    ),
+]
+SelectOpt = Annotated[
+    list[str] | None,
+    typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
+]
+IgnoreOpt = Annotated[
+    list[str] | None,
+    typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)"),
+]
+TimeoutOpt = Annotated[
+    float, typer.Option("--timeout", help="seconds one xacro expansion may take")
+]
+BridgeOpt = Annotated[list[Path] | None, typer.Option("--bridge", help=BRIDGE_HELP)]
+FixOpt = Annotated[
+    bool, typer.Option("--fix", help="apply the safe fixes, then report what remains")
+]
+DiffOpt = Annotated[
+    bool, typer.Option("--diff", help="print the fixes as a unified diff; write nothing")
+]
+UnsafeFixesOpt = Annotated[
+    bool,
+    typer.Option(
+        "--unsafe-fixes",
+        help="with --fix or --diff: also fixes that change behaviour beyond the finding",
+    ),
+]
+JobsOpt = Annotated[
+    int,
+    typer.Option(
+        "--jobs",
+        "-j",
+        help="files validated at once, each in a worker process (0: one per CPU core)",
+        min=0,
+    ),
+]
+ExitZeroOpt = Annotated[
+    bool,
+    typer.Option(
+        "--exit-zero", help="exit 0 even with findings (still 2 when sensorkit cannot run)"
+    ),
+]
 
 
 @handle_errors
 def validate(
     files: PathsArg,
-    target: Annotated[
-        str | None,
-        typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
-    ] = None,
-    fmt: Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)] = "text",
+    target: TargetOpt = None,
+    fmt: FormatOpt = "text",
     fail_on: FailOnOpt = None,
-    select: Annotated[
-        list[str] | None,
-        typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
-    ] = None,
-    ignore: Annotated[
-        list[str] | None,
-        typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)"),
-    ] = None,
+    select: SelectOpt = None,
+    ignore: IgnoreOpt = None,
     arg: ArgOpt = None,
     package_path: PackagePathOpt = None,
-    timeout: Annotated[
-        float, typer.Option("--timeout", help="seconds one xacro expansion may take")
-    ] = 60.0,
-    bridge: Annotated[
-        list[Path] | None,
-        typer.Option(
-            "--bridge",
-            help="ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; "
-            "default: parameter_bridge YAMLs in the robot package's config/)",
-        ),
-    ] = None,
+    timeout: TimeoutOpt = 60.0,
+    bridge: BridgeOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
-    fix: Annotated[
-        bool,
-        typer.Option("--fix", help="apply the safe fixes, then report what remains"),
-    ] = False,
-    diff: Annotated[
-        bool,
-        typer.Option("--diff", help="print the fixes as a unified diff; write nothing"),
-    ] = False,
-    unsafe_fixes: Annotated[
-        bool,
-        typer.Option(
-            "--unsafe-fixes",
-            help="with --fix or --diff: also fixes that change behaviour beyond the finding",
-        ),
-    ] = False,
-    jobs: Annotated[
-        int,
-        typer.Option(
-            "--jobs",
-            "-j",
-            help="files validated at once, each in a worker process (0: one per CPU core)",
-            min=0,
-        ),
-    ] = 1,
-    exit_zero: Annotated[
-        bool,
-        typer.Option(
-            "--exit-zero",
-            help="exit 0 even with findings (still 2 when sensorkit cannot run)",
-        ),
-    ] = False,
+    fix: FixOpt = False,
+    diff: DiffOpt = False,
+    unsafe_fixes: UnsafeFixesOpt = False,
+    jobs: JobsOpt = 1,
+    exit_zero: ExitZeroOpt = False,
     quiet: QuietOpt = False,
     color: ColorOpt = "auto",
     stdin_filename: StdinFilenameOpt = None,
@@ -125,12 +145,9 @@ def validate(
     Exit status: 0 nothing at or above --fail-on (or --exit-zero), 1 findings, 2 could
     not run.
     """
-    from sensorkit.lint.engine import Options
-    from sensorkit.lint.fleet import validate_paths
-
     with collector_off():
         from sensorkit.base.errors import UsageError
-        from sensorkit.lint.report import FORMATS, render
+        from sensorkit.lint.report import FORMATS
 
         if fmt not in FORMATS:
             raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
@@ -138,39 +155,10 @@ def validate(
         if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
             raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
         files, overlay = stdin_robots(files, stdin_filename)
-        st = settings(
-            files[0] if files else None,
-            config=config,
-            target=target,
-            package_path=package_path,
-            arg=arg,
-            untrusted=untrusted,
-            env=env,
-        )
-        cfg = st.config
-        sep = [s for item in (select or []) for s in item.split(",") if s] or cfg.select
-        ign = [s for item in (ignore or []) for s in item.split(",") if s] or cfg.ignore
-        threshold = fail_on_threshold(fail_on, cfg)
-        st.say_where(
-            tuple(
-                k
-                for k, flag in (("select", select), ("ignore", ignore), ("fail-on", fail_on))
-                if not flag
-            ),
-            quiet=quiet,
-        )
-        options = Options(
-            target=st.target,
-            select=tuple(sep),
-            ignore=tuple(ign),
-            fail_on=threshold,
-            args=st.args,
-            package_paths=st.package_paths,
-            timeout=timeout,
-            bridges=tuple(str(b) for b in bridge or ()),
-            untrusted=st.untrusted,
-            target_origin=st.origin("target"),
-            overlay=overlay,
+        flags = RobotFlags(config, arg, package_path, untrusted, env)
+        rules = _Rules(select, ignore, fail_on)
+        options = _options(
+            files, flags, rules, overlay, target=target, timeout=timeout, bridge=bridge, quiet=quiet
         )
         inputs = _expand_folders(files, quiet=quiet)
         if fix or diff or unsafe_fixes:
@@ -180,7 +168,7 @@ def validate(
                 inputs,
                 options,
                 fmt,
-                threshold,
+                options.fail_on,
                 diff=diff,
                 fix=fix,
                 unsafe=unsafe_fixes,
@@ -188,24 +176,85 @@ def validate(
                 color=colored,
                 exit_zero=exit_zero,
             )
-        if not jobs:
-            from sensorkit.lint.fleet import cpu_count
+        _check(inputs, options, fmt, jobs=jobs, color=colored, quiet=quiet, exit_zero=exit_zero)
 
-            jobs = cpu_count()
-        # The last model stays referenced until the process ends without teardown: freeing
-        # it would only cost time.
-        _KEPT.clear()  # one model at most (in-process callers run validate more than once)
-        report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
-        from sensorkit.cli import leave_quickly
 
-        leave_quickly()  # only reading was done: nothing to clean up
-        sys.stdout.write(render(report, fmt, color=colored, quiet=quiet))
-        for fr in report.files:
-            if fr.error:
-                typer.echo(f"sensorkit: {fr.error}", err=True)
-            for err in fr.internal_errors:
-                typer.echo(f"sensorkit: internal error: {err}", err=True)
-        raise typer.Exit(exit_status(report.exit_code(threshold), exit_zero=exit_zero))
+def _check(
+    inputs: list[Path],
+    options: Options,
+    fmt: str,
+    *,
+    jobs: int,
+    color: bool,
+    quiet: bool,
+    exit_zero: bool,
+) -> NoReturn:
+    """Validate the robots, print the report (then, on stderr, why a file could not be
+    checked) and exit with validate's status."""
+    from sensorkit.lint.fleet import validate_paths
+    from sensorkit.lint.report import render
+
+    if not jobs:
+        from sensorkit.lint.fleet import cpu_count
+
+        jobs = cpu_count()
+    # The last model stays referenced until the process ends without teardown: freeing
+    # it would only cost time.
+    _KEPT.clear()  # one model at most (in-process callers run validate more than once)
+    report = validate_paths(inputs, options, jobs=jobs, keep=_KEPT)
+    from sensorkit.cli import leave_quickly
+
+    leave_quickly()  # only reading was done: nothing to clean up
+    sys.stdout.write(render(report, fmt, color=color, quiet=quiet))
+    say_file_errors(report)
+    raise typer.Exit(exit_status(report.exit_code(options.fail_on), exit_zero=exit_zero))
+
+
+@dataclass
+class _Rules:
+    """--select, --ignore and --fail-on as given: which findings count, and which fail
+    (the settings file's, for each one left out)."""
+
+    select: list[str] | None
+    ignore: list[str] | None
+    fail_on: str | None
+
+
+def _options(
+    files: list[Path],
+    flags: RobotFlags,
+    rules: _Rules,
+    overlay: dict[str, bytes],
+    *,
+    target: str | None,
+    timeout: float,
+    bridge: list[Path] | None,
+    quiet: bool,
+) -> Options:
+    """What to check and how: the flags over the settings file found from the first
+    robot; one stderr line names what the file gave (not with -q)."""
+    from sensorkit.lint.engine import Options
+
+    st = settings(files[0] if files else None, flags, target=target)
+    cfg = st.config
+    sep = [s for item in (rules.select or []) for s in item.split(",") if s] or cfg.select
+    ign = [s for item in (rules.ignore or []) for s in item.split(",") if s] or cfg.ignore
+    threshold = fail_on_threshold(rules.fail_on, cfg)
+    given = (("select", rules.select), ("ignore", rules.ignore), ("fail-on", rules.fail_on))
+    st.say_where(tuple(k for k, flag in given if not flag), quiet=quiet)
+    return Options(
+        target=st.target,
+        select=tuple(sep),
+        ignore=tuple(ign),
+        fail_on=threshold,
+        args=st.args,
+        package_paths=st.package_paths,
+        timeout=timeout,
+        bridges=tuple(str(b) for b in bridge or ()),
+        untrusted=st.untrusted,
+        target_origin=st.origin("target"),
+        overlay=overlay,
+    )
 
 
 def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:

@@ -1,13 +1,17 @@
 """Editing robot files: add sensors without disturbing a byte of what is there.
 
-Rooms: ``layout`` reads how a file is written (encoding, newlines, indentation, where
-the root closes) from its raw bytes; ``render`` makes the new text; ``fragment``
-expands one macro call on its own; ``check`` refuses taken names, missing parents and
-new validator errors; ``atomic`` publishes; ``add`` puts them together.
+Rooms: ``request`` says what an add is asked and what it plans; ``layout`` reads how a
+file is written (encoding, newlines, indentation, where the root closes) from its raw
+bytes; ``macrocall`` picks the macro file and the call's attributes; ``render`` makes
+the new text; ``fragment`` expands one macro call on its own; ``splice`` puts the text
+in and checks it landed; ``check`` refuses taken names, missing parents and new
+validator errors; ``package`` plans the robot package's other files; ``diff`` shows
+the change; ``add`` puts them together and publishes atomically.
 """
 
-from sensorkit.edit.add import AddRequest, AddResult, PlannedWrite, add_sensor, apply_add, plan_add
+from sensorkit.edit.add import add_sensor, apply_add, plan_add
 from sensorkit.edit.kinds import KINDS, SensorKind
+from sensorkit.edit.request import AddRequest, AddResult, PlannedWrite
 
 __all__ = [
     "KINDS",

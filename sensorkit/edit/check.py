@@ -11,6 +11,7 @@ suppressions resolve exactly as they do for the original.
 
 from __future__ import annotations
 
+import dataclasses
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -161,25 +162,11 @@ def describe(finding: Finding) -> str:
 # elements, in the same order a full run gives. SK203 (roots, cut-off trees) cannot change
 # when the robot had none and the addition hangs from an existing link.
 _ADDITIVE = frozenset({"SK105", "SK201", "SK202", "SK204", "SK205", "SK206", "SK302", "SK507"})
+# The model's element lists, and the maps that place their elements in the tree.
+_ELEMENTS = ("links", "joints", "gazebo", "sensors", "model_plugins", "strays")
+_TREE = ("link_map", "joint_map", "parent_joint", "child_joints")
 _ROBOT_FIELDS = frozenset(
-    {
-        "name",
-        "document",
-        "links",
-        "joints",
-        "gazebo",
-        "sensors",
-        "model_plugins",
-        "strays",
-        "link_map",
-        "joint_map",
-        "parent_joint",
-        "child_joints",
-        "_T_world",
-        "_up",
-        "_roots",
-        "cache",
-    }
+    {"name", "document", *_ELEMENTS, *_TREE, "_T_world", "_up", "_roots", "cache"}
 )
 
 
@@ -219,8 +206,6 @@ def extend_robot(before: Robot, part: Robot) -> Robot | None:
     document holding both), without reading the old elements again; None when the part
     is not a leaf subtree (see ``_leaf_subtree``) or the model has grown fields unknown here.
     """
-    import dataclasses
-
     if {f.name for f in dataclasses.fields(Robot)} != _ROBOT_FIELDS:
         return None
     if not _leaf_subtree(before, part):
@@ -344,7 +329,7 @@ def compare_added(
     side by side). A part that is not a leaf subtree falls back to ``compare``.
     """
     from sensorkit.lint.engine import find_missing_files, make_context, run_rule, run_rules
-    from sensorkit.lint.rules import RULES, Context
+    from sensorkit.lint.rules import RULES
     from sensorkit.model import build_robot
     from sensorkit.model.targets import is_gz
 
@@ -366,28 +351,14 @@ def compare_added(
         )
         ctx.missing_files = [*run.ctx.missing_files, *missing]
         package_findings += more
+    # the added elements, in the whole robot's tree
     view = Robot(
-        name=after.name,
-        document=after.document,
-        links=added.links,
-        joints=added.joints,
-        gazebo=added.gazebo,
-        sensors=added.sensors,
-        model_plugins=added.model_plugins,
-        strays=added.strays,
-        link_map=after.link_map,
-        joint_map=after.joint_map,
-        parent_joint=after.parent_joint,
-        child_joints=after.child_joints,
+        after.name,
+        after.document,
+        **{k: getattr(added, k) for k in _ELEMENTS},
+        **{k: getattr(after, k) for k in _TREE},
     )
-    only_new = Context(
-        robot=view,
-        target=ctx.target,
-        conversion=ctx.conversion,
-        frames=ctx.frames,
-        auto=ctx.auto,
-        bridge=ctx.bridge,
-    )
+    only_new = dataclasses.replace(ctx, robot=view, missing_files=[])
     failed = {e.split()[1] for e in run.internal_errors if e.startswith("rule ")}
     internal: list[str] = []
     found: list[Finding] = [*before_load, *package_findings]

@@ -132,19 +132,16 @@ def _doctype_end(text: str, start: int) -> int:
     """End of ``<!DOCTYPE ...>``: brackets, quotes and comments of the internal subset."""
     i = start + 2
     depth = 0
-    quote = ""
     n = len(text)
     while i < n:
         c = text[i]
-        if quote:
-            if c == quote:
-                quote = ""
-        elif text.startswith("<!--", i):
+        if text.startswith("<!--", i):
             i = _skip_to(text, "-->", i + 4, "comment")
             continue
-        elif c in "\"'":
-            quote = c
-        elif c == "[":
+        if c in "\"'":
+            i = _skip_to(text, c, i + 1, "DOCTYPE")
+            continue
+        if c == "[":
             depth += 1
         elif c == "]":
             depth -= 1
@@ -158,18 +155,12 @@ def _doctype_end(text: str, start: int) -> int:
 def _tag_end(text: str, start: int) -> int:
     """Index just after the '>' closing the tag at ``start`` (quotes may hold '>')."""
     i = start + 1
-    quote = ""
     n = len(text)
     while i < n:
         c = text[i]
-        if quote:
-            if c == quote:
-                quote = ""
-        elif c in "\"'":
-            quote = c
-        elif c == ">":
+        if c == ">":
             return i + 1
-        i += 1
+        i = _skip_to(text, c, i + 1, "tag") if c in "\"'" else i + 1
     msg = "unterminated tag"
     raise EditRefused(msg)
 

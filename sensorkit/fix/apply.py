@@ -461,7 +461,7 @@ class FixRun:
 
     def diff(self) -> str:
         """A unified diff of every file that changes (``patch -p1`` applies it)."""
-        from sensorkit.edit.add import unified_diff
+        from sensorkit.edit.diff import unified_diff
         from sensorkit.fix.source import SourceFile
 
         parts: list[str] = []
