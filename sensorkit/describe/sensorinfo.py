@@ -46,8 +46,8 @@ from sensorkit.describe.intrinsics import (
 )
 
 if TYPE_CHECKING:
+    from sensorkit.describe.bridge import BridgeEntry
     from sensorkit.describe.stereo import StereoPair
-    from sensorkit.exporters.bridge import BridgeEntry
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
@@ -418,7 +418,7 @@ def _gz_roles(sensor: Sensor, entries: Iterable[BridgeEntry]) -> dict[str, str]:
 
 
 def _gz_entries(sensor: Sensor, target: str) -> list[BridgeEntry]:
-    from sensorkit.generate.bridge import sensor_entries
+    from sensorkit.describe.bridge import sensor_entries
 
     return sensor_entries(sensor.element, target)
 

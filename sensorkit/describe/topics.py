@@ -26,8 +26,8 @@ from typing import TYPE_CHECKING, Any
 from sensorkit.knowledge import messages as msgs
 
 if TYPE_CHECKING:
+    from sensorkit.describe.bridge import BridgeEntry
     from sensorkit.describe.sensorinfo import CameraView, RobotInfo, SensorInfo
-    from sensorkit.exporters.bridge import BridgeEntry
     from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Plugin
@@ -307,8 +307,8 @@ def _gz_topics(
     survivor: str | None,
     notes: list[str],
 ) -> list[Topic]:
+    from sensorkit.describe.bridge import published_entries
     from sensorkit.describe.sensorinfo import gz_roles
-    from sensorkit.generate.bridge import published_entries
     from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 
     sensor = info.sensor

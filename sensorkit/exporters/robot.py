@@ -658,7 +658,8 @@ def _export_pair(plan: ExportFiles, pair: StereoPair, folder: str, imu: SensorIn
 
 
 def _bridge(plan: ExportFiles) -> None:
-    from sensorkit.generate.bridge import bridge_entries, bridge_file_text
+    from sensorkit.describe.bridge import bridge_entries
+    from sensorkit.exporters.bridge import bridge_file_text
 
     info = plan.info
     for s in info.sensors:

@@ -18,10 +18,10 @@ from lxml import etree
 
 from sensorkit.base.atomic import check_replaceable, staged_folder
 from sensorkit.base.errors import InputError
+from sensorkit.describe.bridge import BridgeEntry, bridge_entries
 from sensorkit.describe.intrinsics import InvalidValue
-from sensorkit.exporters.bridge import BridgeEntry
+from sensorkit.exporters.bridge import bridge_file_text
 from sensorkit.generate import render, rviz
-from sensorkit.generate.bridge import bridge_entries, bridge_file_text
 from sensorkit.generate.spec import Mark, RobotSpec, load_spec
 
 if TYPE_CHECKING:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
 from sensorkit.base.resources import templates_dir
-from sensorkit.exporters.bridge import BridgeEntry
+from sensorkit.describe.bridge import BridgeEntry
 from sensorkit.generate.spec import RobotSpec
 
 if TYPE_CHECKING:

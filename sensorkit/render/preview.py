@@ -600,7 +600,7 @@ def _preload(jobs: list[_Job], target: str) -> None:
     if any(j.cam is None for j in jobs):
         names.append("sensorkit.render.lidar")
     if is_gz(target):
-        names.append("sensorkit.generate.bridge")  # the topics of a gz sensor
+        names.append("sensorkit.describe.bridge")  # the topics of a gz sensor
     for name in names:
         importlib.import_module(name)
 
