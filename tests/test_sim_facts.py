@@ -137,7 +137,7 @@ def test_classic_p_overrides_are_the_published_p(check, tmp_path) -> None:
     # (ros-simulation/gazebo_ros_pkgs@ros2:gazebo_plugins/src/gazebo_ros_camera.cpp:455-462).
     from builders import camera_sensor, robot
 
-    from sensorkit.describe.sensorinfo import published_intrinsics
+    from sensorkit.describe.published import published_intrinsics
     from sensorkit.model import load_robot
 
     params = ("<frame_name>camera_optical_frame</frame_name><P_fx>500</P_fx><P_fy>501</P_fy>"
@@ -162,7 +162,7 @@ def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None
     from lxml import etree
 
     from sensorkit.describe.bridge import sensor_entries
-    from sensorkit.describe.sensorinfo import depth_range
+    from sensorkit.describe.published import depth_range
     from sensorkit.lint.rules.plugins import gz_topics
 
     cam = ("<camera><horizontal_fov>1</horizontal_fov><image><width>64</width><height>48</height></image>"

@@ -14,7 +14,9 @@ from typing import TYPE_CHECKING, Literal, get_args
 
 from sensorkit.base.errors import InputError, UsageError
 from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
-from sensorkit.describe.sensorinfo import CameraView, RobotInfo, SensorInfo, depth_range
+from sensorkit.describe.published import depth_range
+from sensorkit.describe.sensorinfo import RobotInfo
+from sensorkit.describe.views import CameraView, SensorInfo
 
 if TYPE_CHECKING:
     from sensorkit.describe.stereo import StereoPair

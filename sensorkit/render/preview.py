@@ -159,7 +159,7 @@ def _load(
 
 def _topics(sensor: Sensor, target: str) -> dict[str, str] | None:
     """Role -> ROS topic (``image``, ``camera_info``, ``scan``...), None when unknown."""
-    from sensorkit.describe.sensorinfo import sensor_topics
+    from sensorkit.describe.sensor_topics import sensor_topics
 
     topics, _ = sensor_topics(sensor, target)
     return topics or None
@@ -236,7 +236,7 @@ def _camera(
 ) -> tuple[SensorPreview, SensorDrawing | None]:
     from sensorkit.base.atomic import write_text
     from sensorkit.describe.intrinsics import InvalidValue
-    from sensorkit.describe.sensorinfo import depth_range, published_intrinsics
+    from sensorkit.describe.published import depth_range, published_intrinsics
     from sensorkit.exporters import camera_dict, camera_info_yaml
     from sensorkit.render._files import save_npy
     from sensorkit.render.camera import (
@@ -550,7 +550,7 @@ _RAY_COST = 12
 
 def _cost(job: _Job) -> int:
     """Rough CPU a job takes, in units of one TinyRenderer pixel."""
-    from sensorkit.describe.sensorinfo import SDF_DEFAULTS
+    from sensorkit.describe.published import SDF_DEFAULTS
 
     if job.cam is not None:
         w = job.cam.width if job.cam.width and job.cam.width > 0 else int(SDF_DEFAULTS["width"])
@@ -745,7 +745,7 @@ def _beams(samples: int | None, resolution: float | None) -> float:
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
-    from sensorkit.describe.sensorinfo import SDF_DEFAULTS
+    from sensorkit.describe.published import SDF_DEFAULTS
     from sensorkit.model.transforms_np import render_pose_np
 
     for s in robot.sensors:
