@@ -22,6 +22,7 @@ from sensorkit.describe.bridge import BridgeEntry, bridge_entries
 from sensorkit.describe.intrinsics import InvalidValue
 from sensorkit.exporters.bridge import bridge_file_text
 from sensorkit.generate import render, rviz
+from sensorkit.generate.readme import readme
 from sensorkit.generate.spec import Mark, RobotSpec, load_spec
 
 if TYPE_CHECKING:
@@ -162,7 +163,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
         programs.append(render.SAVE_FRAMES_NODE)
     _write(root, "package.xml", render.package_xml(spec, python_node=bool(programs)))
     _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install), programs))
-    _write(root, "README.md", render.readme(spec, yaml_name, entries, images, unshown, frame))
+    _write(root, "README.md", readme(spec, yaml_name, entries, images, unshown, frame))
     return entries
 
 
