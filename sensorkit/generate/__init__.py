@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from sensorkit.generate.catalog import MacroInfo, Param, base_templates, sensor_macros
     from sensorkit.generate.package import GeneratedPackage, build_package, new_package
-    from sensorkit.generate.spec import Mark, RobotSpec, SensorSpec, load_spec, parse_spec
+    from sensorkit.generate.reader import Mark
+    from sensorkit.generate.spec import RobotSpec, SensorSpec, load_spec, parse_spec
 
 # Loaded on first use: the package writer with its YAML parser costs some 60 ms to import,
 # which a command that needs one module of the package does without.
@@ -29,7 +30,7 @@ _HOME = {
     "GeneratedPackage": "package",
     "build_package": "package",
     "new_package": "package",
-    "Mark": "spec",
+    "Mark": "reader",
     "RobotSpec": "spec",
     "SensorSpec": "spec",
     "load_spec": "spec",

@@ -28,7 +28,8 @@ SHARED_PARAMS = ("sim", "gz_version", "namespace")
 #: Parameters a sensor entry sets with its own keys (name, parent, xyz/rpy).
 SENSOR_KEY_PARAMS = ("name", "parent")
 
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+"""A decimal number as YAML and xacro write it (``1``, ``-0.5``, ``.5``, ``1e-3``)."""
 _INT = re.compile(r"^[-+]?\d+$")
 _LINK_NAME = re.compile(r"^(\$\{name\})?[A-Za-z0-9_]*$")
 
@@ -71,10 +72,10 @@ def _kind_of(default: str | None) -> tuple[ParamKind, int]:
         return "bool", 1
     if _INT.match(text):
         return "int", 1
-    if _NUMBER.match(text) or (text.startswith("${") and text.endswith("}")):
+    if NUMBER.match(text) or (text.startswith("${") and text.endswith("}")):
         return "float", 1
     parts = text.split()
-    if len(parts) > 1 and all(_NUMBER.match(p) for p in parts):
+    if len(parts) > 1 and all(NUMBER.match(p) for p in parts):
         return "vector", len(parts)
     return "str", 1
 

@@ -22,8 +22,9 @@ from sensorkit.describe.bridge import BridgeEntry, bridge_entries
 from sensorkit.describe.intrinsics import InvalidValue
 from sensorkit.exporters.bridge import bridge_file_text
 from sensorkit.generate import render, rviz
+from sensorkit.generate.reader import Mark
 from sensorkit.generate.readme import readme
-from sensorkit.generate.spec import Mark, RobotSpec, load_spec
+from sensorkit.generate.spec import RobotSpec, load_spec
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import Topic
