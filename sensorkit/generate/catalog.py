@@ -122,23 +122,14 @@ def _read_macro(path: Path, macro_name: str, kind: str) -> MacroInfo | None:
     return None
 
 
-@lru_cache(maxsize=8)
-def _sensor_macros(folder: Path) -> dict[str, MacroInfo]:
+@lru_cache(maxsize=16)
+def _macros(folder: Path, macro_name: str) -> dict[str, MacroInfo]:
+    """Stem -> macro, for every ``*.urdf.xacro`` in ``folder`` that defines the macro
+    ``macro_name`` names (``{stem}`` stands for the file's stem)."""
     found: dict[str, MacroInfo] = {}
     for path in sorted(folder.glob("*.urdf.xacro")):
         stem = path.name[: -len(".urdf.xacro")]
-        info = _read_macro(path, f"sensorkit_{stem}", stem)
-        if info is not None:
-            found[stem] = info
-    return found
-
-
-@lru_cache(maxsize=8)
-def _base_templates(folder: Path) -> dict[str, MacroInfo]:
-    found: dict[str, MacroInfo] = {}
-    for path in sorted(folder.glob("*.urdf.xacro")):
-        stem = path.name[: -len(".urdf.xacro")]
-        info = _read_macro(path, f"sensorkit_{stem}_base", stem)
+        info = _read_macro(path, macro_name.format(stem=stem), stem)
         if info is not None:
             found[stem] = info
     return found
@@ -146,9 +137,9 @@ def _base_templates(folder: Path) -> dict[str, MacroInfo]:
 
 def sensor_macros() -> dict[str, MacroInfo]:
     """Sensor type -> macro, for every macro shipped in ``macros/``."""
-    return _sensor_macros(macros_dir())
+    return _macros(macros_dir(), "sensorkit_{stem}")
 
 
 def base_templates() -> dict[str, MacroInfo]:
     """Base name -> macro, for every base template shipped in ``templates/``."""
-    return _base_templates(templates_dir())
+    return _macros(templates_dir(), "sensorkit_{stem}_base")
