@@ -30,6 +30,7 @@ import numpy.typing as npt
 from sensorkit.base.errors import UsageError
 
 __all__ = [
+    "LASER_SCAN_FIELDS",
     "Convention",
     "Distortion",
     "Intrinsics",
@@ -518,6 +519,18 @@ class LaserScanParams:
     def beam_angles(self) -> FloatArray:
         """The N beam angles, ``angle_min + i * angle_increment``."""
         return self.angle_min + np.arange(self.samples, dtype=np.float64) * self.angle_increment
+
+
+LASER_SCAN_FIELDS: tuple[str, ...] = (
+    "angle_min",
+    "angle_max",
+    "angle_increment",
+    "time_increment",
+    "scan_time",
+    "range_min",
+    "range_max",
+)
+"""The :class:`LaserScanParams` fields a ``sensor_msgs/LaserScan`` carries, in its order."""
 
 
 def laser_scan(

@@ -87,6 +87,7 @@ def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) 
 
 # --------------------------------------------------------------------------- the model
 
+
 @dataclass
 class RobotInfo:
     """Every sensor of a robot under one target."""

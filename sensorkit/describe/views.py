@@ -63,4 +63,3 @@ class SensorInfo:
     @property
     def name(self) -> str:
         return self.sensor.name
-
