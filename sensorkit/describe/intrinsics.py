@@ -377,6 +377,27 @@ def _gz_pinhole(
     )
 
 
+def _pinhole(
+    conv: Convention,
+    w: int,
+    h: int,
+    fov: float,
+    focal_length: float | None,
+    cx: float | None,
+    cy: float | None,
+    lens_intrinsics: tuple[float, float, float, float, float] | None,
+) -> tuple[float, float, float, float, float]:
+    """``(fx, fy, cx, cy, skew)`` in the convention ``conv``, from the parameters that
+    apply to it (another convention's are refused)."""
+    _check_applies(conv, focal_length, cx, cy, lens_intrinsics)
+    if conv == "classic":
+        return _classic_pinhole(w, h, fov, focal_length, cx, cy)
+    if conv == "gz":
+        return _gz_pinhole(w, h, fov, lens_intrinsics)
+    f = _focal_from_hfov(w, fov)
+    return f, f, (w - 1.0) / 2.0, (h - 1.0) / 2.0, 0.0
+
+
 def _projection(conv: Convention, projection: dict[str, float] | None) -> dict[str, float]:
     """The P overrides (``fx``, ``fy``, ``cx``, ``cy``, ``tx``, ``ty``), checked."""
     proj = dict(projection or {})
@@ -443,14 +464,7 @@ def camera_intrinsics(
     conv = _convention(convention)
     dist = _distortion(distortion)
     baseline = _finite("hack_baseline", hack_baseline)
-    _check_applies(conv, focal_length, cx, cy, lens_intrinsics)
-    if conv == "classic":
-        fx, fy, px, py, skew = _classic_pinhole(w, h, fov, focal_length, cx, cy)
-    elif conv == "gz":
-        fx, fy, px, py, skew = _gz_pinhole(w, h, fov, lens_intrinsics)
-    else:
-        fx = fy = _focal_from_hfov(w, fov)
-        px, py, skew = (w - 1.0) / 2.0, (h - 1.0) / 2.0, 0.0
+    fx, fy, px, py, skew = _pinhole(conv, w, h, fov, focal_length, cx, cy, lens_intrinsics)
     if not (math.isfinite(fx) and math.isfinite(fy)):
         msg = f"hfov {hfov!r} is too small for a {w} px image: the focal length is not finite"
         raise InvalidValue(msg)
