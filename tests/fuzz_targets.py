@@ -464,7 +464,7 @@ def t_cli_add(inp: FuzzInput, work: Path) -> Outcome:
 def t_intrinsics(inp: FuzzInput, work: Path) -> Outcome:
     """intrinsics as the command does it (load, describe, select, document), and via the CLI."""
     from sensorkit.describe.sensorinfo import describe, load
-    from sensorkit.exporters.robot import intrinsics_document, select_cameras
+    from sensorkit.exporters.documents import intrinsics_document, select_cameras
 
     path = inp.case.write(work)
     k = inp.knobs

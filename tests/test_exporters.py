@@ -13,6 +13,7 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
+from sensorkit.describe.bridge import BridgeEntry, bridge_types, sensor_bridge_entries
 from sensorkit.describe.intrinsics import (
     Intrinsics,
     InvalidValue,
@@ -21,10 +22,8 @@ from sensorkit.describe.intrinsics import (
     laser_scan,
 )
 from sensorkit.exporters import (
-    BridgeEntry,
     OrbExtractorSettings,
     amcl_yaml,
-    bridge_types,
     bridge_yaml,
     camera_dict,
     camera_info_yaml,
@@ -36,7 +35,6 @@ from sensorkit.exporters import (
     opencv_yaml,
     orbslam3_yaml,
     scan_yaml,
-    sensor_bridge_entries,
     slam_toolbox_yaml,
     to_json,
 )

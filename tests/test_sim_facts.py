@@ -65,7 +65,7 @@ def test_sensor_types_gazebo_sim_never_creates(check) -> None:
 def test_bridge_never_carries_a_sensor_gz_never_creates() -> None:
     from lxml import etree
 
-    from sensorkit.generate.bridge import sensor_entries
+    from sensorkit.describe.bridge import sensor_entries
 
     ray = etree.fromstring('<sensor name="l" type="ray"><topic>scan</topic><ray><scan><horizontal><samples>9</samples>'
                            "</horizontal></scan></ray></sensor>")
@@ -137,7 +137,7 @@ def test_classic_p_overrides_are_the_published_p(check, tmp_path) -> None:
     # (ros-simulation/gazebo_ros_pkgs@ros2:gazebo_plugins/src/gazebo_ros_camera.cpp:455-462).
     from builders import camera_sensor, robot
 
-    from sensorkit.describe.sensorinfo import published_intrinsics
+    from sensorkit.describe.published import published_intrinsics
     from sensorkit.model import load_robot
 
     params = ("<frame_name>camera_optical_frame</frame_name><P_fx>500</P_fx><P_fy>501</P_fy>"
@@ -161,8 +161,8 @@ def test_gz_depth_camera_ignores_camera_info_topic_and_depth_clip(check) -> None
     # <depth_camera><clip> (RgbdCameraSensor.cc:313-322) and publishes TOPIC/camera_info (:252).
     from lxml import etree
 
-    from sensorkit.describe.sensorinfo import depth_range
-    from sensorkit.generate.bridge import sensor_entries
+    from sensorkit.describe.bridge import sensor_entries
+    from sensorkit.describe.published import depth_range
     from sensorkit.lint.rules.topic_names import gz_topics
 
     cam = ("<camera><horizontal_fov>1</horizontal_fov><image><width>64</width><height>48</height></image>"

@@ -67,7 +67,7 @@ def intrinsics(
     Exit status: 0, or 2 when it could not run (unknown camera, no camera, ...).
     """
     from sensorkit.base.errors import UsageError
-    from sensorkit.exporters.robot import FORMATS, intrinsics_output
+    from sensorkit.exporters.documents import FORMATS, intrinsics_output
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))

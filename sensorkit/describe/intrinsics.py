@@ -4,7 +4,8 @@ Pure math: no I/O, no printing, no global state. Every function validates its in
 and raises :class:`InvalidValue` (a :class:`ValueError` and a
 :class:`~sensorkit.base.errors.UsageError`) with a message naming the offending value.
 
-Three conventions are modelled (see ``camera_intrinsics`` for the sources):
+Three conventions are modelled (see ``camera_intrinsics`` and the helpers it names for
+the sources):
 
 ``classic``
     Gazebo Classic with ``gazebo_ros_camera`` (ROS 2): ``cx = (W+1)/2``.
@@ -29,6 +30,7 @@ import numpy.typing as npt
 from sensorkit.base.errors import UsageError
 
 __all__ = [
+    "LASER_SCAN_FIELDS",
     "Convention",
     "Distortion",
     "Intrinsics",
@@ -295,6 +297,120 @@ def _gz_focal(width: int, height: int, hfov: float) -> tuple[float, float]:
     return float(a) * width / 2.0, float(b) * height / 2.0
 
 
+def _check_applies(
+    conv: Convention,
+    focal_length: float | None,
+    cx: float | None,
+    cy: float | None,
+    lens_intrinsics: tuple[float, float, float, float, float] | None,
+) -> None:
+    """Refuse the parameters of another convention than ``conv``."""
+    if conv != "classic":
+        for name, given in (("focal_length", focal_length), ("cx", cx), ("cy", cy)):
+            if given is not None:
+                msg = f"{name} is a gazebo_ros_camera (classic) parameter, got {name}={given!r}"
+                raise InvalidValue(msg)
+    if conv != "gz" and lens_intrinsics is not None:
+        msg = f"lens_intrinsics apply to the gz convention only, got {lens_intrinsics!r}"
+        raise InvalidValue(msg)
+
+
+def _classic_pinhole(
+    w: int, h: int, fov: float, focal_length: float | None, cx: float | None, cy: float | None
+) -> tuple[float, float, float, float, float]:
+    """``(fx, fy, cx, cy, skew)`` as Gazebo Classic publishes them.
+
+    gazebo_ros_pkgs ``ros2``, ``gazebo_plugins/src/gazebo_ros_camera.cpp``,
+    ``GazeboRosCamera::Load``: ``cx = _sdf->Get<double>("cx", (W+1)/2)`` (any value
+    present in the plugin SDF is used verbatim; ROS 1 treated 0 as "auto", ROS 2 does
+    not), likewise ``cy`` with ``(H+1)/2``; ``focal_length`` defaults to 0 and 0 means
+    ``W / (2 tan(hfov/2))`` (a non-zero value is used verbatim, with a warning when it
+    disagrees); ``K = [f 0 cx; 0 f cy; 0 0 1]`` with ``fx = fy = f``; ``R = I``;
+    ``P[3] = -f * hack_baseline``; ``D = {k1, k2, t1, t2, k3}`` read from the SDF
+    ``<distortion>`` (SDF spells them k1 k2 k3 p1 p2). ``GazeboRosCamera::OnNewDepthFrame``
+    builds the point cloud with ``atan2(i - 0.5 (W-1), f)``, i.e. centred on
+    ``((W-1)/2, (H-1)/2)``, half a pixel away from the published ``cx, cy``.
+    """
+    f = _focal_from_hfov(w, fov)
+    if focal_length is not None:
+        given_f = _finite("focal_length", focal_length)
+        if given_f < 0.0:
+            msg = f"focal_length must be >= 0 (0 means computed), got {focal_length!r}"
+            raise InvalidValue(msg)
+        if given_f != 0.0:
+            f = given_f
+    px = (w + 1.0) / 2.0 if cx is None else _finite("cx", cx)
+    py = (h + 1.0) / 2.0 if cy is None else _finite("cy", cy)
+    return f, f, px, py, 0.0
+
+
+def _gz_pinhole(
+    w: int, h: int, fov: float, lens_intrinsics: tuple[float, float, float, float, float] | None
+) -> tuple[float, float, float, float, float]:
+    """``(fx, fy, cx, cy, skew)`` as Gazebo Sim publishes them.
+
+    gz-sensors ``src/CameraSensor.cc``,
+    ``CameraSensor::UpdateLensIntrinsicsAndProjection``: without ``<lens><intrinsics>``
+    it reads the ogre projection matrix back with
+    ``gz::rendering::projectionToCameraIntrinsic`` (``fx = P00 W/2``,
+    ``cx = -W (P02 - 1)/2 = W/2``, ``cy = H/2``); Ogre stores that matrix in float32,
+    so ``fx`` agrees with ``W / (2 tan(hfov/2))`` to float32 precision (emulated here).
+    With ``<lens><intrinsics>`` (fx fy cx cy s) the values are used verbatim.
+    ``CameraSensor::PopulateInfo`` writes ``D = {k1, k2, p1, p2, k3}`` and K with
+    ``K[0][1] = 0`` even when ``s`` is non-zero (``Intrinsics.K`` keeps the skew the
+    image is rendered with). Fortress before 6.8.0 published 277/160/120 defaults
+    unless intrinsics were given; that old behaviour is not modelled.
+    """
+    if lens_intrinsics is None:
+        fx, fy = _gz_focal(w, h, fov)
+        return fx, fy, w / 2.0, h / 2.0, 0.0
+    items = tuple(lens_intrinsics)
+    if len(items) != 5:
+        msg = f"lens_intrinsics must be (fx, fy, cx, cy, s), got {lens_intrinsics!r}"
+        raise InvalidValue(msg)
+    return (
+        _positive("lens_intrinsics fx", items[0]),
+        _positive("lens_intrinsics fy", items[1]),
+        _finite("lens_intrinsics cx", items[2]),
+        _finite("lens_intrinsics cy", items[3]),
+        _finite("lens_intrinsics s", items[4]),
+    )
+
+
+def _pinhole(
+    conv: Convention,
+    w: int,
+    h: int,
+    fov: float,
+    focal_length: float | None,
+    cx: float | None,
+    cy: float | None,
+    lens_intrinsics: tuple[float, float, float, float, float] | None,
+) -> tuple[float, float, float, float, float]:
+    """``(fx, fy, cx, cy, skew)`` in the convention ``conv``, from the parameters that
+    apply to it (another convention's are refused)."""
+    _check_applies(conv, focal_length, cx, cy, lens_intrinsics)
+    if conv == "classic":
+        return _classic_pinhole(w, h, fov, focal_length, cx, cy)
+    if conv == "gz":
+        return _gz_pinhole(w, h, fov, lens_intrinsics)
+    f = _focal_from_hfov(w, fov)
+    return f, f, (w - 1.0) / 2.0, (h - 1.0) / 2.0, 0.0
+
+
+def _projection(conv: Convention, projection: dict[str, float] | None) -> dict[str, float]:
+    """The P overrides (``fx``, ``fy``, ``cx``, ``cy``, ``tx``, ``ty``), checked."""
+    proj = dict(projection or {})
+    unknown = set(proj) - {"fx", "fy", "cx", "cy", "tx", "ty"}
+    if unknown:
+        msg = f"projection keys are fx, fy, cx, cy, tx, ty, got {sorted(unknown)}"
+        raise InvalidValue(msg)
+    if conv == "ideal" and proj:
+        msg = "projection overrides apply to the classic and gz conventions only"
+        raise InvalidValue(msg)
+    return proj
+
+
 def camera_intrinsics(
     width: int,
     height: int,
@@ -311,29 +427,14 @@ def camera_intrinsics(
 ) -> Intrinsics:
     """The intrinsics a simulated camera publishes on ``camera_info``.
 
-    Confirmed in the simulators' sources:
+    Confirmed in the simulators' sources (cited where each is computed, in
+    :func:`_classic_pinhole` and :func:`_gz_pinhole`):
 
-    * **classic** - gazebo_ros_pkgs ``ros2``, ``gazebo_plugins/src/gazebo_ros_camera.cpp``,
-      ``GazeboRosCamera::Load``: ``cx = _sdf->Get<double>("cx", (W+1)/2)`` (any value
-      present in the plugin SDF is used verbatim; ROS 1 treated 0 as "auto", ROS 2 does
-      not), likewise ``cy`` with ``(H+1)/2``; ``focal_length`` defaults to 0 and 0 means
-      ``W / (2 tan(hfov/2))`` (a non-zero value is used verbatim, with a warning when it
-      disagrees); ``K = [f 0 cx; 0 f cy; 0 0 1]`` with ``fx = fy = f``; ``R = I``;
-      ``P[3] = -f * hack_baseline``; ``D = {k1, k2, t1, t2, k3}`` read from the SDF
-      ``<distortion>`` (SDF spells them k1 k2 k3 p1 p2). ``GazeboRosCamera::OnNewDepthFrame``
-      builds the point cloud with ``atan2(i - 0.5 (W-1), f)``, i.e. centred on
-      ``((W-1)/2, (H-1)/2)``, half a pixel away from the published ``cx, cy``.
-    * **gz** - gz-sensors ``src/CameraSensor.cc``,
-      ``CameraSensor::UpdateLensIntrinsicsAndProjection``: without ``<lens><intrinsics>``
-      it reads the ogre projection matrix back with
-      ``gz::rendering::projectionToCameraIntrinsic`` (``fx = P00 W/2``,
-      ``cx = -W (P02 - 1)/2 = W/2``, ``cy = H/2``); Ogre stores that matrix in float32,
-      so ``fx`` agrees with ``W / (2 tan(hfov/2))`` to float32 precision (emulated here).
-      With ``<lens><intrinsics>`` (fx fy cx cy s) the values are used verbatim.
-      ``CameraSensor::PopulateInfo`` writes ``D = {k1, k2, p1, p2, k3}`` and K with
-      ``K[0][1] = 0`` even when ``s`` is non-zero (``Intrinsics.K`` keeps the skew the
-      image is rendered with). Fortress before 6.8.0 published 277/160/120 defaults
-      unless intrinsics were given; that old behaviour is not modelled.
+    * **classic** - gazebo_ros_camera (ROS 2): ``cx = (W+1)/2``, ``cy = (H+1)/2`` and
+      ``fx = fy = W / (2 tan(hfov/2))`` unless the plugin sets them;
+      ``P[3] = -f * hack_baseline``.
+    * **gz** - gz-sensors: ``fx = W / (2 tan(hfov/2))`` to float32 precision, ``cx = W/2``,
+      ``cy = H/2``; ``<lens><intrinsics>`` verbatim when given.
     * **ideal** - ``fx = fy = W / (2 tan(hfov/2))``, ``cx = (W-1)/2``, ``cy = (H-1)/2``:
       the pixel-centre convention, which is also where Gazebo Classic's depth point cloud
       is centred.
@@ -363,60 +464,11 @@ def camera_intrinsics(
     conv = _convention(convention)
     dist = _distortion(distortion)
     baseline = _finite("hack_baseline", hack_baseline)
-
-    if conv != "classic":
-        for name, given in (("focal_length", focal_length), ("cx", cx), ("cy", cy)):
-            if given is not None:
-                msg = f"{name} is a gazebo_ros_camera (classic) parameter, got {name}={given!r}"
-                raise InvalidValue(msg)
-    if conv != "gz" and lens_intrinsics is not None:
-        msg = f"lens_intrinsics apply to the gz convention only, got {lens_intrinsics!r}"
-        raise InvalidValue(msg)
-
-    skew = 0.0
-    if conv == "classic":
-        f = _focal_from_hfov(w, fov)
-        if focal_length is not None:
-            given_f = _finite("focal_length", focal_length)
-            if given_f < 0.0:
-                msg = f"focal_length must be >= 0 (0 means computed), got {focal_length!r}"
-                raise InvalidValue(msg)
-            if given_f != 0.0:
-                f = given_f
-        fx = fy = f
-        px = (w + 1.0) / 2.0 if cx is None else _finite("cx", cx)
-        py = (h + 1.0) / 2.0 if cy is None else _finite("cy", cy)
-    elif conv == "gz":
-        if lens_intrinsics is not None:
-            items = tuple(lens_intrinsics)
-            if len(items) != 5:
-                msg = f"lens_intrinsics must be (fx, fy, cx, cy, s), got {lens_intrinsics!r}"
-                raise InvalidValue(msg)
-            fx = _positive("lens_intrinsics fx", items[0])
-            fy = _positive("lens_intrinsics fy", items[1])
-            px = _finite("lens_intrinsics cx", items[2])
-            py = _finite("lens_intrinsics cy", items[3])
-            skew = _finite("lens_intrinsics s", items[4])
-        else:
-            fx, fy = _gz_focal(w, h, fov)
-            px = w / 2.0
-            py = h / 2.0
-    else:
-        fx = fy = _focal_from_hfov(w, fov)
-        px = (w - 1.0) / 2.0
-        py = (h - 1.0) / 2.0
-
+    fx, fy, px, py, skew = _pinhole(conv, w, h, fov, focal_length, cx, cy, lens_intrinsics)
     if not (math.isfinite(fx) and math.isfinite(fy)):
         msg = f"hfov {hfov!r} is too small for a {w} px image: the focal length is not finite"
         raise InvalidValue(msg)
-    proj = dict(projection or {})
-    unknown = set(proj) - {"fx", "fy", "cx", "cy", "tx", "ty"}
-    if unknown:
-        msg = f"projection keys are fx, fy, cx, cy, tx, ty, got {sorted(unknown)}"
-        raise InvalidValue(msg)
-    if conv == "ideal" and proj:
-        msg = "projection overrides apply to the classic and gz conventions only"
-        raise InvalidValue(msg)
+    proj = _projection(conv, projection)
     # Classic: P[0][3] = Tx if given, else -f * hack_baseline; gz: <projection><tx>, else 0.
     tx = proj.get("tx", -fx * baseline)
     return Intrinsics(
@@ -481,6 +533,18 @@ class LaserScanParams:
     def beam_angles(self) -> FloatArray:
         """The N beam angles, ``angle_min + i * angle_increment``."""
         return self.angle_min + np.arange(self.samples, dtype=np.float64) * self.angle_increment
+
+
+LASER_SCAN_FIELDS: tuple[str, ...] = (
+    "angle_min",
+    "angle_max",
+    "angle_increment",
+    "time_increment",
+    "scan_time",
+    "range_min",
+    "range_max",
+)
+"""The :class:`LaserScanParams` fields a ``sensor_msgs/LaserScan`` carries, in its order."""
 
 
 def laser_scan(

@@ -29,6 +29,7 @@ camera_info convention (CameraInfo.msg) is that the right camera of a horizontal
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -37,7 +38,7 @@ import numpy as np
 from sensorkit.model.transforms_np import R_BODY_OPTICAL, Mat, invert
 
 if TYPE_CHECKING:
-    from sensorkit.describe.sensorinfo import CameraView, RobotInfo
+    from sensorkit.describe.views import CameraView, SensorInfo
     from sensorkit.model.robot import Robot
 
 __all__ = ["StereoPair", "T_world_optical", "stereo_pairs"]
@@ -161,13 +162,13 @@ def _stem(left: str, right: str) -> str | None:
     return None
 
 
-def _ros_multicamera(info: RobotInfo, views: list[CameraView]) -> bool:
+def _ros_multicamera(target: str, views: list[CameraView]) -> bool:
     from sensorkit.model.frames import ros_plugin
     from sensorkit.model.targets import is_gz
 
-    if is_gz(info.target) or len(views) != 2:
+    if is_gz(target) or len(views) != 2:
         return False
-    plugin = ros_plugin(views[0].sensor, info.target)
+    plugin = ros_plugin(views[0].sensor, target)
     return plugin is not None and plugin.library in _MULTICAMERA_LIBRARIES
 
 
@@ -194,7 +195,7 @@ def _eye_word(view: CameraView) -> str | None:
     return None
 
 
-def _pair_notes(info: RobotInfo, pair: StereoPair) -> None:
+def _pair_notes(target: str, pair: StereoPair) -> None:
     """What the simulator's own camera_info says that the pair's files do not."""
     left, right = pair.left.intrinsics, pair.right.intrinsics
     b = pair.baseline
@@ -222,7 +223,7 @@ def _pair_notes(info: RobotInfo, pair: StereoPair) -> None:
     # ROS 1's multicamera forces the left eye's baseline to 0 (gazebo_ros_multicamera.cpp:84-88);
     # ROS 2's gazebo_ros_camera reads <hack_baseline> once per camera, left included
     # (gazebo_ros_camera.cpp:358, :399, :458).
-    if left is not None and left.baseline_tx != 0.0 and info.target != "ros1":
+    if left is not None and left.baseline_tx != 0.0 and target != "ros1":
         pair.notes.append(
             f"{pair.left.id}'s camera_info carries P[0][3] = {left.baseline_tx:.6g} too "
             "(gazebo_ros_camera applies <hack_baseline> to every camera of a multicamera): "
@@ -235,22 +236,22 @@ def _pair_notes(info: RobotInfo, pair: StereoPair) -> None:
         )
 
 
-def stereo_pairs(info: RobotInfo) -> list[StereoPair]:
-    """The stereo pairs among ``info``'s cameras (see the module docstring), in sensor
-    order. A camera belongs to one pair at most."""
-    robot = info.robot
+def stereo_pairs(robot: Robot, target: str, sensors: Sequence[SensorInfo]) -> list[StereoPair]:
+    """The stereo pairs among the cameras of ``sensors`` (see the module docstring), in
+    sensor order. A camera belongs to one pair at most."""
     pairs: list[StereoPair] = []
     used: set[str] = set()
+    cameras = [c for s in sensors for c in s.cameras]
 
     def add(name: str, left: CameraView, right: CameraView, how: str, T: Mat) -> None:
         pair = StereoPair(name, left, right, how, T)
-        _pair_notes(info, pair)
+        _pair_notes(target, pair)
         pairs.append(pair)
         used.update((left.id, right.id))
 
     # 1. multicamera sensors with two cameras and a ROS plugin
-    for s in info.sensors:
-        if s.sensor.kind != "multicamera" or not _ros_multicamera(info, s.cameras):
+    for s in sensors:
+        if s.sensor.kind != "multicamera" or not _ros_multicamera(target, s.cameras):
             continue
         a, b = s.cameras
         ordered = _order(robot, a, b)
@@ -265,9 +266,9 @@ def stereo_pairs(info: RobotInfo) -> list[StereoPair]:
                 "whatever their names say: the pair follows where they are"
             )
 
-    mono = [c for c in info.cameras if c.sensor.kind == "camera"]
-    names = {s.name for s in info.sensors} | {c.id for c in info.cameras}
-    notes_of = {s.name: s.notes for s in info.sensors}
+    mono = [c for c in cameras if c.sensor.kind == "camera"]
+    names = {s.name for s in sensors} | {c.id for c in cameras}
+    notes_of = {s.name: s.notes for s in sensors}
 
     # 2. <stem>_left / <stem>_right camera sensors (sensorkit's stereo macro)
     for lcam in mono:
@@ -308,6 +309,6 @@ def stereo_pairs(info: RobotInfo) -> list[StereoPair]:
                 best = (miss, lcam, T_tx)
         if best is not None:
             add(f"{best[1].id}+{rcam.id}", best[1], rcam, "projection Tx", best[2])
-    order = {c.id: i for i, c in enumerate(info.cameras)}
+    order = {c.id: i for i, c in enumerate(cameras)}
     pairs.sort(key=lambda p: order[p.left.id])
     return pairs

@@ -26,8 +26,9 @@ from typing import TYPE_CHECKING, Any
 from sensorkit.knowledge import messages as msgs
 
 if TYPE_CHECKING:
-    from sensorkit.describe.sensorinfo import CameraView, RobotInfo, SensorInfo
-    from sensorkit.exporters.bridge import BridgeEntry
+    from sensorkit.describe.bridge import BridgeEntry
+    from sensorkit.describe.sensorinfo import RobotInfo
+    from sensorkit.describe.views import CameraView, SensorInfo
     from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Plugin
@@ -56,7 +57,7 @@ class Topic:
 
     name: str | None  # the resolved ROS name; None: a gz topic no bridge entry carries to ROS
     type: str | None  # the ROS message type (None: sensorkit does not know it)
-    role: str  # image, camera_info, depth_image, ... (see sensorinfo.sensor_topics)
+    role: str  # image, camera_info, depth_image, ... (see sensor_topics.sensor_topics)
     sensor: str
     sensor_type: str
     camera: str | None  # the camera's id (``<sensor>/<camera>`` in a multicamera)
@@ -307,8 +308,8 @@ def _gz_topics(
     survivor: str | None,
     notes: list[str],
 ) -> list[Topic]:
-    from sensorkit.describe.sensorinfo import gz_roles
-    from sensorkit.generate.bridge import published_entries
+    from sensorkit.describe.bridge import published_entries
+    from sensorkit.describe.sensor_topics import gz_roles
     from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
 
     sensor = info.sensor

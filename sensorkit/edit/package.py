@@ -13,7 +13,7 @@ Two cases, decided before anything is planned (:func:`read_package`):
   said, except the bridge and README, which get the generic edits below.
 - **Any other package** (a folder with ``package.xml`` above the robot file): for a
   Gazebo Sim sensor, its ros_gz_bridge entries (the ones ``new`` and ``export`` write,
-  :func:`sensorkit.generate.bridge.sensor_entries`) are appended to the package's bridge
+  :func:`sensorkit.describe.bridge.sensor_entries`) are appended to the package's bridge
   YAML; a README written by ``new`` gets a row in its sensor table. Both are pure
   insertions: every byte already there stays.
 
@@ -36,7 +36,7 @@ from sensorkit.base.errors import EditRefused, InputError, SensorkitError
 from sensorkit.loading.document import display_path
 
 if TYPE_CHECKING:
-    from sensorkit.exporters.bridge import BridgeEntry
+    from sensorkit.describe.bridge import BridgeEntry
     from sensorkit.generate.spec import RobotSpec
     from sensorkit.loading.bridge import BridgeTopic
 
@@ -359,7 +359,7 @@ def _bridge_file(pkg: Path, notes: list[str]) -> Path | None:
 
 
 def _entries(sensor: NewSensor) -> list[BridgeEntry]:
-    from sensorkit.generate.bridge import sensor_entries
+    from sensorkit.describe.bridge import sensor_entries
 
     out: list[BridgeEntry] = []
     for el in sensor.sensors:

@@ -11,12 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from sensorkit.exporters.bridge import (
-        BridgeEntry,
-        bridge_types,
-        bridge_yaml,
-        sensor_bridge_entries,
-    )
+    from sensorkit.exporters.bridge import bridge_yaml
     from sensorkit.exporters.camera_info import camera_info_yaml, stereo_camera_infos
     from sensorkit.exporters.data import camera_dict, laser_scan_dict, to_json
     from sensorkit.exporters.depth_scan import (
@@ -43,12 +38,10 @@ if TYPE_CHECKING:
 # exporter (render preview: camera_info and camera_dict) does not import the other
 # six (some 7 ms of start-up).
 _MODULE = {
-    "BridgeEntry": "bridge",
     "OrbExtractorSettings": "orbslam3",
     "OrbImuSettings": "orbslam3",
     "ViewerSettings": "orbslam3",
     "amcl_yaml": "lidar",
-    "bridge_types": "bridge",
     "bridge_yaml": "bridge",
     "camera_dict": "data",
     "camera_info_yaml": "camera_info",
@@ -62,7 +55,6 @@ _MODULE = {
     "orbslam3_stereo_yaml": "orbslam3",
     "orbslam3_yaml": "orbslam3",
     "scan_yaml": "lidar",
-    "sensor_bridge_entries": "bridge",
     "slam_toolbox_yaml": "lidar",
     "stereo_camera_infos": "camera_info",
     "to_json": "data",
@@ -86,12 +78,10 @@ def __dir__() -> list[str]:
 
 
 __all__ = [
-    "BridgeEntry",
     "OrbExtractorSettings",
     "OrbImuSettings",
     "ViewerSettings",
     "amcl_yaml",
-    "bridge_types",
     "bridge_yaml",
     "camera_dict",
     "camera_info_yaml",
@@ -105,7 +95,6 @@ __all__ = [
     "orbslam3_stereo_yaml",
     "orbslam3_yaml",
     "scan_yaml",
-    "sensor_bridge_entries",
     "slam_toolbox_yaml",
     "stereo_camera_infos",
     "to_json",

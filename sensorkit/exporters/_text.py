@@ -19,6 +19,7 @@ import numpy as np
 from sensorkit.describe.intrinsics import (
     InvalidValue,
     _finite,  # one definition of "a finite number"
+    _positive,  # and of "greater than zero"
 )
 
 _PLAIN = re.compile(r"^[A-Za-z_/~][A-Za-z0-9_/.~-]*$")
@@ -108,6 +109,12 @@ def fps_int(value: object, name: str = "fps") -> int:
 def finite(value: object, name: str) -> float:
     """Return ``value`` as a float if finite (not a bool), else raise InvalidValue."""
     return _finite(name, value)
+
+
+def positive(value: object, name: str) -> float:
+    """Return ``value`` as a float if finite (not a bool) and greater than zero, else raise
+    InvalidValue."""
+    return _positive(name, value)
 
 
 def matrix_rows(matrix: Iterable[Iterable[float]]) -> list[float]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from sensorkit.describe.intrinsics import Intrinsics, InvalidValue
+from sensorkit.describe.intrinsics import Intrinsics
 from sensorkit.exporters import _text as t
 
 __all__ = ["camera_info_yaml", "stereo_camera_infos"]
@@ -61,10 +61,7 @@ def stereo_camera_infos(
     Raises:
         InvalidValue: the baseline is not a positive finite number.
     """
-    b = t.finite(baseline, "baseline")
-    if b <= 0.0:
-        msg = f"baseline must be greater than zero, got {baseline!r}"
-        raise InvalidValue(msg)
+    b = t.positive(baseline, "baseline")
     fx_p = float(right.P[0][0])
     return (
         replace(left, baseline_tx=0.0, p_ty=0.0),

@@ -5,7 +5,12 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 
-from sensorkit.describe.intrinsics import Intrinsics, InvalidValue, LaserScanParams
+from sensorkit.describe.intrinsics import (
+    LASER_SCAN_FIELDS,
+    Intrinsics,
+    InvalidValue,
+    LaserScanParams,
+)
 
 __all__ = ["camera_dict", "laser_scan_dict", "to_json"]
 
@@ -55,16 +60,8 @@ def laser_scan_dict(scan: LaserScanParams, **metadata: object) -> dict[str, obje
     Raises:
         InvalidValue: a metadata key collides with a computed key.
     """
-    base: dict[str, object] = {
-        "samples": scan.samples,
-        "angle_min": scan.angle_min,
-        "angle_max": scan.angle_max,
-        "angle_increment": scan.angle_increment,
-        "time_increment": scan.time_increment,
-        "scan_time": scan.scan_time,
-        "range_min": scan.range_min,
-        "range_max": scan.range_max,
-    }
+    base: dict[str, object] = {"samples": scan.samples}
+    base.update((name, getattr(scan, name)) for name in LASER_SCAN_FIELDS)
     return _merge(base, metadata)
 
 

@@ -73,11 +73,7 @@ def depthimage_to_laserscan_yaml(
         raise InvalidValue(msg)
     scan_time = 0.033  # the node's own default
     if fps is not None:
-        rate = t.finite(fps, "fps")
-        if rate <= 0.0:
-            msg = f"fps must be greater than zero, got {fps!r}"
-            raise InvalidValue(msg)
-        scan_time = 1.0 / rate
+        scan_time = 1.0 / t.positive(fps, "fps")
     remap = depthimage_to_laserscan_remappings(
         depth_topic=depth_topic, depth_camera_info_topic=depth_camera_info_topic
     )

@@ -7,7 +7,9 @@ or never clears them.
 
 from __future__ import annotations
 
-from sensorkit.describe.intrinsics import InvalidValue, LaserScanParams
+from collections.abc import Sequence
+
+from sensorkit.describe.intrinsics import LASER_SCAN_FIELDS, InvalidValue, LaserScanParams
 from sensorkit.exporters import _text as t
 
 __all__ = [
@@ -39,14 +41,17 @@ def scan_yaml(scan: LaserScanParams, *, frame_id: str | None = None) -> str:
     lines = [f"# sensor_msgs/LaserScan: {scan.samples} ranges per message"]
     if frame_id is not None:
         lines += ["header:", f"  frame_id: {t.string(frame_id, 'frame_id')}"]
-    lines += [
-        f"angle_min: {t.real(scan.angle_min, 'angle_min')}",
-        f"angle_max: {t.real(scan.angle_max, 'angle_max')}",
-        f"angle_increment: {t.real(scan.angle_increment, 'angle_increment')}",
-        f"time_increment: {t.real(scan.time_increment, 'time_increment')}",
-        f"scan_time: {t.real(scan.scan_time, 'scan_time')}",
-        f"range_min: {t.real(scan.range_min, 'range_min')}",
-        f"range_max: {t.real(scan.range_max, 'range_max')}",
+    lines += [f"{name}: {t.real(getattr(scan, name), name)}" for name in LASER_SCAN_FIELDS]
+    return "\n".join(lines) + "\n"
+
+
+def _scan_node_yaml(node_name: str, scan_topic: str, reals: Sequence[tuple[str, float]]) -> str:
+    """A node's ROS 2 parameters: ``scan_topic``, then each of ``reals`` (name, value)."""
+    lines = [
+        f"{t.string(node_name, 'node_name')}:",
+        "  ros__parameters:",
+        f"    scan_topic: {t.string(scan_topic, 'scan_topic')}",
+        *(f"    {name}: {t.real(value, name)}" for name, value in reals),
     ]
     return "\n".join(lines) + "\n"
 
@@ -66,13 +71,7 @@ def slam_toolbox_yaml(
         InvalidValue: ``max_laser_range`` is not in (0, range_max].
     """
     max_range = _range_at_most("max_laser_range", max_laser_range, scan.range_max, scan)
-    lines = [
-        f"{t.string(node_name, 'node_name')}:",
-        "  ros__parameters:",
-        f"    scan_topic: {t.string(scan_topic, 'scan_topic')}",
-        f"    max_laser_range: {t.real(max_range, 'max_laser_range')}",
-    ]
-    return "\n".join(lines) + "\n"
+    return _scan_node_yaml(node_name, scan_topic, [("max_laser_range", max_range)])
 
 
 def nav2_obstacle_layer_yaml(
@@ -105,10 +104,7 @@ def nav2_obstacle_layer_yaml(
     raytrace = _range_at_most(
         "raytrace_max_range", raytrace_max_range, min(3.0, scan.range_max), scan
     )
-    height = t.finite(max_obstacle_height, "max_obstacle_height")
-    if height <= 0.0:
-        msg = f"max_obstacle_height must be greater than zero, got {max_obstacle_height!r}"
-        raise InvalidValue(msg)
+    height = t.positive(max_obstacle_height, "max_obstacle_height")
     cm = t.string(costmap, "costmap")
     layer = t.string(layer_name, "layer_name")
     source = t.string(source_name, "source_name")
@@ -162,11 +158,6 @@ def amcl_yaml(
             f"laser_min_range={min_range!r}, laser_max_range={max_range!r}"
         )
         raise InvalidValue(msg)
-    lines = [
-        f"{t.string(node_name, 'node_name')}:",
-        "  ros__parameters:",
-        f"    scan_topic: {t.string(scan_topic, 'scan_topic')}",
-        f"    laser_min_range: {t.real(min_range, 'laser_min_range')}",
-        f"    laser_max_range: {t.real(max_range, 'laser_max_range')}",
-    ]
-    return "\n".join(lines) + "\n"
+    return _scan_node_yaml(
+        node_name, scan_topic, [("laser_min_range", min_range), ("laser_max_range", max_range)]
+    )

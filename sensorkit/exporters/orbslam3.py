@@ -164,11 +164,68 @@ def _baseline(intr: Intrinsics, mode: OrbSlam3Mode, baseline: float | None) -> f
             f"camera's intrinsics (P[0][3] < 0), got baseline_tx={intr.baseline_tx!r}"
         )
         raise InvalidValue(msg)
-    value = t.finite(baseline, "baseline")
-    if value <= 0.0:
-        msg = f"baseline must be greater than zero, got {baseline!r}"
+    return t.positive(baseline, "baseline")
+
+
+def _check_version(version: str) -> None:
+    if version not in ("1.0", "old"):
+        msg = f"version must be '1.0' or 'old', got {version!r}"
         raise InvalidValue(msg)
-    return value
+
+
+def _check_mono(intr: Intrinsics, mode: str, version: str) -> None:
+    """Refuse what no single-camera file can hold: an unknown mode or version, skew, or
+    a distorted camera exported as one eye of a rectified stereo pair."""
+    if mode not in ("monocular", "rgbd", "stereo"):
+        msg = f"mode must be monocular, rgbd or stereo, got {mode!r}"
+        raise InvalidValue(msg)
+    _check_version(version)
+    if intr.skew != 0.0:
+        msg = f"ORB-SLAM3's pinhole model has no skew, got skew={intr.skew!r}"
+        raise InvalidValue(msg)
+    if mode == "stereo" and intr.has_distortion:
+        msg = (
+            "stereo is exported as a rectified pair, which must have no distortion, "
+            f"got distortion={intr.distortion!r}"
+        )
+        raise InvalidValue(msg)
+
+
+def _image_lines(intr: Intrinsics, frame_rate: int, rgb: bool) -> list[str]:
+    """``Camera.width``, ``height``, ``fps`` and ``RGB`` (ints in both formats)."""
+    return [
+        f"Camera.width: {t.integer(intr.width, 'width')}",
+        f"Camera.height: {t.integer(intr.height, 'height')}",
+        f"Camera.fps: {t.integer(frame_rate, 'fps')}",
+        f"Camera.RGB: {1 if rgb else 0}",
+    ]
+
+
+def _old_depth_lines(bf: float, th_depth: float) -> list[str]:
+    """The old format's depth keys: ``Camera.bf`` (baseline times fx) and ``ThDepth``."""
+    return [f"Camera.bf: {t.real(bf, 'bf')}", f"ThDepth: {t.real(th_depth, 'th_depth')}"]
+
+
+def _camera_lines(prefix: str, intr: Intrinsics, *, with_distortion: bool) -> list[str]:
+    if intr.skew != 0.0:
+        msg = f"ORB-SLAM3's pinhole model has no skew, got skew={intr.skew!r}"
+        raise InvalidValue(msg)
+    lines = [
+        f"{prefix}.fx: {t.real(intr.fx, 'fx')}",
+        f"{prefix}.fy: {t.real(intr.fy, 'fy')}",
+        f"{prefix}.cx: {t.real(intr.cx, 'cx')}",
+        f"{prefix}.cy: {t.real(intr.cy, 'cy')}",
+    ]
+    if with_distortion:
+        k1, k2, p1, p2, k3 = intr.distortion
+        lines += [
+            f"{prefix}.k1: {t.real(k1, 'k1')}",
+            f"{prefix}.k2: {t.real(k2, 'k2')}",
+            f"{prefix}.p1: {t.real(p1, 'p1')}",
+            f"{prefix}.p2: {t.real(p2, 'p2')}",
+            f"{prefix}.k3: {t.real(k3, 'k3')}",
+        ]
+    return lines
 
 
 def orbslam3_yaml(
@@ -207,36 +264,15 @@ def orbslam3_yaml(
         InvalidValue: a value is out of range or of the wrong kind, the camera has skew
             (ORB-SLAM3's pinhole has none), or a stereo camera has distortion.
     """
-    if mode not in ("monocular", "rgbd", "stereo"):
-        msg = f"mode must be monocular, rgbd or stereo, got {mode!r}"
-        raise InvalidValue(msg)
-    if version not in ("1.0", "old"):
-        msg = f"version must be '1.0' or 'old', got {version!r}"
-        raise InvalidValue(msg)
-    if intr.skew != 0.0:
-        msg = f"ORB-SLAM3's pinhole model has no skew, got skew={intr.skew!r}"
-        raise InvalidValue(msg)
-    if mode == "stereo" and intr.has_distortion:
-        msg = (
-            "stereo is exported as a rectified pair, which must have no distortion, "
-            f"got distortion={intr.distortion!r}"
-        )
-        raise InvalidValue(msg)
+    _check_mono(intr, mode, version)
     frame_rate = t.fps_int(fps, "fps")
     b = _baseline(intr, mode, baseline)
-    thd = t.finite(th_depth, "th_depth")
-    if thd <= 0.0:
-        msg = f"th_depth must be greater than zero, got {th_depth!r}"
-        raise InvalidValue(msg)
-    dmf = t.finite(depth_map_factor, "depth_map_factor")
-    if dmf <= 0.0:
-        msg = f"depth_map_factor must be greater than zero, got {depth_map_factor!r}"
-        raise InvalidValue(msg)
+    thd = t.positive(th_depth, "th_depth")
+    dmf = t.positive(depth_map_factor, "depth_map_factor")
     if mode != "rgbd" and depth_map_factor != 1.0:
         msg = f"depth_map_factor applies to rgbd only, got {depth_map_factor!r} for {mode}"
         raise InvalidValue(msg)
 
-    k1, k2, p1, p2, k3 = intr.distortion
     lines: list[str] = [f"# ORB-SLAM3 settings ({mode}), written by sensorkit"]
     if version == "1.0":
         cam = "Camera1"
@@ -245,28 +281,11 @@ def orbslam3_yaml(
     else:
         cam = "Camera"
         lines.append('Camera.type: "PinHole"')
-    lines += [
-        f"{cam}.fx: {t.real(intr.fx, 'fx')}",
-        f"{cam}.fy: {t.real(intr.fy, 'fy')}",
-        f"{cam}.cx: {t.real(intr.cx, 'cx')}",
-        f"{cam}.cy: {t.real(intr.cy, 'cy')}",
-    ]
     # v1.0 treats the coefficients as optional (a distorted monocular image is then
     # undistorted every frame), the old format requires k1..p2; "Rectified" has none.
-    if version == "old" or (mode != "stereo" and intr.has_distortion):
-        lines += [
-            f"{cam}.k1: {t.real(k1, 'k1')}",
-            f"{cam}.k2: {t.real(k2, 'k2')}",
-            f"{cam}.p1: {t.real(p1, 'p1')}",
-            f"{cam}.p2: {t.real(p2, 'p2')}",
-            f"{cam}.k3: {t.real(k3, 'k3')}",
-        ]
-    lines += [
-        f"Camera.width: {t.integer(intr.width, 'width')}",
-        f"Camera.height: {t.integer(intr.height, 'height')}",
-        f"Camera.fps: {t.integer(frame_rate, 'fps')}",
-        f"Camera.RGB: {1 if rgb else 0}",
-    ]
+    distorted = version == "old" or (mode != "stereo" and intr.has_distortion)
+    lines += _camera_lines(cam, intr, with_distortion=distorted)
+    lines += _image_lines(intr, frame_rate, rgb)
     if mode != "monocular":
         if version == "1.0":
             lines += [
@@ -274,10 +293,7 @@ def orbslam3_yaml(
                 f"Stereo.ThDepth: {t.real(thd, 'th_depth')}",
             ]
         else:
-            lines += [
-                f"Camera.bf: {t.real(b * intr.fx, 'bf')}",
-                f"ThDepth: {t.real(thd, 'th_depth')}",
-            ]
+            lines += _old_depth_lines(b * intr.fx, thd)
     if mode == "rgbd":
         key = "RGBD.DepthMapFactor" if version == "1.0" else "DepthMapFactor"
         lines.append(f"{key}: {t.real(dmf, 'depth_map_factor')}")
@@ -323,28 +339,6 @@ def _rigid(name: str, T: npt.ArrayLike) -> list[float]:
     return t.matrix_rows(matrix.tolist())
 
 
-def _camera_lines(prefix: str, intr: Intrinsics, *, with_distortion: bool) -> list[str]:
-    if intr.skew != 0.0:
-        msg = f"ORB-SLAM3's pinhole model has no skew, got skew={intr.skew!r}"
-        raise InvalidValue(msg)
-    lines = [
-        f"{prefix}.fx: {t.real(intr.fx, 'fx')}",
-        f"{prefix}.fy: {t.real(intr.fy, 'fy')}",
-        f"{prefix}.cx: {t.real(intr.cx, 'cx')}",
-        f"{prefix}.cy: {t.real(intr.cy, 'cy')}",
-    ]
-    if with_distortion:
-        k1, k2, p1, p2, k3 = intr.distortion
-        lines += [
-            f"{prefix}.k1: {t.real(k1, 'k1')}",
-            f"{prefix}.k2: {t.real(k2, 'k2')}",
-            f"{prefix}.p1: {t.real(p1, 'p1')}",
-            f"{prefix}.p2: {t.real(p2, 'p2')}",
-            f"{prefix}.k3: {t.real(k3, 'k3')}",
-        ]
-    return lines
-
-
 def _imu_lines(imu: OrbImuSettings, version: OrbSlam3Version) -> list[str]:
     values = {
         "NoiseGyro": imu.noise_gyro,
@@ -353,16 +347,12 @@ def _imu_lines(imu: OrbImuSettings, version: OrbSlam3Version) -> list[str]:
         "AccWalk": imu.acc_walk,
     }
     for key, value in values.items():
-        if t.finite(value, f"IMU.{key}") <= 0.0:
-            msg = f"IMU.{key} must be greater than zero, got {value!r}"
-            raise InvalidValue(msg)
+        t.positive(value, f"IMU.{key}")
     key = "IMU.T_b_c1" if version == "1.0" else "Tbc"
     lines = opencv_matrix_lines(key, 4, 4, _rigid(key, imu.T_b_c1), dt="f")
     lines += [f"IMU.{k}: {t.real(v, f'IMU.{k}')}" for k, v in values.items()]
     if version == "1.0":  # readParameter<float>: a real
-        if t.finite(imu.frequency, "IMU.Frequency") <= 0.0:
-            msg = f"IMU.Frequency must be greater than zero, got {imu.frequency!r}"
-            raise InvalidValue(msg)
+        t.positive(imu.frequency, "IMU.Frequency")
         lines.append(f"IMU.Frequency: {t.real(imu.frequency, 'IMU.Frequency')}")
     else:  # ParseIMUParamFile: node.isInt()
         lines.append(f"IMU.Frequency: {t.integer(t.fps_int(imu.frequency, 'IMU.Frequency'))}")
@@ -399,9 +389,7 @@ def orbslam3_stereo_yaml(
             the two images differ in size, a transform is not rigid, or (old format) the
             pair is not rectified.
     """
-    if version not in ("1.0", "old"):
-        msg = f"version must be '1.0' or 'old', got {version!r}"
-        raise InvalidValue(msg)
+    _check_version(version)
     if (left.width, left.height) != (right.width, right.height):
         msg = (
             "ORB-SLAM3 reads one image size for both cameras, got "
@@ -415,10 +403,7 @@ def orbslam3_stereo_yaml(
         msg = "the two cameras of a stereo pair must be apart (T_c1_c2 has no translation)"
         raise InvalidValue(msg)
     frame_rate = t.fps_int(fps, "fps")
-    thd = t.finite(th_depth, "th_depth")
-    if thd <= 0.0:
-        msg = f"th_depth must be greater than zero, got {th_depth!r}"
-        raise InvalidValue(msg)
+    thd = t.positive(th_depth, "th_depth")
     mode = "stereo-inertial" if imu is not None else "stereo"
     lines: list[str] = [f"# ORB-SLAM3 settings ({mode}), written by sensorkit"]
     if version == "1.0":
@@ -429,20 +414,12 @@ def orbslam3_stereo_yaml(
         _check_rectified(left, right, T)
         lines.append('Camera.type: "PinHole"')
         lines += _camera_lines("Camera", left, with_distortion=True)
-    lines += [
-        f"Camera.width: {t.integer(left.width, 'width')}",
-        f"Camera.height: {t.integer(left.height, 'height')}",
-        f"Camera.fps: {t.integer(frame_rate, 'fps')}",
-        f"Camera.RGB: {1 if rgb else 0}",
-    ]
+    lines += _image_lines(left, frame_rate, rgb)
     if version == "1.0":
         lines.append(f"Stereo.ThDepth: {t.real(thd, 'th_depth')}")
         lines += opencv_matrix_lines("Stereo.T_c1_c2", 4, 4, T_rows, dt="f")
     else:
-        lines += [
-            f"Camera.bf: {t.real(baseline * left.fx, 'bf')}",
-            f"ThDepth: {t.real(thd, 'th_depth')}",
-        ]
+        lines += _old_depth_lines(baseline * left.fx, thd)
     if imu is not None:
         lines += _imu_lines(imu, version)
     lines += _orb_lines(orb or OrbExtractorSettings())

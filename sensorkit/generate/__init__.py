@@ -6,7 +6,6 @@ Library API (the CLI in :mod:`sensorkit.cli.new` is a thin layer over it):
   (:class:`RobotSpec`, :class:`SensorSpec`); mistakes raise ``InputError`` with
   ``FILE:LINE:COLUMN``.
 - :func:`new_package`: write the package (:class:`GeneratedPackage`).
-- :func:`bridge_entries`: the ros_gz_bridge entries of an expanded description.
 - :func:`sensor_macros` / :func:`base_templates`: what the shipped xacro files offer.
 """
 
@@ -16,16 +15,14 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from sensorkit.generate.bridge import bridge_entries, bridge_file_text
     from sensorkit.generate.catalog import MacroInfo, Param, base_templates, sensor_macros
     from sensorkit.generate.package import GeneratedPackage, build_package, new_package
-    from sensorkit.generate.spec import Mark, RobotSpec, SensorSpec, load_spec, parse_spec
+    from sensorkit.generate.reader import Mark
+    from sensorkit.generate.spec import RobotSpec, SensorSpec, load_spec, parse_spec
 
-# Loaded on first use: render preview reads only generate.bridge (a gz sensor's topics),
-# and the package writer with its YAML parser costs it some 60 ms to import.
+# Loaded on first use: the package writer with its YAML parser costs some 60 ms to import,
+# which a command that needs one module of the package does without.
 _HOME = {
-    "bridge_entries": "bridge",
-    "bridge_file_text": "bridge",
     "MacroInfo": "catalog",
     "Param": "catalog",
     "base_templates": "catalog",
@@ -33,7 +30,7 @@ _HOME = {
     "GeneratedPackage": "package",
     "build_package": "package",
     "new_package": "package",
-    "Mark": "spec",
+    "Mark": "reader",
     "RobotSpec": "spec",
     "SensorSpec": "spec",
     "load_spec": "spec",
@@ -58,8 +55,6 @@ __all__ = [
     "RobotSpec",
     "SensorSpec",
     "base_templates",
-    "bridge_entries",
-    "bridge_file_text",
     "build_package",
     "load_spec",
     "new_package",

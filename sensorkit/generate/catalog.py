@@ -28,7 +28,8 @@ SHARED_PARAMS = ("sim", "gz_version", "namespace")
 #: Parameters a sensor entry sets with its own keys (name, parent, xyz/rpy).
 SENSOR_KEY_PARAMS = ("name", "parent")
 
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+"""A decimal number as YAML and xacro write it (``1``, ``-0.5``, ``.5``, ``1e-3``)."""
 _INT = re.compile(r"^[-+]?\d+$")
 _LINK_NAME = re.compile(r"^(\$\{name\})?[A-Za-z0-9_]*$")
 
@@ -71,10 +72,10 @@ def _kind_of(default: str | None) -> tuple[ParamKind, int]:
         return "bool", 1
     if _INT.match(text):
         return "int", 1
-    if _NUMBER.match(text) or (text.startswith("${") and text.endswith("}")):
+    if NUMBER.match(text) or (text.startswith("${") and text.endswith("}")):
         return "float", 1
     parts = text.split()
-    if len(parts) > 1 and all(_NUMBER.match(p) for p in parts):
+    if len(parts) > 1 and all(NUMBER.match(p) for p in parts):
         return "vector", len(parts)
     return "str", 1
 
@@ -121,23 +122,14 @@ def _read_macro(path: Path, macro_name: str, kind: str) -> MacroInfo | None:
     return None
 
 
-@lru_cache(maxsize=8)
-def _sensor_macros(folder: Path) -> dict[str, MacroInfo]:
+@lru_cache(maxsize=16)
+def _macros(folder: Path, macro_name: str) -> dict[str, MacroInfo]:
+    """Stem -> macro, for every ``*.urdf.xacro`` in ``folder`` that defines the macro
+    ``macro_name`` names (``{stem}`` stands for the file's stem)."""
     found: dict[str, MacroInfo] = {}
     for path in sorted(folder.glob("*.urdf.xacro")):
         stem = path.name[: -len(".urdf.xacro")]
-        info = _read_macro(path, f"sensorkit_{stem}", stem)
-        if info is not None:
-            found[stem] = info
-    return found
-
-
-@lru_cache(maxsize=8)
-def _base_templates(folder: Path) -> dict[str, MacroInfo]:
-    found: dict[str, MacroInfo] = {}
-    for path in sorted(folder.glob("*.urdf.xacro")):
-        stem = path.name[: -len(".urdf.xacro")]
-        info = _read_macro(path, f"sensorkit_{stem}_base", stem)
+        info = _read_macro(path, macro_name.format(stem=stem), stem)
         if info is not None:
             found[stem] = info
     return found
@@ -145,9 +137,9 @@ def _base_templates(folder: Path) -> dict[str, MacroInfo]:
 
 def sensor_macros() -> dict[str, MacroInfo]:
     """Sensor type -> macro, for every macro shipped in ``macros/``."""
-    return _sensor_macros(macros_dir())
+    return _macros(macros_dir(), "sensorkit_{stem}")
 
 
 def base_templates() -> dict[str, MacroInfo]:
     """Base name -> macro, for every base template shipped in ``templates/``."""
-    return _base_templates(templates_dir())
+    return _macros(templates_dir(), "sensorkit_{stem}_base")

@@ -18,11 +18,13 @@ from lxml import etree
 
 from sensorkit.base.atomic import check_replaceable, staged_folder
 from sensorkit.base.errors import InputError
+from sensorkit.describe.bridge import BridgeEntry, bridge_entries
 from sensorkit.describe.intrinsics import InvalidValue
-from sensorkit.exporters.bridge import BridgeEntry
+from sensorkit.exporters.bridge import bridge_file_text
 from sensorkit.generate import render, rviz
-from sensorkit.generate.bridge import bridge_entries, bridge_file_text
-from sensorkit.generate.spec import Mark, RobotSpec, load_spec
+from sensorkit.generate.reader import Mark
+from sensorkit.generate.readme import readme
+from sensorkit.generate.spec import RobotSpec, load_spec
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import Topic
@@ -162,7 +164,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
         programs.append(render.SAVE_FRAMES_NODE)
     _write(root, "package.xml", render.package_xml(spec, python_node=bool(programs)))
     _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install), programs))
-    _write(root, "README.md", render.readme(spec, yaml_name, entries, images, unshown, frame))
+    _write(root, "README.md", readme(spec, yaml_name, entries, images, unshown, frame))
     return entries
 
 

@@ -1,4 +1,9 @@
-"""The text of each generated file, from a checked :class:`RobotSpec`.
+"""The text of the generated package's files, from a checked :class:`RobotSpec`.
+
+The README, the RViz2 configuration and the bridge YAML have modules of their own
+(:mod:`sensorkit.generate.readme`, :mod:`sensorkit.generate.rviz`,
+:mod:`sensorkit.exporters.bridge`); the RViz2 configuration's template is filled
+with :func:`fill` too.
 
 Package skeleton files come from ``templates/package/*.in`` with ``@key@``
 placeholders (CMake's ``configure_file`` style, so ``${PROJECT_NAME}`` in CMake and
@@ -13,15 +18,10 @@ import json
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
 from sensorkit.base.resources import templates_dir
-from sensorkit.exporters.bridge import BridgeEntry
 from sensorkit.generate.spec import RobotSpec
-
-if TYPE_CHECKING:
-    from sensorkit.generate.rviz import Unshown
 
 _PLACEHOLDER = re.compile(r"@([a-z_]+)@")
 SAVE_FRAMES_NODE = "scripts/save_frames.py"
@@ -234,146 +234,4 @@ def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
             f"  </xacro:{macro}>",
         ]
     lines += ["", "</robot>", ""]
-    return "\n".join(lines)
-
-
-def rviz_unshown_groups(unshown: Sequence[Unshown]) -> list[tuple[str, str, list[str]]]:
-    """``(message type, why, topics)`` of the topics without an RViz display, by type."""
-    groups: dict[str, tuple[str, list[str]]] = {}
-    for u in unshown:
-        groups.setdefault(u.type, (u.why, []))[1].append(u.topic)
-    return [(mtype, why, names) for mtype, (why, names) in groups.items()]
-
-
-def readme(
-    spec: RobotSpec,
-    yaml_name: str,
-    entries: Sequence[BridgeEntry],
-    images: Sequence[CameraImage] = (),
-    unshown: Sequence[Unshown] = (),
-    fixed_frame: str = "base_link",
-) -> str:
-    xacro_rel = f"urdf/{spec.name}.urdf.xacro"
-    lines = [
-        f"# {spec.package}",
-        "",
-        f"{spec.description}",
-        "",
-        f"Written by `sensorkit new {yaml_name}`: change the YAML and generate again rather",
-        "than editing these files by hand.",
-        "",
-        "| sensor | type | parent | xyz | rpy |",
-        "|---|---|---|---|---|",
-    ]
-    for s in spec.sensors:
-        lines.append(f"| {s.name} | {s.type} | {s.parent} | {s.xyz} | {s.rpy} |")
-    lines += [
-        "",
-        "## Try it",
-        "",
-        "```bash",
-        f"sensorkit validate {xacro_rel}",
-        f"sensorkit render preview {xacro_rel}",
-        f"xacro {xacro_rel} sim:=none > /tmp/{spec.name}.urdf && check_urdf /tmp/{spec.name}.urdf",
-        "```",
-        "",
-        "In a colcon workspace (`src/` holding this folder):",
-        "",
-        "```bash",
-        f"colcon build --packages-select {spec.package} && source install/setup.bash",
-        f"ros2 launch {spec.package} description.launch.py   # robot_state_publisher only",
-        f"ros2 launch {spec.package} display.launch.py       # the model in RViz2, joint sliders",
-    ]
-    if spec.sim in ("gz", "classic"):
-        lines.append(f"ros2 launch {spec.package} sim.launch.py           # the simulator too")
-    lines += ["```", ""]
-    lines += ["## RViz2", ""]
-    rviz_file = f"`rviz/{spec.name}.rviz` (fixed frame `{fixed_frame}`)"
-    if spec.sim in ("gz", "classic"):
-        lines += [
-            f"`display.launch.py` opens {rviz_file}: the robot",
-            "model, TF and one display per sensor topic, subscribed best effort (which receives",
-            "from reliable and best-effort publishers alike). `gui:=false` starts",
-            "joint_state_publisher instead of the slider window.",
-            "",
-            "The sensor displays show data while the simulator runs. `sim.launch.py` already",
-            "runs robot_state_publisher and the simulator publishes the joint states, so open",
-            "RViz2 alone beside it:",
-            "",
-            "```bash",
-            f"rviz2 -d install/{spec.package}/share/{spec.package}/rviz/{spec.name}.rviz "
-            "--ros-args -p use_sim_time:=true",
-            "```",
-            "",
-        ]
-    else:
-        lines += [
-            f"`display.launch.py` opens {rviz_file}: the robot",
-            "model and TF (no simulator, so no sensor topics sensorkit can name). `gui:=false`",
-            "starts joint_state_publisher instead of the slider window.",
-            "",
-        ]
-    if unshown:
-        lines += ["Not shown:", ""]
-        for mtype, why, names in rviz_unshown_groups(unshown):
-            listed = ", ".join(f"`{n}`" for n in names)
-            lines.append(f"- {mtype} ({listed}): {why}")
-        lines.append("")
-    if spec.sim == "gz":
-        lines += [
-            f"## Topics (Gazebo Sim {spec.gz_version.capitalize()}, "
-            "bridged by `config/bridge.yaml`)",
-            "",
-            "| ROS topic | ROS type | gz topic | direction |",
-            "|---|---|---|---|",
-        ]
-        for e in entries:
-            ros, gz = f"`{e.ros_topic_name}`", f"`{e.gz_topic_name}`"
-            lines.append(f"| {ros} | {e.ros_type_name} | {gz} | {e.direction} |")
-        lines += [
-            "",
-            f"The world (`worlds/{spec.name}.sdf`) loads the Sensors and Imu systems that",
-            "the sensors need; another world must load them too.",
-            "",
-        ]
-    elif spec.sim == "classic":
-        lines += [
-            "## Topics (Gazebo Classic)",
-            "",
-            "Each sensor's gazebo_ros plugin publishes straight to ROS; the topics are listed",
-            "in the header of its macro in `urdf/sensors/`.",
-            "",
-        ]
-    if spec.sim in ("gz", "classic"):
-        lines += [
-            "Every topic with its message type, frame_id, encoding and rate:",
-            "",
-            "```bash",
-            f"sensorkit topics {xacro_rel}",
-            "```",
-            "",
-        ]
-    if images:
-        lines += [
-            "## Save camera frames",
-            "",
-            "With the simulation running, write a frame of every camera every 5 seconds of",
-            "message time into `frames/<topic, its slashes as __>/` (colour as PNG; depth as",
-            "16-bit PNG in millimetres, 0 = no depth, or with `format:=npy` as received):",
-            "",
-            "```bash",
-            f"ros2 launch {spec.package} save_frames.launch.py interval:=5.0 folder:=frames",
-            "```",
-            "",
-            "| topic | encoding | sensor |",
-            "|---|---|---|",
-        ]
-        for i in images:
-            kind = f"{i.encoding or '?'}{' (depth)' if i.depth else ''}"
-            lines.append(f"| `{i.topic}` | {kind} | {i.sensor} |")
-        lines += [
-            "",
-            "The node (`scripts/save_frames.py`) needs rclpy, sensor_msgs and numpy.",
-            "",
-        ]
     return "\n".join(lines)

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from sensorkit.generate.render import fill, rviz_unshown_groups
+from sensorkit.generate.render import fill
 from sensorkit.knowledge.rviz import (
     DESCRIPTION_QOS,
     NO_RVIZ_DISPLAY,
@@ -75,6 +75,14 @@ def sensor_displays(topics: Sequence[Topic]) -> tuple[list[SensorDisplay], list[
             why = NO_RVIZ_DISPLAY.get(mtype, f"rviz_default_plugins has no display for {mtype}")
             unshown.append(Unshown(t.name, mtype, why))
     return shown, unshown
+
+
+def rviz_unshown_groups(unshown: Sequence[Unshown]) -> list[tuple[str, str, list[str]]]:
+    """``(message type, why, topics)`` of the topics without an RViz display, by type."""
+    groups: dict[str, tuple[str, list[str]]] = {}
+    for u in unshown:
+        groups.setdefault(u.type, (u.why, []))[1].append(u.topic)
+    return [(mtype, why, names) for mtype, (why, names) in groups.items()]
 
 
 def root_link(robot: etree._Element) -> str | None:

@@ -16,10 +16,9 @@ from dataclasses import dataclass, field
 import yaml
 
 from sensorkit.base.errors import EditRefused
-from sensorkit.generate.catalog import SHARED_PARAMS, sensor_macros
+from sensorkit.generate.catalog import NUMBER, SHARED_PARAMS, sensor_macros
 
 _PLAIN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 _YAML_WORDS = frozenset(
     {"y", "n", "yes", "no", "on", "off", "true", "false", "null", "none", "~"}
 )  # YAML 1.1 reads these bare words as booleans or null
@@ -48,7 +47,7 @@ def _option(sensor_type: str, key: str, text: str) -> str:
     kind = param.kind if param is not None else "str"
     if kind == "vector":
         return "[" + ", ".join(text.split()) + "]"
-    if kind in ("int", "float") and _NUMBER.match(text.strip()):
+    if kind in ("int", "float") and NUMBER.match(text.strip()):
         return text.strip()
     if kind == "bool" and text.strip().lower() in ("true", "false"):
         return text.strip().lower()

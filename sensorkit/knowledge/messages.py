@@ -1,7 +1,7 @@
 """What the data on each sensor topic is: ROS message types and image encodings.
 
 Consulted by ``sensorkit topics`` (and, through it, by the ``save_frames`` launch file
-``sensorkit new`` writes). Roles are those of :func:`sensorkit.describe.sensorinfo.sensor_topics`
+``sensorkit new`` writes). Roles are those of :func:`sensorkit.describe.sensor_topics.sensor_topics`
 (``image``, ``camera_info``, ``depth_image``, ``depth_camera_info``, ``points``, ``scan``,
 ``range``, ``imu``, ``out``, ``trigger``).
 

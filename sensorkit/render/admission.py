@@ -80,7 +80,7 @@ def _beams(samples: int | None, resolution: float | None) -> float:
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
-    from sensorkit.describe.sensorinfo import camera_size
+    from sensorkit.describe.published import camera_size
     from sensorkit.model.frames_np import render_pose_np
 
     for s in robot.sensors:

@@ -158,9 +158,9 @@ def render_camera(
 ) -> RenderCamera:
     """The camera the simulator actually renders (which camera_info may not describe).
 
-    ``published`` is the camera_info (``sensorkit.describe.sensorinfo.published_intrinsics``).
+    ``published`` is the camera_info (``sensorkit.describe.published.published_intrinsics``).
     """
-    from sensorkit.describe.sensorinfo import SDF_DEFAULTS, camera_size, convention_of
+    from sensorkit.describe.published import SDF_DEFAULTS, camera_size, convention_of
 
     notes: list[str] = []
     width, height, hfov = camera_size(cam, [])

@@ -38,7 +38,7 @@ Depth = npt.NDArray[np.float32]
 def render_camera_job(run: Session, job: Job, progress: Progress | None) -> JobResult:
     """Render ``job``'s camera into its folder, check it, and draw it in the overview."""
     from sensorkit.describe.intrinsics import InvalidValue
-    from sensorkit.describe.sensorinfo import published_intrinsics
+    from sensorkit.describe.published import published_intrinsics
     from sensorkit.render.camera import depth_from_buffer, render_camera
     from sensorkit.render.png import write_png
 
@@ -98,7 +98,7 @@ def _write_depth(
 ) -> None:
     """depth.npy as published (+inf past the far clip, -inf nearer than the near one) and
     depth.png, labelled."""
-    from sensorkit.describe.sensorinfo import depth_range
+    from sensorkit.describe.published import depth_range
     from sensorkit.render._files import save_npy
     from sensorkit.render.pictures import at_far_clip, depth_colour_range, depth_figure
     from sensorkit.render.png import write_png

@@ -89,9 +89,9 @@ class LidarScan:
 
 
 def lidar_beams(spec: LidarSpec, notes: list[str] | None = None) -> LidarBeams:
-    """The beams of ``spec`` (``sensorkit.describe.sensorinfo.lidar_scans``, so the preview casts
+    """The beams of ``spec`` (``sensorkit.describe.published.lidar_scans``, so the preview casts
     exactly the scan the exports describe); raises InvalidValue when it cannot exist."""
-    from sensorkit.describe.sensorinfo import lidar_scans
+    from sensorkit.describe.published import lidar_scans
 
     h, v = lidar_scans(spec, notes)
     elevation = v.beam_angles() if v is not None else np.zeros(1)

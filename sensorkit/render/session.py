@@ -60,7 +60,7 @@ def _pose_dict(T: Mat) -> dict[str, Any]:
 
 def topics_of(sensor: Sensor, target: str) -> dict[str, str] | None:
     """Role -> ROS topic (``image``, ``camera_info``, ``scan``...), None when unknown."""
-    from sensorkit.describe.sensorinfo import sensor_topics
+    from sensorkit.describe.sensor_topics import sensor_topics
 
     topics, _ = sensor_topics(sensor, target)
     return topics or None

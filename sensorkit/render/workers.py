@@ -34,7 +34,7 @@ _RAY_COST = 12
 
 def _cost(job: Job) -> int:
     """Rough CPU a job takes, in units of one TinyRenderer pixel."""
-    from sensorkit.describe.sensorinfo import camera_size
+    from sensorkit.describe.published import camera_size
 
     if job.cam is not None:
         w, h, _ = camera_size(job.cam, [])
@@ -83,7 +83,7 @@ def _preload(jobs: list[Job], target: str) -> None:
     if any(j.cam is None for j in jobs):
         names.append("sensorkit.render.lidar")
     if is_gz(target):
-        names.append("sensorkit.generate.bridge")  # the topics of a gz sensor
+        names.append("sensorkit.describe.bridge")  # the topics of a gz sensor
     for name in names:
         importlib.import_module(name)
 
