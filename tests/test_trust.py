@@ -471,6 +471,11 @@ def test_ros1_frame_name_loses_its_leading_slash(check) -> None:
     report = check(robot(camera=ROS1_CAMERA, lidar=_ros1_laser("/laser_link")), target="ros1")
     assert "SK501" not in rules_of(report)
     assert _published(report, "laser", "ros1").published == "laser_link"
+    from sensorkit.describe.sensorinfo import describe  # what `sensorkit topics` prints
+
+    assert report.robot is not None
+    laser = next(i for i in describe(report.robot, "ros1").sensors if i.sensor.name == "laser")
+    assert laser.frame == "laser_link"
     cam = camera_sensor(params="<cameraName>cam</cameraName><frameName>/camera_optical_frame</frameName>")
     report = check(robot(camera=cam, lidar=ROS1_LASER), target="ros1")
     assert "SK501" not in rules_of(report)

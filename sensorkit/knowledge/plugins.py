@@ -479,8 +479,9 @@ PLUGINS: tuple[PluginSpec, ...] = (
         tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (GazeboRosCameraUtils::Load, gazebo_ros_prosilica.cpp:91)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
-    # Laser family: the default frame is the literal "/world" and the default topic is ALSO
-    # "/world" (laser, gpu_laser, block_laser) or "/range" (range).
+    # Laser family: the default frame is the literal "/world", which tf::resolve (TF_RESOLVE
+    # above) turns into the stamped "world"; the default topic is ALSO "/world" (laser,
+    # gpu_laser, block_laser) or "/range" (range).
     PluginSpec(
         family="gazebo_plugins laser (ROS 1)",
         libraries=("gazebo_ros_laser",),
