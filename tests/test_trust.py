@@ -6,7 +6,7 @@ them live in ../shared/corpus/realworld (labelled in tests/realworld, run by tes
 
 from __future__ import annotations
 
-from builders import camera_sensor, inertial, joint, link, robot
+from builders import camera_sensor, inertial, joint, lidar_sensor, link, robot
 from conftest import rules_of
 
 from sensorkit.base.suggest import closest
@@ -444,6 +444,83 @@ def test_third_party_frame_parameter_naming_a_missing_link_is_sk501(check) -> No
     f = next(f for f in check(robot(extra=hector("imu_lnk")), target="ros1").findings if f.rule == "SK501")
     assert f.frame == "imu_lnk" and "<frameId>" in f.message
     assert "SK501" not in rules_of(check(robot(extra=hector("base_link")), target="ros1"))
+
+
+def _ros1_laser(frame: str | None) -> str:
+    tag = "" if frame is None else f"<frameName>{frame}</frameName>"
+    return ROS1_LASER.replace("<frameName>laser_link</frameName>", tag)
+
+
+def _published(report, name: str, target: str):  # type: ignore[no-untyped-def]
+    from sensorkit.model.frames import sensor_frames
+    from sensorkit.model.sdf import convert
+
+    robot_ = report.robot
+    assert robot_ is not None
+    s = next(s for s in robot_.sensors if s.name == name)
+    return sensor_frames(robot_, s, target, convert(robot_))
+
+
+def test_ros1_frame_name_loses_its_leading_slash(check) -> None:
+    # ROS 1 tf::resolve(prefix, frame_name) returns strip_leading_slash(frame_name) when it
+    # starts with "/" (ros/geometry@noetic-devel fe344b6:tf/src/tf.cpp:159-166, :195-206),
+    # and gazebo_plugins passes the frame through it before stamping
+    # (ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46:gazebo_plugins/src/
+    # gazebo_ros_laser.cpp:137-138, stamped at :190; gazebo_ros_camera_utils.cpp:296-298).
+    # Near miss: /laser_link stamps laser_link, a link: no SK501.
+    report = check(robot(camera=ROS1_CAMERA, lidar=_ros1_laser("/laser_link")), target="ros1")
+    assert "SK501" not in rules_of(report)
+    assert _published(report, "laser", "ros1").published == "laser_link"
+    from sensorkit.describe.sensorinfo import describe  # what `sensorkit topics` prints
+
+    assert report.robot is not None
+    laser = next(i for i in describe(report.robot, "ros1").sensors if i.sensor.name == "laser")
+    assert laser.frame == "laser_link"
+    cam = camera_sensor(params="<cameraName>cam</cameraName><frameName>/camera_optical_frame</frameName>")
+    report = check(robot(camera=cam, lidar=ROS1_LASER), target="ros1")
+    assert "SK501" not in rules_of(report)
+    assert _published(report, "front_camera", "ros1").published == "camera_optical_frame"
+    # Trigger: a frame naming no link, with and without the slash, still is SK501, and the
+    # finding names the frame as stamped.
+    for given in ("laser_lnk", "/laser_lnk"):
+        report = check(robot(camera=ROS1_CAMERA, lidar=_ros1_laser(given)), target="ros1")
+        f = next(f for f in report.findings if f.rule == "SK501")
+        assert f.frame == "laser_lnk" and f.sensor == "laser"
+
+
+def test_ros1_laser_default_frame_is_world(check) -> None:
+    # gazebo_ros_laser.cpp:88-92 (noetic-devel f9e1a46) defaults frame_name_ to "/world",
+    # then :138 tf::resolve drops the slash (tf.cpp:162-166): the scan is stamped "world".
+    report = check(robot(camera=ROS1_CAMERA, lidar=_ros1_laser(None)), target="ros1")
+    fr = _published(report, "laser", "ros1")
+    assert fr.is_default and fr.published == "world"
+
+
+def test_ros1_model_plugin_frames_follow_tf_resolve(check) -> None:
+    # diff drive: gazebo_ros_diff_drive.cpp:407 resolveTF(robot_base_frame_), which is
+    # tf::resolve (gazebo_ros_utils.cpp:52-53, noetic-devel f9e1a46): /base_link is base_link.
+    def plugin(lib: str, tag: str, frame: str) -> str:
+        return f'<gazebo><plugin name="p" filename="{lib}"><{tag}>{frame}</{tag}><topicName>t</topicName></plugin></gazebo>'
+
+    drive = "libgazebo_ros_diff_drive.so"
+    assert "SK501" not in rules_of(check(robot(extra=plugin(drive, "robotBaseFrame", "/base_link")), target="ros1"))
+    f = next(f for f in check(robot(extra=plugin(drive, "robotBaseFrame", "/base_lnk")), target="ros1").findings if f.rule == "SK501")
+    assert f.frame == "base_lnk"
+    # p3d stamps tf::resolve(prefix, frame_name_) (gazebo_ros_p3d.cpp:146) but looks the link
+    # up by the unresolved name (:178 GetLink(frame_name_); :181 "does not exist, will not
+    # publish"): /base_link still names no link there.
+    p3d = plugin("libgazebo_ros_p3d.so", "frameName", "/base_link").replace("<topicName>", "<bodyName>base_link</bodyName><topicName>")
+    assert "SK501" in rules_of(check(robot(extra=p3d), target="ros1"))
+
+
+def test_ros2_frame_name_keeps_its_leading_slash(check) -> None:
+    # ROS 2 gazebo_ros::SensorFrameID returns <frame_name> as written
+    # (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4:gazebo_ros/src/utils.cpp:52-57); nothing in
+    # gazebo_ros strips a slash, so /laser_link is no link and stays SK501.
+    laser = lidar_sensor(params="<frame_name>/laser_link</frame_name>")
+    report = check(robot(lidar=laser), target="classic")
+    assert _published(report, "laser", "classic").published == "/laser_link"
+    assert "SK501" in rules_of(report)
 
 
 def test_vendor_gazebo_ros_plugins_parameters_are_not_ros2_evidence(check) -> None:

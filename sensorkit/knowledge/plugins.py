@@ -36,6 +36,9 @@ class PluginSpec:
     frame_default_value: str | None = None  # with LITERAL
     lumped: bool = False  # the LINK default follows fixed-joint lumping (gazebo_ros SensorFrameID)
     world_frame_ok: bool = False  # world/map is a meaningful frame (p3d, bumper)
+    # The frame (given or default) passes through ROS 1 tf::resolve before it is stamped,
+    # which drops a leading "/" (see TF_RESOLVE below and :func:`stamped_frame`).
+    tf_resolve: bool = False
     # (parameter, default) pairs of topics it publishes, relative to its namespace;
     # a default of None means the topic exists only when the parameter is given, a parameter
     # of None a fixed name. In defaults "{sensor}" stands for the sensor's name and "{model}"
@@ -52,6 +55,24 @@ class PluginSpec:
     # :func:`generation_params`, used by sensorkit.model.targets.ros1_evidence).
     params: frozenset[str] = frozenset()
     source: str = ""  # repo@path:line (branch) it was read from
+
+
+# ROS 1 tf::resolve(prefix, frame_name) (ros/geometry@tf/src/tf.cpp:159-166, noetic-devel
+# fe344b6): a frame_name starting with "/" is returned through strip_leading_slash
+# (:195-206, which erases that one character), whatever the prefix; otherwise, with no
+# prefix, the name is returned as is (:186-191). The prefix is the tf_prefix ROS parameter
+# (tf::getPrefixParam, tf/include/tf/transform_listener.h:55-63, "" when unset), which a
+# URDF does not hold: sensorkit models the unset case. So <frameName>/laser_link</frameName>
+# stamps "laser_link", and the laser's default "/world" stamps "world".
+TF_RESOLVE = "ros/geometry@tf/src/tf.cpp:159-166 (noetic-devel fe344b6)"
+
+
+def stamped_frame(spec: PluginSpec, frame: str) -> str:
+    """The frame id ``spec``'s plugin stamps when its frame parameter (or default) is
+    ``frame``: ROS 1 plugins that call tf::resolve drop one leading "/" (TF_RESOLVE)."""
+    if spec.tf_resolve and frame.startswith("/"):
+        return frame[1:]
+    return frame
 
 
 # The parameters each velodyne_gazebo_plugins generation reads (PluginSpec.params).
@@ -358,6 +379,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         topics=(("imageTopicName", "image_raw"), ("cameraInfoTopicName", "camera_info")),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -372,6 +394,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         topics=(("imageTopicName", "image_raw"), ("cameraInfoTopicName", "camera_info")),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (GazeboRosCameraUtils::Load, gazebo_ros_triggered_camera.cpp:69)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -388,6 +411,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         topics=(("imageTopicName", "image_raw"), ("cameraInfoTopicName", "camera_info")),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (util->Load, gazebo_ros_multicamera.cpp:87,94)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -414,6 +438,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         ),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (GazeboRosCameraUtils::Load, gazebo_ros_depth_camera.cpp:143)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -436,6 +461,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         ),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (GazeboRosCameraUtils::Load, gazebo_ros_openni_kinect.cpp:117)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -450,10 +476,12 @@ PLUGINS: tuple[PluginSpec, ...] = (
         topics=(("imageTopicName", "image_raw"), ("cameraInfoTopicName", "camera_info")),
         topic_ns_param="cameraName",
         topic_ns_default="",
+        tf_resolve=True,  # gazebo_ros_camera_utils.cpp:296-298 frame_name_ = tf::resolve(tf_prefix_, frame_name_) (GazeboRosCameraUtils::Load, gazebo_ros_prosilica.cpp:91)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_camera_utils.cpp:149 (noetic-devel f9e1a46)",
     ),
-    # Laser family: the default frame is the literal "/world" and the default topic is ALSO
-    # "/world" (laser, gpu_laser, block_laser) or "/range" (range).
+    # Laser family: the default frame is the literal "/world", which tf::resolve (TF_RESOLVE
+    # above) turns into the stamped "world"; the default topic is ALSO "/world" (laser,
+    # gpu_laser, block_laser) or "/range" (range).
     PluginSpec(
         family="gazebo_plugins laser (ROS 1)",
         libraries=("gazebo_ros_laser",),
@@ -464,6 +492,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",  # gazebo_ros_laser.cpp:88-94
         topics=(("topicName", "/world"),),  # gazebo_ros_laser.cpp:97-103
+        tf_resolve=True,  # gazebo_ros_laser.cpp:137-138 frame_name_ = tf::resolve(tf_prefix_, frame_name_), stamped at :190
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_laser.cpp:91 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -476,6 +505,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",  # gazebo_ros_gpu_laser.cpp:91-97
         topics=(("topicName", "/world"),),  # gazebo_ros_gpu_laser.cpp:99-105
+        tf_resolve=True,  # gazebo_ros_gpu_laser.cpp:140-141 tf::resolve, stamped at :195
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_gpu_laser.cpp:94 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -488,6 +518,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",  # gazebo_ros_block_laser.cpp:109-115
         topics=(("topicName", "/world"),),  # gazebo_ros_block_laser.cpp:117-123
+        tf_resolve=True,  # gazebo_ros_block_laser.cpp:165-168 tf::resolve, stamped at :289
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_block_laser.cpp:112 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -500,6 +531,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="/world",  # gazebo_ros_range.cpp:111-117
         topics=(("topicName", "/range"),),  # gazebo_ros_range.cpp:119-125
+        tf_resolve=True,  # gazebo_ros_range.cpp:200-203 tf::resolve, stamped at :298
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_range.cpp:114 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -510,6 +542,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         sensor_types=frozenset({"imu"}),
         # gazebo_ros_imu_sensor.cpp:202-210: <frameName> is required ("missing <frameName>,
         # cannot proceed"): no default, the plugin publishes nothing without it
+        # Not tf_resolve: the value is stamped as given (body_name, :204 -> :138).
         frame_params=("frameName",),
         frame_default=NONE,
         # gazebo_ros_imu_sensor.cpp:190-198; namespace defaults to "/<model>/" (:182-185)
@@ -522,6 +555,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         ros="ros1",
         level="model",  # gazebo_ros_imu.cpp:32 GZ_REGISTER_MODEL_PLUGIN
         # gazebo_ros_imu.cpp:130-136 <frameName>, defaulting to <bodyName> (required, :97-103)
+        # Not tf_resolve: frame_name_ is stamped as given (:279).
         frame_params=("frameName", "bodyName"),
         frame_default=PARAM,
         frame_default_param="bodyName",
@@ -536,6 +570,9 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_params=("frameName",),
         frame_default=WORLD,  # gazebo_ros_p3d.cpp:89-95
         world_frame_ok=True,
+        # Not tf_resolve: the stamp is tf::resolve(prefix, frame_name_) (:146, :254), but the
+        # reference link is looked up by the unresolved name (:178 GetLink(frame_name_)),
+        # which with a leading "/" names no link: "does not exist, will not publish" (:181).
         topics=(("topicName", None),),  # gazebo_ros_p3d.cpp:81-87: required
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_p3d.cpp:92 (noetic-devel f9e1a46)",
     ),
@@ -548,6 +585,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=WORLD,  # gazebo_ros_f3d.cpp:89-96
         world_frame_ok=True,
         topics=(("topicName", None),),  # gazebo_ros_f3d.cpp:81-87: required
+        tf_resolve=True,  # gazebo_ros_f3d.cpp:112-115 tf::resolve, stamped at :175
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_f3d.cpp:92 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -560,6 +598,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=WORLD,  # gazebo_ros_bumper.cpp:95-101
         world_frame_ok=True,
         topics=(("bumperTopicName", "bumper_states"),),  # gazebo_ros_bumper.cpp:88-91
+        tf_resolve=True,  # gazebo_ros_bumper.cpp:113-116 tf::resolve, before the link lookup (:162-175) and the stamp (:151)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_bumper.cpp:98 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -583,6 +622,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         # :93 odometryTopic "odom" (advertised with publishTf, :167-169); :150 joint_states
         # with publishWheelJointState
         topics=(("odometryTopic", "odom"), (None, "joint_states")),
+        tf_resolve=True,  # gazebo_ros_diff_drive.cpp:407 resolveTF(robot_base_frame_) = tf::resolve (gazebo_ros_utils.cpp:52-53)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_diff_drive.cpp:95 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -594,6 +634,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="base_footprint",
         topics=(("odometryTopic", "odom"),),  # gazebo_ros_skid_steer_drive.cpp:176-181
+        tf_resolve=True,  # gazebo_ros_skid_steer_drive.cpp:429-430 tf::resolve(tf_prefix_, robot_base_frame_)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_skid_steer_drive.cpp:192 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -605,6 +646,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default=LITERAL,
         frame_default_value="base_footprint",
         topics=(("odometryTopic", "odom"),),  # gazebo_ros_planar_move.cpp:70-79
+        tf_resolve=True,  # gazebo_ros_planar_move.cpp:266-267 tf::resolve(tf_prefix_, robot_base_frame_)
         source="ros-simulation/gazebo_ros_pkgs@gazebo_plugins/src/gazebo_ros_planar_move.cpp:94 (noetic-devel f9e1a46)",
     ),
     PluginSpec(
@@ -668,6 +710,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default_value="/world",  # GazeboRosVelodyneLaser.cpp:119-123
         topics=(("topicName", "/points"),),  # GazeboRosVelodyneLaser.cpp:147-151
         params=VELODYNE_ROS1_PARAMS,
+        tf_resolve=True,  # GazeboRosVelodyneLaser.cpp:171-178 frame_name_ = tf::resolve(prefix, frame_name_), stamped at :316
         source="lmark1/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:121 (master e08185a)",
     ),
     PluginSpec(
@@ -682,6 +725,7 @@ PLUGINS: tuple[PluginSpec, ...] = (
         frame_default_value="/world",
         topics=(("topicName", "/points"),),
         params=VELODYNE_ROS1_PARAMS,  # the same source file as the CPU library
+        tf_resolve=True,  # the same source: GazeboRosVelodyneLaser.cpp:178
         source="lmark1/velodyne_simulator@velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:121 (master e08185a)",
     ),
     PluginSpec(

@@ -2,9 +2,10 @@
 
 The render pose is the pose of the sensor's reference link composed with the sensor's
 ``<pose>``. The published frame is the plugin's frame element (classic ``frame_name``,
-ROS 1 ``frameName``) or the gz frame tag the target reads; when absent, the target's
-default: classic, the reference link after fixed-joint lumping; gz, the scoped sensor
-name (which matches no URDF link).
+ROS 1 ``frameName``, less the leading "/" that ROS 1's tf::resolve drops, see
+``sensorkit.knowledge.plugins.stamped_frame``) or the gz frame tag the target reads; when
+absent, the target's default: classic, the reference link after fixed-joint lumping; gz,
+the scoped sensor name (which matches no URDF link).
 """
 
 from __future__ import annotations
@@ -237,7 +238,8 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
     for name in spec.frame_params:
         value = plugin.param(name)
         if value:
-            return SensorFrames(sensor, link, T, value, name, False, plugin, spec=spec)
+            stamped = known.stamped_frame(spec, value)
+            return SensorFrames(sensor, link, T, stamped, name, False, plugin, spec=spec)
     return SensorFrames(
         sensor, link, T, default_frame(spec, plugin, link, conv), "default", True, plugin, spec=spec
     )
@@ -254,7 +256,9 @@ def default_frame(
     if spec.frame_default == known.WORLD:
         return "world"
     if spec.frame_default == known.LITERAL:
-        return spec.frame_default_value
+        value = spec.frame_default_value
+        return None if value is None else known.stamped_frame(spec, value)
     if spec.frame_default == known.PARAM and spec.frame_default_param:
-        return plugin.param(spec.frame_default_param)
+        value = plugin.param(spec.frame_default_param)
+        return None if value is None else known.stamped_frame(spec, value)
     return None

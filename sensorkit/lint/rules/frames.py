@@ -125,8 +125,11 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
         if spec is None:
             continue
         for param in spec.frame_params:
-            frame = p.param(param)
-            if not frame or _exists(robot, frame):
+            given = p.param(param)
+            if not given:
+                continue
+            frame = known.stamped_frame(spec, given)  # ROS 1 tf::resolve drops a leading "/"
+            if _exists(robot, frame):
                 continue
             if spec.world_frame_ok and frame.strip("/") in WORLD_FRAMES:
                 continue
