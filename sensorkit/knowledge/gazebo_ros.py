@@ -8,6 +8,18 @@ parameters and frames live in :mod:`sensorkit.knowledge.plugins`.
 
 from __future__ import annotations
 
+# Gazebo Classic itself, lidar <range><min> 0 (the SDF default, gazebosim/sdformat@sdf12
+# b9417e5:sdf/1.6/ray.sdf:50). A CPU `ray` sensor uses min only as each ray's start point
+# (`start = (axis * minRange) + offset.Pos()`) and measures max - min from there
+# (MultiRayShape::Init and ::Update in gazebo/physics/MultiRayShape.cc), so 0 is legal. That
+# was read in the stored gazebosim/gazebo-classic history (a9bef0c and a later
+# ignition::math version); the gazebo11 branch could not be fetched (snapshot over the size
+# limit), so it is not pinned to gazebo11 lines. A `gpu_ray` passes min as its GPU laser
+# camera's near clip (GpuRaySensor.cc: laserCam->SetNearClip(RangeMin())), and Ogre 1.x, like
+# ogre-next, throws on a near clip <= 0; that path was not verified on gazebo11 either, so
+# SK406 only notes it (info), never as an error.
+CLASSIC_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_ray"})
+
 # Every plugin library gazebo_ros_pkgs builds, by generation (names without lib/.so).
 # ROS 1: ros-simulation/gazebo_ros_pkgs@noetic-devel (f9e1a46):gazebo_plugins/CMakeLists.txt:191-340
 # (add_library lines), gazebo_ros/CMakeLists.txt:91,97, gazebo_ros_control/CMakeLists.txt:69.

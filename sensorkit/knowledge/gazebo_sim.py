@@ -87,3 +87,24 @@ GZ_NAVSAT_SUFFIX = "/navsat"
 # vrx_gz/src/vrx_gz/bridges.py:40-46, vrx_ros/src/pose_tf_broadcaster.cc:43,70,
 # vrx_gz/src/vrx_gz/launch.py:377).
 GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"
+
+
+# Lidar <range><min> 0. It is the SDF default (gazebosim/sdformat@sdf12 b9417e5:
+# sdf/1.6/ray.sdf:50 and sdf/1.9/lidar.sdf:50, @sdf14 8512585:sdf/1.11/lidar.sdf:50, all
+# `<element name="min" type="double" default="0" required="1">`), and sdf::Lidar takes it
+# unchecked (@sdf12:src/Lidar.cc:162-163). sdformat reads "gpu_ray" and "gpu_lidar" alike as
+# SensorType::GPU_LIDAR (@sdf12:src/Sensor.cc:334-336, @sdf14:352-354). On a GPU lidar
+# gz-sensors makes it the ray camera's near clip: `gpuRays->SetNearClipPlane(this->RangeMin())`
+# (gazebosim/gz-sensors@ign-sensors6 7cfaddf:src/GpuLidarSensor.cc:200, @gz-sensors8 c8159af:
+# :198, @gz-sensors10 ff8c92b:193). gz-rendering's ogre2 GpuRays scales it to the cube
+# cameras' near clip, `nearClipCube = NearClipPlane() * 2 / sqrt(3) * 0.5`, 0 for 0
+# (gazebosim/gz-rendering@ign-rendering6 c39b130:ogre2/src/Ogre2GpuRays.cc:1273-1274,
+# @gz-rendering8 ff0c5b8:1181-1182, @gz-rendering10 af28689:1182-1183) and hands it to Ogre
+# (`setNearClipDistance(this->dataPtr->nearClipCube)`: ign-rendering6 :628,:1057;
+# gz-rendering8 :783,:1048; gz-rendering10 :784,:1049), whose Frustum::setNearClipDistance
+# throws "Near clip distance must be greater than zero." for `nearPlane <= 0`
+# (ignition-forks/ogre-next@40dcea7 (v2.2.4) and @7449a36 (2.3):OgreMain/src/OgreFrustum.cpp:
+# 145-149). So on Gazebo Sim such a GPU lidar never renders. The CPU Lidar base class only
+# clamps ranges to [min, max] with it (gz-sensors@gz-sensors8:src/Lidar.cc:523), and gz-sim
+# never creates a CPU lidar anyway (GZ_UNSUPPORTED_SENSOR_TYPES above).
+GZ_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_lidar", "gpu_ray"})

@@ -359,7 +359,8 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
 @rule(
     "SK406",
     "error",
-    "lidar: samples >= 1, min_angle < max_angle, 0 < range min < max; vertical block sane; "
+    "lidar: samples >= 1, min_angle < max_angle, 0 <= range min < max (min 0 is an error only on a "
+    "Gazebo Sim gpu_lidar); vertical block sane; "
     "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
 )
 def lidar_block(ctx: Context) -> Iterator[Finding]:
@@ -421,11 +422,33 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 fix="check samples for a typo (render preview refuses it unless --max-rays allows)",
             )
         rmin, rmax = spec.range_min, spec.range_max
-        if rmin is not None and rmax is not None and not 0 < rmin < rmax:
+        if rmin is not None and rmax is not None and not 0 <= rmin < rmax:
             yield err(
-                f"range min {rmin:g} / max {rmax:g} must satisfy 0 < min < max",
+                f"range min {rmin:g} / max {rmax:g} must satisfy 0 <= min < max",
                 "e.g. <min>0.12</min><max>12</max>",
             )
+        elif rmin == 0:
+            yield from _range_min_zero(ctx, s, spec)
+
+
+def _range_min_zero(ctx: Context, s: Sensor, spec: LidarSpec) -> Iterator[Finding]:
+    """Range min 0 is the SDF default and legal, except as a GPU lidar's near clip.
+
+    Sources beside GZ_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_sim.py: ogre-next throws on a
+    near clip <= 0) and CLASSIC_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_ros.py: unverified).
+    """
+    from sensorkit.knowledge.gazebo_ros import CLASSIC_LIDAR_NEAR_CLIP_TYPES
+    from sensorkit.knowledge.gazebo_sim import GZ_LIDAR_NEAR_CLIP_TYPES
+
+    fix = "use a small positive min, e.g. <min>0.05</min>"
+    if is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES:
+        msg = ("range min 0 becomes the GPU ray camera's near clip, and Ogre throws "
+               "'Near clip distance must be greater than zero': the lidar never renders")
+        yield ctx.finding("SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix)
+    elif not is_gz(ctx.target) and s.type in CLASSIC_LIDAR_NEAR_CLIP_TYPES:
+        msg = ("range min 0 becomes the GPU laser's near clip; sensorkit has not verified "
+               "that Gazebo Classic (gazebo11) accepts a near clip of 0")
+        yield ctx.finding("SK406", Severity.INFO, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix)
 
 
 @rule("SK407", "warning", "update_rate present and > 0 for cameras and lidars")
