@@ -218,12 +218,95 @@ def test_fortress_maps_gz_sim_names_to_ignition_gazebo(check) -> None:
 def test_sk409_on_gazebo_sim_says_the_image_follows_the_intrinsics(check) -> None:
     # gz-sensors builds the render projection from <lens><intrinsics> (gazebosim/gz-sensors@
     # gz-sensors8:src/CameraSensor.cc:858-872): camera_info matches the image; horizontal_fov
-    # is what no longer holds. Gazebo Classic never reads the intrinsics: no SK409 there.
+    # is what no longer holds. (Gazebo Classic renders with them but its camera_info does
+    # not: the Classic tests below.)
     lens = "<lens><intrinsics><fx>400</fx><fy>400</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics></lens>"
     robot = gz_robot().replace("<clip><near>0.05</near><far>50</far></clip></camera>", "<clip><near>0.05</near><far>50</far></clip>" + lens + "</camera>", 1)
     f = next(f for f in check(robot, target="harmonic").findings if f.rule == "SK409")
     assert "renders with the intrinsics" in f.message and "camera_info will not" not in f.message
     assert "SK409" not in rules_of(check(robot.replace("<fx>400</fx>", "<fx>381.36</fx>"), target="harmonic"))
+
+
+# --- SK409 on Gazebo Classic: the image follows <lens><intrinsics>, camera_info does not ----
+# gazebo 11.10.2 (Debian's import, elysia-best/gazebo-classic@upstream/11.10.2+dfsg):
+# gazebo/rendering/Camera.cc:190 Load calls LoadCameraIntrinsics, :194-209 reads
+# <lens><intrinsics> fx fy cx cy s, :228-240 renders with setCustomProjectionMatrix (kept by
+# CreateCamera :1534-1537 and UpdateFOV :2027-2030), :852-855 HFOV() stays <horizontal_fov>.
+# camera_info: ros-simulation/gazebo_ros_pkgs@ros2 (d52f7c4):gazebo_plugins/src/
+# gazebo_ros_camera.cpp:366-374 fx = <focal_length> or width / (2 tan(HFOV/2)), K :427-431;
+# ROS 1 @noetic-devel (f9e1a46):gazebo_plugins/src/gazebo_ros_camera_utils.cpp:184-189
+# (<focalLength>, 0 = computed), :512-519, K :586-590. Neither reads the intrinsics.
+
+_LENS = "<lens><intrinsics><fx>{fx}</fx><fy>{fx}</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics></lens>"
+
+
+def _classic_lens(fx: str | None, params: str = "<frame_name>camera_optical_frame</frame_name>",
+                  *, stype: str = "camera", plugin: str = "libgazebo_ros_camera.so") -> str:
+    from builders import camera_sensor, robot
+
+    lens = "" if fx is None else _LENS.format(fx=fx)
+    cam = ("<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width>"
+           "<height>480</height><format>R8G8B8</format></image>"
+           f"<clip><near>0.05</near><far>50</far></clip>{lens}</camera>")
+    return robot(camera=camera_sensor(camera=cam, params=params, stype=stype, plugin=plugin))
+
+
+def test_sk409_on_classic_says_the_image_follows_the_intrinsics_not_camera_info(check) -> None:
+    # width 640, horizontal_fov 1.3962634 -> camera_info fx 381.3612; the image renders fx 400
+    f = next(f for f in check(_classic_lens("400"), target="classic").findings if f.rule == "SK409")
+    assert f.severity.label == "warning"
+    assert "renders the image with <lens><intrinsics> fx 400" in f.message
+    assert "camera_info fx 381.3612" in f.message and "from width 640 and horizontal_fov 1.39626" in f.message
+    assert f.fix is not None and "horizontal_fov to 1.349482" in f.fix
+    # near misses: intrinsics that agree with horizontal_fov; no intrinsics at all
+    assert "SK409" not in rules_of(check(_classic_lens("381.3613"), target="classic"))
+    assert "SK409" not in rules_of(check(_classic_lens(None), target="classic"))
+
+
+def test_sk409_on_classic_compares_the_intrinsics_with_focal_length(check) -> None:
+    # <focal_length> is what camera_info carries: equal to fx, image and camera_info agree
+    # (horizontal_fov is overridden, as sdformat says: gazebosim/sdformat@sdf9:
+    # sdf/1.7/camera.sdf:146-147 "overrides horizontal_fov"), so no finding...
+    agree = "<frame_name>camera_optical_frame</frame_name><focal_length>400</focal_length>"
+    assert "SK409" not in rules_of(check(_classic_lens("400", agree), target="classic"))
+    # ... and fx agreeing with horizontal_fov is no help when <focal_length> says otherwise
+    other = "<frame_name>camera_optical_frame</frame_name><focal_length>500</focal_length>"
+    f = next(f for f in check(_classic_lens("381.3613", other), target="classic").findings if f.rule == "SK409")
+    assert "camera_info fx 500.0000 (from <focal_length>" in f.message
+    assert f.fix is not None and "remove <focal_length>" in f.fix
+
+
+def test_sk409_on_ros1_reads_focal_length_as_ros1_spells_it(check) -> None:
+    ros1 = "<frameName>camera_optical_frame</frameName><cameraName>front</cameraName>"
+    f = next(f for f in check(_classic_lens("400", ros1), target="ros1").findings if f.rule == "SK409")
+    assert "camera_info fx 381.3612" in f.message
+    # <focalLength> 0 means "computed" (gazebo_ros_camera_utils.cpp:517-519): still 381.36
+    zero = ros1 + "<focalLength>0</focalLength>"
+    assert "SK409" in rules_of(check(_classic_lens("400", zero), target="ros1"))
+    agree = ros1 + "<focalLength>400</focalLength>"
+    assert "SK409" not in rules_of(check(_classic_lens("400", agree), target="ros1"))
+
+
+def test_sk409_on_classic_needs_a_camera_info_and_a_pinhole_image(check) -> None:
+    # no ROS plugin: no camera_info to disagree with the image
+    assert "SK409" not in rules_of(check(_classic_lens("400", "", plugin=""), target="classic"))
+    # WideAngleCamera stitches six cameras; intrinsics "cannot be used with" it
+    # (gazebosim/sdformat@sdf9:sdf/1.7/camera.sdf:145)
+    assert "SK409" not in rules_of(check(_classic_lens("400", stype="wideanglecamera"), target="classic"))
+
+
+def test_classic_camera_info_note_says_the_image_uses_the_intrinsics(tmp_path) -> None:
+    from sensorkit.describe.published import published_intrinsics
+    from sensorkit.model import load_robot
+
+    path = tmp_path / "r.urdf"
+    path.write_text(_classic_lens("400"))
+    r = load_robot(path).robot
+    assert r is not None
+    s = next(s for s in r.sensors if s.name == "front_camera")
+    intr, notes = published_intrinsics(s, s.cameras[0], "classic")
+    assert intr.K[0][0] == __import__("pytest").approx(640 / (2 * __import__("math").tan(1.3962634 / 2)))  # from the fov
+    assert any("renders the image with them" in n and "never reads them" in n for n in notes)
 
 
 def test_sk502_on_gazebo_sim_says_what_breaks_there(check) -> None:

@@ -64,6 +64,14 @@ CLASSIC_MIN_DEPTH = 0.4
 """gazebo_ros_camera's ``<min_depth>`` default; ``<max_depth>`` defaults to +inf."""
 
 
+CLASSIC_LENS_NOTE = (
+    "<lens><intrinsics> not in camera_info: Gazebo Classic renders the image with them,"
+    " but gazebo_ros_camera's camera_info never reads them (see SK409)"
+)
+"""Gazebo Classic renders with ``<lens><intrinsics>``; camera_info comes from the plugin
+and ``horizontal_fov`` (sources: :data:`sensorkit.knowledge.gazebo_ros.CLASSIC_FOCAL_LENGTH_PARAM`)."""
+
+
 def convention_of(target: str) -> Convention:
     """The camera_info convention of a target: Gazebo Classic (ROS 1 and 2) or gz."""
     return "classic" if target in ("classic", "ros1") else "gz"
@@ -166,9 +174,7 @@ def published_intrinsics(
             cx = cx or None
             cy = cy or None
         if cam.lens_intrinsics is not None:
-            notes.append(
-                "<lens><intrinsics> ignored: Gazebo Classic's camera_info does not read it"
-            )
+            notes.append(CLASSIC_LENS_NOTE)
         return (
             camera_intrinsics(
                 width,

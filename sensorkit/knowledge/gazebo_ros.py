@@ -215,3 +215,21 @@ ROS1_CAMERA_RELATIVE = frozenset({"gazebo_ros_camera"})
 # gazebo_ros_imu_sensor.cpp:214-223). ROS 2 sensor plugins publish at the sensor's own
 # <update_rate>, so that is where the rate goes.
 ROS1_SENSOR_RATE_TAGS = frozenset({"updateRate", "updateRateHZ"})
+# Where Gazebo Classic takes a camera's focal length (SK409). The image: gazebo11's
+# rendering::Camera reads <lens><intrinsics> (fx fy cx cy s) and renders with a projection
+# built from them (gazebo 11.10.2, as imported by Debian in elysia-best/gazebo-classic@
+# upstream/11.10.2+dfsg:gazebo/rendering/Camera.cc:190 Load calls LoadCameraIntrinsics,
+# :194-209 reads <lens><intrinsics>, :228-240 setCustomProjectionMatrix, kept by
+# CreateCamera :1534-1537 and UpdateFOV :2027-2030; present since 11.0.0; CameraSensor.cc
+# :156-157 hands it the sensor's <camera>). sdformat documents it: fx "overrides
+# horizontal_fov" (gazebosim/sdformat@sdf9:sdf/1.7/camera.sdf:144-147). camera_info: the
+# ROS plugin's focal length parameter, else width / (2 tan(HFOV / 2)), where HFOV() is
+# <horizontal_fov> (Camera.cc:852-855), never the intrinsics: ROS 2 ros-simulation/
+# gazebo_ros_pkgs@ros2 (d52f7c4):gazebo_plugins/src/gazebo_ros_camera.cpp:366-374 and
+# K :427-431; ROS 1 @noetic-devel (f9e1a46):gazebo_plugins/src/gazebo_ros_camera_utils.cpp
+# :184-189 (0 means computed), :512-519 and K :586-590.
+CLASSIC_FOCAL_LENGTH_PARAM = {"ros2": "focal_length", "ros1": "focalLength"}
+# Sensor types whose image is not the intrinsics projection: WideAngleCamera stitches six
+# cameras, and sdformat says intrinsics "cannot be used with WideAngleCamera"
+# (gazebosim/sdformat@sdf9:sdf/1.7/camera.sdf:145).
+CLASSIC_NO_INTRINSICS_TYPES = frozenset({"wideanglecamera", "wide_angle_camera"})

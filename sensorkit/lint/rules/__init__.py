@@ -9,6 +9,7 @@ interleave, so the order is written out here and ``put_in_order`` holds ``RULES`
 
 from sensorkit.lint.rules import (  # noqa: F401  (registration)
     bridge,
+    focal,
     frames,
     gz_frames,
     input,

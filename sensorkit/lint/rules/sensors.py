@@ -518,61 +518,6 @@ def noise(ctx: Context) -> Iterator[Finding]:
 
 
 @rule(
-    "SK409",
-    "warning",
-    "focal_length (Classic: camera_info then disagrees with the image) or gz lens intrinsics "
-    "(Gazebo Sim renders with them: the image does not span horizontal_fov) disagree with "
-    "horizontal_fov and width",
-    "gazebo_ros_camera, at run time",
-)
-def focal_length(ctx: Context) -> Iterator[Finding]:
-    from sensorkit.model.parse import parse_float
-
-    for s in _cameras(ctx):
-        cam = s.camera
-        if cam is None or cam.width is None or cam.width <= 0:
-            continue
-        hfov = cam.hfov if cam.hfov is not None else 1.047
-        if not 0 < hfov < math.pi:
-            continue
-        half = math.tan(hfov / 2.0)
-        if half <= 0.0 or cam.width > 2**1000:  # a denormal fov halves to 0; a width past floats
-            continue
-        expected = cam.width / (2.0 * half)
-        gz = is_gz(ctx.target)
-        for p in [] if gz else s.plugins:  # gazebo_ros_camera's focal_length: Classic only
-            f, _ = parse_float(p.param("focal_length"))
-            if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
-                yield ctx.finding(
-                    "SK409",
-                    Severity.WARNING,
-                    f"camera {s.name!r}: focal_length {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
-                    f"(which give {expected:.6f}); camera_info and the rendered image will not match",
-                    p.source,
-                    sensor=s.name,
-                    fix=f"remove <focal_length> or write {expected!r}",
-                )
-        # Gazebo Sim renders with <lens><intrinsics> when given (gazebosim/gz-sensors@
-        # gz-sensors8:src/CameraSensor.cc:858-872 builds the projection from them), so image
-        # and camera_info agree and it is horizontal_fov that is not what the image spans.
-        # Gazebo Classic never reads them (camera_info comes from the plugin): no finding.
-        if gz and cam.lens_intrinsics is not None:
-            fx = cam.lens_intrinsics[0]
-            if fx > 0 and abs(fx - expected) > 1e-3 * expected:
-                spans = 2.0 * math.atan(cam.width / (2.0 * fx))
-                yield ctx.finding(
-                    "SK409",
-                    Severity.WARNING,
-                    f"camera {s.name!r}: lens intrinsics fx {fx:g} disagrees with width {cam.width} and "
-                    f"horizontal_fov {hfov:g} (which give {expected:.4f}): Gazebo Sim renders with the "
-                    f"intrinsics, so the image spans {spans:.4f} rad, not the horizontal_fov written",
-                    cam.source,
-                    sensor=s.name,
-                    fix=f"set fx to {expected:.6f}, or horizontal_fov to {spans:.6f}",
-                )
-
-
-@rule(
     "SK613",
     "error",
     "a sensor type Gazebo Sim never creates (`ray`, `lidar`, `multicamera` on Fortress, Harmonic "

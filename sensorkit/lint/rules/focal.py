@@ -1,0 +1,127 @@
+"""SK409: the focal length the image is rendered with against the one camera_info carries.
+
+Gazebo Classic renders with ``<lens><intrinsics>`` when given, else with ``horizontal_fov``,
+while gazebo_ros_camera publishes camera_info from ``<focal_length>``, else from
+``horizontal_fov`` (sources in :data:`sensorkit.knowledge.gazebo_ros.CLASSIC_FOCAL_LENGTH_PARAM`).
+Gazebo Sim renders and publishes the intrinsics alike, so there it is ``horizontal_fov``
+that no longer holds.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from sensorkit.base.findings import Finding, Severity
+from sensorkit.knowledge.gazebo_ros import CLASSIC_FOCAL_LENGTH_PARAM, CLASSIC_NO_INTRINSICS_TYPES
+from sensorkit.lint.rules.base import Context, rule
+from sensorkit.model.frames import publishing_plugin, ros_generation
+from sensorkit.model.parse import parse_float
+from sensorkit.model.sensors import CameraSpec, Sensor
+from sensorkit.model.targets import is_gz
+
+
+@rule(
+    "SK409",
+    "warning",
+    "image and camera_info focal lengths disagree: Classic renders with <lens><intrinsics> "
+    "(else horizontal_fov) but camera_info comes from focal_length (else horizontal_fov); "
+    "gz lens intrinsics that disagree with horizontal_fov (Gazebo Sim renders with them: "
+    "the image does not span horizontal_fov)",
+    "gazebo_ros_camera, at run time",
+)
+def focal_length(ctx: Context) -> Iterator[Finding]:
+    for s in ctx.robot.sensors:
+        cam = s.camera if s.is_camera else None
+        if cam is None or cam.width is None or cam.width <= 0:
+            continue
+        hfov = cam.hfov if cam.hfov is not None else 1.047
+        if not 0 < hfov < math.pi:
+            continue
+        half = math.tan(hfov / 2.0)
+        if half <= 0.0 or cam.width > 2**1000:  # a denormal fov halves to 0; a width past floats
+            continue
+        expected = cam.width / (2.0 * half)
+        if is_gz(ctx.target):
+            yield from _gz_intrinsics(ctx, s, cam, hfov, expected)
+        elif cam.lens_intrinsics is not None and s.type not in CLASSIC_NO_INTRINSICS_TYPES:
+            yield from _classic_intrinsics(ctx, s, cam, hfov, expected)
+        else:
+            yield from _classic_focal_length(ctx, s, cam, hfov, expected)
+
+
+def _classic_focal_length(
+    ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
+) -> Iterator[Finding]:
+    """No intrinsics: the image spans horizontal_fov, camera_info says <focal_length>."""
+    for p in s.plugins:
+        f, _ = parse_float(p.param("focal_length"))
+        if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
+            yield ctx.finding(
+                "SK409",
+                Severity.WARNING,
+                f"camera {s.name!r}: focal_length {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
+                f"(which give {expected:.6f}); camera_info and the rendered image will not match",
+                p.source,
+                sensor=s.name,
+                fix=f"remove <focal_length> or write {expected!r}",
+            )
+
+
+def _classic_intrinsics(
+    ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
+) -> Iterator[Finding]:
+    """Gazebo Classic renders with <lens><intrinsics> but gazebo_ros_camera's camera_info
+    takes its fx from <focal_length> or horizontal_fov: they must agree."""
+    assert cam.lens_intrinsics is not None
+    fx = cam.lens_intrinsics[0]
+    plugin, spec = publishing_plugin(s, ctx.target)
+    if fx <= 0 or plugin is None or spec is None:
+        return
+    if not any(d is not None and d.endswith("camera_info") for _, d in spec.topics):
+        return  # no camera_info to disagree with the image
+    tag = CLASSIC_FOCAL_LENGTH_PARAM[ros_generation(ctx.target)]
+    f, _ = parse_float(plugin.param(tag))
+    given = f is not None and f > 0 and math.isfinite(f)
+    published = f if given and f is not None else expected
+    if abs(fx - published) <= 1e-3 * published:
+        return
+    spans = 2.0 * math.atan(cam.width / (2.0 * fx)) if cam.width else hfov
+    whence = f"<{tag}>" if given else f"width {cam.width} and horizontal_fov {hfov:g}"
+    yield ctx.finding(
+        "SK409",
+        Severity.WARNING,
+        f"camera {s.name!r}: Gazebo Classic renders the image with <lens><intrinsics> fx {fx:g}, "
+        f"but {spec.family} publishes camera_info fx {published:.4f} (from {whence}, it never "
+        "reads the intrinsics): camera_info does not match the image",
+        cam.source,
+        sensor=s.name,
+        fix=f"set horizontal_fov to {spans:.6f} (what fx {fx:g} spans)"
+        + (f" and remove <{tag}>" if given else "")
+        + f", or fx to {published:.6f}",
+    )
+
+
+def _gz_intrinsics(
+    ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
+) -> Iterator[Finding]:
+    # Gazebo Sim renders with <lens><intrinsics> when given (gazebosim/gz-sensors@
+    # gz-sensors8:src/CameraSensor.cc:858-872 builds the projection from them), so image
+    # and camera_info agree and it is horizontal_fov that is not what the image spans.
+    # (Gazebo Classic renders with them too but publishes camera_info without them: see
+    # _classic_intrinsics.)
+    if cam.lens_intrinsics is None:
+        return
+    fx = cam.lens_intrinsics[0]
+    if fx > 0 and abs(fx - expected) > 1e-3 * expected:
+        spans = 2.0 * math.atan(cam.width / (2.0 * fx)) if cam.width else hfov
+        yield ctx.finding(
+            "SK409",
+            Severity.WARNING,
+            f"camera {s.name!r}: lens intrinsics fx {fx:g} disagrees with width {cam.width} and "
+            f"horizontal_fov {hfov:g} (which give {expected:.4f}): Gazebo Sim renders with the "
+            f"intrinsics, so the image spans {spans:.4f} rad, not the horizontal_fov written",
+            cam.source,
+            sensor=s.name,
+            fix=f"set fx to {expected:.6f}, or horizontal_fov to {spans:.6f}",
+        )
