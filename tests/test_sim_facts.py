@@ -426,3 +426,43 @@ def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
     assert [(f.sensor, f.severity.label) for f in lacking] == [("gps", "warning")]
     assert "/gps/fix" in lacking[0].message
     assert sk607(others + entry) == []
+
+
+def test_sensor_types_never_created_are_per_version(check) -> None:
+    # Fortress: gazebosim/gz-sim@ign-gazebo6:src/SdfEntityCreator.cc:902-1031 has no
+    # WIDE_ANGLE_CAMERA branch, so "wideanglecamera" (SensorType::WIDE_ANGLE_CAMERA,
+    # gazebosim/sdformat@sdf12:src/Sensor.cc:311-313) falls into the final else: "Sensor type [N]
+    # not supported yet." (:1028-1031).
+    wide = gz_robot(camera_type="wideanglecamera")
+    f = next(f for f in check(wide, target="fortress").findings if f.rule == "SK613")
+    assert f.sensor == "front_camera" and "Fortress" in f.message and 'type="camera"' in (f.fix or "")
+    # Near miss: Harmonic and Jetty create it (gz-sim@gz-sim8:src/SdfEntityCreator.cc:1125-1128
+    # `components::WideAngleCamera`; @gz-sim10:1159-1162), and a plain camera everywhere (:902).
+    assert "SK613" not in rules_of(check(wide, target="harmonic"))
+    assert "SK613" not in rules_of(check(wide, target="jetty"))
+    assert "SK613" not in rules_of(check(gz_robot(), target="fortress"))
+    # No version creates a sonar: SensorType::SONAR (sdformat@sdf14:src/Sensor.cc:399-401) has no
+    # branch in gz-sim@gz-sim8:src/SdfEntityCreator.cc (else :1226-1229; gz-sim10 :1260-1263).
+    sonar = gz_robot().replace('type="gpu_lidar"', 'type="sonar"')
+    for target, version in (("harmonic", "Harmonic"), ("jetty", "Jetty"), ("fortress", "Fortress")):
+        f = next(f for f in check(sonar, target=target).findings if f.rule == "SK613")
+        assert f.sensor == "laser" and version in f.message and "gpu_lidar" in (f.fix or "")
+    assert "SK613" not in rules_of(check(sonar, target="classic"))
+    # air_speed: sdformat12 does not know it ("the provided sensor type is missing or invalid",
+    # sdf12:src/Sensor.cc:393-397); Harmonic creates it (gz-sim8:src/SdfEntityCreator.cc:1139).
+    air = gz_robot().replace('type="gpu_lidar"', 'type="air_speed"')
+    assert "SK613" in rules_of(check(air, target="fortress"))
+    assert "SK613" not in rules_of(check(air, target="harmonic"))
+
+
+def test_never_created_table_cites_each_version() -> None:
+    from sensorkit.knowledge.gazebo_sim import GZ_NEVER_CREATED
+
+    assert set(GZ_NEVER_CREATED) == {"fortress", "harmonic", "jetty"}
+    assert "wideanglecamera" in GZ_NEVER_CREATED["fortress"]
+    assert "wideanglecamera" not in GZ_NEVER_CREATED["harmonic"]
+    assert "air_speed" not in GZ_NEVER_CREATED["jetty"]
+    refs = {"fortress": "@ign-gazebo6:", "harmonic": "@gz-sim8:", "jetty": "@gz-sim10:"}
+    for target, rows in GZ_NEVER_CREATED.items():
+        for kind in ("ray", "lidar", "multicamera", "sonar", "rfid", "rfidtag", "wireless_receiver"):
+            assert refs[target] in rows[kind].source, (target, kind)

@@ -310,13 +310,14 @@ def _gz_topics(
 ) -> list[Topic]:
     from sensorkit.describe.bridge import published_entries
     from sensorkit.describe.sensor_topics import gz_roles
-    from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+    from sensorkit.knowledge.gazebo_sim import gz_never_created, gz_version
 
     sensor = info.sensor
-    if sensor.type in GZ_UNSUPPORTED_SENSOR_TYPES:
+    never = gz_never_created(target, sensor.type)
+    if never is not None:
         notes.append(
-            f"sensor {info.name!r}: gz-sim never creates a {sensor.type!r} sensor, so it "
-            f"publishes nothing (use {GZ_UNSUPPORTED_SENSOR_TYPES[sensor.type]})"
+            f"sensor {info.name!r}: Gazebo Sim {gz_version(target)} never creates a {sensor.type!r} "
+            f"sensor, so it publishes nothing (use {never.use})"
         )
         return []
     scoped = None if sensor.topic else _scoped_topic(robot, info, survivor)

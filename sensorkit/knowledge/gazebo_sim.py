@@ -1,26 +1,135 @@
 """Gazebo Sim (Fortress, Harmonic, Jetty) facts consulted by rules, bridge generation and auto.
 
-Sensor types that sdformat parses but gz-sim never creates, with what to use instead:
+Sensor types that gz-sim never creates, per version. gz-sim turns an ``sdf::Sensor`` into
+components in ``SdfEntityCreator::CreateEntities(const sdf::Sensor *)``, one branch per
+``sdf::SensorType``; a type with no branch gets no sensor component, so no system creates the
+sensor and it publishes nothing. The type strings map to ``sdf::SensorType`` in sdformat's
+``Sensor::Load`` (src/Sensor.cc). Versions read: Fortress = gazebosim/gz-sim@ign-gazebo6 with
+sdformat12 (ign-gazebo6:CMakeLists.txt:77), Harmonic = gz-sim@gz-sim8 with sdformat14
+(gz-sim8:CMakeLists.txt:77), Jetty = gz-sim@gz-sim10 with sdformat 16 (gz-sim10:CMakeLists.txt:94).
 
-- ``ray`` and ``lidar`` parse as ``SensorType::LIDAR`` (gazebosim/sdformat@sdf14:
-  src/Sensor.cc:383-390); gz-sim creates no CPU lidar: "Sensor type LIDAR not supported yet.
-  Try using a GPU LIDAR instead." (gazebosim/gz-sim@gz-sim8:src/SdfEntityCreator.cc:1092-1098;
-  @ign-gazebo6:src/SdfEntityCreator.cc:917; @gz-sim10:src/SdfEntityCreator.cc:1131).
-- ``multicamera`` parses as ``SensorType::MULTICAMERA`` (sdformat@sdf14:src/Sensor.cc:379-382)
-  and has no branch in SdfEntityCreator: "Sensor type [...] not supported yet."
-  (gz-sim@gz-sim8:src/SdfEntityCreator.cc:1227-1229; @ign-gazebo6:1031; @gz-sim10:1263).
-
-Such a sensor publishes nothing on any Gazebo Sim version, so it is never bridged and never
-counted as evidence that a description targets Gazebo Sim.
+Such a sensor is never bridged and never counted as evidence that a description targets
+Gazebo Sim.
 """
 
 from __future__ import annotations
 
-GZ_UNSUPPORTED_SENSOR_TYPES: dict[str, str] = {
-    "ray": 'type="gpu_lidar" with a <lidar> block',
-    "lidar": 'type="gpu_lidar" (the CPU lidar is not implemented)',
-    "multicamera": 'one <sensor type="camera"> per eye, each with its own <topic>',
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class NeverCreated:
+    """A sensor type one Gazebo Sim version never creates: what it does instead, and the fix."""
+
+    why: str
+    use: str
+    source: str
+
+
+_GZ_VERSIONS = {"fortress": "Fortress", "harmonic": "Harmonic", "jetty": "Jetty"}
+# (gz-sim ref, its sdformat ref, SdfEntityCreator.cc lines of the LIDAR branch, of the final else)
+_REFS = {
+    "fortress": ("ign-gazebo6", "sdf12", "912-918", "1028-1031"),
+    "harmonic": ("gz-sim8", "sdf14", "1092-1098", "1226-1229"),
+    "jetty": ("gz-sim10", "sdf16", "1126-1132", "1260-1263"),
 }
+# Sensor.cc lines mapping the type strings, per sdformat ref.
+_SDF_LINES = {
+    "sdf12": {
+        "multicamera": "361-363",
+        "lidar": "365-367",
+        "rfid": "373-379",
+        "sonar": "381-383",
+        "wireless": "385-391",
+        "wideangle": "311-313",
+    },
+    "sdf14": {
+        "multicamera": "379-381",
+        "lidar": "383-385",
+        "rfid": "391-397",
+        "sonar": "399-401",
+        "wireless": "403-409",
+    },
+    "sdf16": {
+        "multicamera": "383-385",
+        "lidar": "387-389",
+        "rfid": "395-401",
+        "sonar": "403-405",
+        "wireless": "407-413",
+    },
+}
+_NO_BRANCH = "it has no branch in SdfEntityCreator, which logs 'Sensor type [N] not supported yet.'"
+_NO_GZ_SENSOR = (
+    'nothing: Gazebo Sim has no sensor of this kind (a plugin with type="custom" can implement one)'
+)
+
+
+def _table(target: str) -> dict[str, NeverCreated]:
+    gz, sdf, lidar_lines, else_lines = _REFS[target]
+    lines = _SDF_LINES[sdf]
+    creator = f"gazebosim/gz-sim@{gz}:src/SdfEntityCreator.cc"
+
+    def row(why: str, use: str, key: str, gz_lines: str = else_lines) -> NeverCreated:
+        return NeverCreated(
+            why, use, f"gazebosim/sdformat@{sdf}:src/Sensor.cc:{lines[key]}; {creator}:{gz_lines}"
+        )
+
+    lidar = (
+        "it parses as SensorType::LIDAR and gz-sim creates no CPU lidar: 'Sensor type LIDAR not "
+        "supported yet. Try using a GPU LIDAR instead.'"
+    )
+    table = {
+        "ray": row(lidar, 'type="gpu_lidar" with a <lidar> block', "lidar", lidar_lines),
+        "lidar": row(
+            lidar, 'type="gpu_lidar" (the CPU lidar is not implemented)', "lidar", lidar_lines
+        ),
+        "multicamera": row(
+            _NO_BRANCH,
+            'one <sensor type="camera"> per eye, each with its own <topic>',
+            "multicamera",
+        ),
+        "sonar": row(
+            _NO_BRANCH, 'a type="gpu_lidar" range sensor (Gazebo Sim has no sonar)', "sonar"
+        ),
+        "rfid": row(_NO_BRANCH, _NO_GZ_SENSOR, "rfid"),
+        "rfidtag": row(_NO_BRANCH, _NO_GZ_SENSOR, "rfid"),
+        "wireless_receiver": row(_NO_BRANCH, _NO_GZ_SENSOR, "wireless"),
+        "wireless_transmitter": row(_NO_BRANCH, _NO_GZ_SENSOR, "wireless"),
+    }
+    if target == "fortress":
+        # Fortress has no WIDE_ANGLE_CAMERA branch (ign-gazebo6:src/SdfEntityCreator.cc:902-1031);
+        # Harmonic adds one (gz-sim8:src/SdfEntityCreator.cc:1125-1128; gz-sim10:1159-1162).
+        wide = row(
+            _NO_BRANCH,
+            'type="camera" (Fortress has no wide-angle camera; Harmonic does)',
+            "wideangle",
+        )
+        table["wideanglecamera"] = table["wide_angle_camera"] = wide
+        # sdformat12 does not know "air_speed": Sensor::Load reports "the provided sensor type is
+        # missing or invalid" (sdf12:src/Sensor.cc:393-397), and gz-sim's create service refuses
+        # an SDF with errors (ign-gazebo6:src/systems/user_commands/UserCommands.cc:1135-1140).
+        # Harmonic creates it (gz-sim8:src/SdfEntityCreator.cc:1139; sdf14:src/Sensor.cc:264-266).
+        table["air_speed"] = NeverCreated(
+            "sdformat 12 rejects the type ('the provided sensor type is missing or invalid'), and "
+            "the create service refuses an SDF with errors",
+            "Harmonic or newer, which creates air_speed sensors, or drop the sensor on Fortress",
+            "gazebosim/sdformat@sdf12:src/Sensor.cc:393-397; "
+            "gazebosim/gz-sim@ign-gazebo6:src/systems/user_commands/UserCommands.cc:1135-1140",
+        )
+    return table
+
+
+GZ_NEVER_CREATED: dict[str, dict[str, NeverCreated]] = {t: _table(t) for t in _REFS}
+
+
+def gz_never_created(target: str, sensor_type: str) -> NeverCreated | None:
+    """The row for a sensor type this Gazebo Sim target never creates; None if it creates it
+    (or the target is not Gazebo Sim)."""
+    return GZ_NEVER_CREATED.get(target, {}).get(sensor_type)
+
+
+def gz_version(target: str) -> str:
+    return _GZ_VERSIONS.get(target, target)
 
 
 # Depth and RGB-D clouds: gz-sensors computes them in its rendering convention, x forward,
@@ -106,5 +215,5 @@ GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"
 # (ignition-forks/ogre-next@40dcea7 (v2.2.4) and @7449a36 (2.3):OgreMain/src/OgreFrustum.cpp:
 # 145-149). So on Gazebo Sim such a GPU lidar never renders. The CPU Lidar base class only
 # clamps ranges to [min, max] with it (gz-sensors@gz-sensors8:src/Lidar.cc:523), and gz-sim
-# never creates a CPU lidar anyway (GZ_UNSUPPORTED_SENSOR_TYPES above).
+# never creates a CPU lidar anyway (GZ_NEVER_CREATED above).
 GZ_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_lidar", "gpu_ray"})

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
-from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
+from sensorkit.knowledge.gazebo_sim import gz_never_created
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import gz_primary_topic, gz_topics, is_bridged, norm_topic
 from sensorkit.model.parse import local
@@ -79,7 +79,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
             topic = gz_primary_topic(s)
             if topic is None or (s.kind == "imu" and s.name in via_control):
                 continue
-            if s.type in GZ_UNSUPPORTED_SENSOR_TYPES:  # never created (SK613): nothing to bridge
+            if gz_never_created(ctx.target, s.type):  # never created (SK613): nothing to bridge
                 continue
             if bridged is None:
                 if not s.topic:

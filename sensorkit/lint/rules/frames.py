@@ -11,7 +11,7 @@ from sensorkit.knowledge.gazebo_sim import (
     GZ_FRAMED_KINDS,
     GZ_NAVSAT_TYPES,
     GZ_SENSOR_POSE_PARAM,
-    GZ_UNSUPPORTED_SENSOR_TYPES,
+    gz_never_created,
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model import transforms as tf
@@ -99,7 +99,7 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
     poses = gz and _gz_sensor_poses_published(robot)
     for s in robot.sensors:
         fr = ctx.frames_of(s)
-        if gz and s.type in GZ_UNSUPPORTED_SENSOR_TYPES:
+        if gz and gz_never_created(ctx.target, s.type):
             continue  # never created (SK613): it stamps nothing
         if gz and fr.is_default and fr.image_frame is None and _gz_stamps_scoped_name(s):
             if poses:

@@ -520,25 +520,24 @@ def noise(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK613",
     "error",
-    "a sensor type Gazebo Sim never creates (`ray`, `lidar`, `multicamera` on Fortress, Harmonic "
-    "and Jetty): it publishes nothing; name the replacement (`gpu_lidar`, one `camera` per eye)",
+    "a sensor type the target's Gazebo Sim never creates (all: `ray`, `lidar`, `multicamera`, "
+    "`sonar`, `rfid`, `rfidtag`, `wireless_*`; Fortress also `wideanglecamera`, `air_speed`): it "
+    "publishes nothing; name the replacement (`gpu_lidar`, one `camera` per eye)",
 )
 def gz_unsupported_type(ctx: Context) -> Iterator[Finding]:
-    from sensorkit.knowledge.gazebo_sim import GZ_UNSUPPORTED_SENSOR_TYPES
-    from sensorkit.model.targets import is_gz
+    # Per version, with sources: sensorkit.knowledge.gazebo_sim.GZ_NEVER_CREATED.
+    from sensorkit.knowledge.gazebo_sim import gz_never_created, gz_version
 
-    if not is_gz(ctx.target):
-        return
     for s in ctx.robot.sensors:
-        use = GZ_UNSUPPORTED_SENSOR_TYPES.get(s.type)
-        if use is None:
+        row = gz_never_created(ctx.target, s.type)
+        if row is None:
             continue
         yield ctx.finding(
             "SK613",
             Severity.ERROR,
-            f"sensor {s.name!r} has type {s.type!r}, which Gazebo Sim ({ctx.target}) never creates: "
-            "it logs 'not supported yet' and the sensor publishes nothing",
+            f"sensor {s.name!r} has type {s.type!r}, which Gazebo Sim {gz_version(ctx.target)} never "
+            f"creates: {row.why}; the sensor publishes nothing ({row.source})",
             s.source,
             sensor=s.name,
-            fix=f"use {use}",
+            fix=f"use {row.use}",
         )
