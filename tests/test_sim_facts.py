@@ -466,3 +466,66 @@ def test_never_created_table_cites_each_version() -> None:
     for target, rows in GZ_NEVER_CREATED.items():
         for kind in ("ray", "lidar", "multicamera", "sonar", "rfid", "rfidtag", "wireless_receiver"):
             assert refs[target] in rows[kind].source, (target, kind)
+
+
+def _wide_sensor(stype: str) -> str:
+    return (f'<sensor name="wide" type="{stype}"><update_rate>30</update_rate><topic>wide/image</topic>'
+            "<gz_frame_id>camera_optical_frame</gz_frame_id><camera><horizontal_fov>3.5</horizontal_fov>"
+            "<image><width>64</width><height>48</height></image><clip><near>0.1</near><far>10</far></clip>"
+            "<camera_info_topic>wide/info</camera_info_topic></camera></sensor>")
+
+
+def test_gz_wideanglecamera_ignores_camera_info_topic(check, tmp_path) -> None:
+    # Only CameraSensor::Load reads <camera_info_topic> (gazebosim/gz-sensors@gz-sensors8 c8159af:
+    # src/CameraSensor.cc:389-392; @gz-sensors10 ff8c92b: :324-327). WideAngleCameraSensor::Load
+    # calls Sensor::Load (src/WideAngleCameraSensor.cc:152 on both) and AdvertiseInfo() (:199),
+    # whose default is the sibling camera_info of <topic> (gz-sensors8 CameraSensor.cc:662-676).
+    # It publishes its image on <topic> (gz-sensors8 WideAngleCameraSensor.cc:174-176).
+    from lxml import etree
+
+    from sensorkit.describe.bridge import sensor_entries
+    from sensorkit.describe.sensor_topics import sensor_topics
+    from sensorkit.lint.engine import Options, validate_file
+    from sensorkit.lint.rules.topic_names import gz_topics
+
+    for stype in ("wideanglecamera", "wide_angle_camera"):  # sdformat@sdf14 8512585:src/Sensor.cc:329
+        el = etree.fromstring(_wide_sensor(stype))
+        for release in ("harmonic", "jetty"):
+            assert [e.gz_topic_name for e in sensor_entries(el, release)] == ["wide/image", "wide/camera_info"]
+        # Fortress has no WideAngleCameraSensor (added in gz-sensors7 by 6c18e47, #171; gz-sim
+        # creates it from gz-sim8 b81e26d:src/SdfEntityCreator.cc:1125-1128): nothing to bridge
+        assert sensor_entries(el, "fortress") == []
+    robot = gz_robot(extra=f'<gazebo reference="camera_link">{_wide_sensor("wideanglecamera")}</gazebo>')
+    wide = next(s for s in check(robot, target="harmonic").robot.sensors if s.name == "wide")  # type: ignore[union-attr]
+    assert "/wide/camera_info" in gz_topics(wide) and "/wide/info" not in gz_topics(wide)
+    assert sensor_topics(wide, "harmonic")[0]["camera_info"] == "/wide/camera_info"
+    # SK607 knows the topics it publishes: a bridge carrying only its camera_info satisfies it
+    path = tmp_path / "wide.urdf"
+    path.write_text(robot)
+    yaml = tmp_path / "bridge.yaml"
+    yaml.write_text("- ros_topic_name: wide/camera_info\n  gz_topic_name: wide/camera_info\n"
+                    "  ros_type_name: sensor_msgs/msg/CameraInfo\n  gz_type_name: gz.msgs.CameraInfo\n"
+                    "  direction: GZ_TO_ROS\n")
+    report = validate_file(path, Options(target="harmonic", bridges=(str(yaml),)))
+    assert not any(f.rule == "SK607" and f.sensor == "wide" for f in report.findings)
+    yaml.write_text(yaml.read_text().replace("wide/camera_info", "wide/info"))
+    report = validate_file(path, Options(target="harmonic", bridges=(str(yaml),)))
+    assert any(f.rule == "SK607" and f.sensor == "wide" for f in report.findings)
+
+
+def test_gz_plain_camera_keeps_its_camera_info_topic(check) -> None:
+    # Near miss: CameraSensor::Load reads <camera_info_topic> (gazebosim/gz-sensors@gz-sensors8
+    # c8159af:src/CameraSensor.cc:389-392; @ign-sensors6 7cfaddf: :379-382).
+    from lxml import etree
+
+    from sensorkit.describe.bridge import sensor_entries
+    from sensorkit.describe.sensor_topics import sensor_topics
+    from sensorkit.lint.rules.topic_names import gz_topics
+
+    el = etree.fromstring(_wide_sensor("camera"))
+    for release in ("fortress", "harmonic", "jetty"):
+        assert [e.gz_topic_name for e in sensor_entries(el, release)] == ["wide/image", "wide/info"]
+    robot = gz_robot(extra=f'<gazebo reference="camera_link">{_wide_sensor("camera")}</gazebo>')
+    cam = next(s for s in check(robot, target="harmonic").robot.sensors if s.name == "wide")  # type: ignore[union-attr]
+    assert "/wide/info" in gz_topics(cam) and "/wide/camera_info" not in gz_topics(cam)
+    assert sensor_topics(cam, "harmonic")[0]["camera_info"] == "/wide/info"

@@ -31,7 +31,12 @@ from typing import Literal, NamedTuple
 from lxml import etree
 
 from sensorkit.describe.intrinsics import InvalidValue
-from sensorkit.knowledge.gazebo_sim import GZ_READS_CAMERA_INFO_TOPIC, GZ_XFORWARD_CLOUD_TYPES
+from sensorkit.knowledge.gazebo_sim import (
+    GZ_NO_WIDE_ANGLE_RELEASES,
+    GZ_READS_CAMERA_INFO_TOPIC,
+    GZ_WIDE_ANGLE_TYPES,
+    GZ_XFORWARD_CLOUD_TYPES,
+)
 
 __all__ = [
     "BridgeEntry",
@@ -57,6 +62,7 @@ _GZ_RELEASES = frozenset({"garden", "harmonic", "ionic", "jetty"})
 
 _SENSOR_TYPES = {
     "camera",
+    *GZ_WIDE_ANGLE_TYPES,  # publish as a camera does, from Garden on (knowledge/gazebo_sim.py)
     "depth_camera",
     "depth",
     "rgbd_camera",
@@ -117,8 +123,8 @@ def _sibling_camera_info(topic: str) -> str:
 def sensor_bridge_entries(sensor_type: str, gz_topic: str, *, gz_version: str) -> list[BridgeEntry]:
     """The GZ_TO_ROS entries for everything a gz-sensors sensor publishes on ``gz_topic``.
 
-    ROS topic names are the gz names. Topics (gz-sensors): ``camera`` -> ``<topic>``
-    and a sibling ``camera_info``; ``depth_camera`` -> ``<topic>``, sibling
+    ROS topic names are the gz names. Topics (gz-sensors): ``camera`` (and
+    ``wideanglecamera``) -> ``<topic>`` and a sibling ``camera_info``; ``depth_camera`` -> ``<topic>``, sibling
     ``camera_info``, ``<topic>/points``; ``rgbd_camera`` -> ``<topic>/image``,
     ``/depth_image``, ``/points``, ``/camera_info``; ``gpu_lidar``/``lidar`` ->
     ``<topic>`` and ``<topic>/points``; ``imu`` -> ``<topic>``.
@@ -131,7 +137,7 @@ def sensor_bridge_entries(sensor_type: str, gz_topic: str, *, gz_version: str) -
         raise InvalidValue(msg)
     topic = gz_topic.rstrip("/") or gz_topic
     kinds: list[tuple[str, MessageKind]]
-    if sensor_type == "camera":
+    if sensor_type == "camera" or sensor_type in GZ_WIDE_ANGLE_TYPES:
         kinds = [(topic, "image"), (_sibling_camera_info(topic), "camera_info")]
     elif sensor_type in ("depth_camera", "depth"):
         kinds = [
@@ -152,7 +158,8 @@ def sensor_bridge_entries(sensor_type: str, gz_topic: str, *, gz_version: str) -
         kinds = [(topic, "imu")]
     else:
         msg = (
-            "sensor_type must be camera, depth_camera, rgbd_camera, gpu_lidar, lidar or imu, "
+            "sensor_type must be camera, wideanglecamera, depth_camera, rgbd_camera, gpu_lidar, "
+            "lidar or imu, "
             f"got {sensor_type!r}"
         )
         raise InvalidValue(msg)
@@ -207,6 +214,8 @@ def published_entries(
     topic = topic or _text(sensor, "topic")
     if stype not in _SENSOR_TYPES or topic is None:
         return []
+    if stype in GZ_WIDE_ANGLE_TYPES and gz_version in GZ_NO_WIDE_ANGLE_RELEASES:
+        return []  # Fortress never creates a wide-angle camera (knowledge/gazebo_sim.py)
     info_topic = (
         _text(sensor, "camera/camera_info_topic") if stype in GZ_READS_CAMERA_INFO_TOPIC else None
     )

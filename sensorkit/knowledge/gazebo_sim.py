@@ -150,11 +150,26 @@ CLOUD_FIX = (
 
 
 # Which camera sensors read <camera><camera_info_topic>: only CameraSensor::Load does
-# (gazebosim/gz-sensors@gz-sensors8:src/CameraSensor.cc:389-392). DepthCameraSensor::Load
-# calls Sensor::Load, not CameraSensor::Load (src/DepthCameraSensor.cc:245-249), so its
-# camera_info goes to the default, a sibling "camera_info" of its topic (CameraSensor.cc:
-# 662-674); RgbdCameraSensor always uses TOPIC/camera_info (src/RgbdCameraSensor.cc:252).
-GZ_READS_CAMERA_INFO_TOPIC = frozenset({"camera", "wideanglecamera", "wide_angle_camera"})
+# (gazebosim/gz-sensors@gz-sensors8 c8159af:src/CameraSensor.cc:389-392; @gz-sensors10 ff8c92b:
+# :324-327; @ign-sensors6 7cfaddf: :379-382). The other camera sensors call Sensor::Load, not
+# CameraSensor::Load, and then AdvertiseInfo() with no topic, so camera_info goes to the
+# default, a sibling "camera_info" of their topic (CameraSensor.cc:662-676; gz-sensors10:
+# 597-611): DepthCameraSensor (src/DepthCameraSensor.cc:249, :297), WideAngleCameraSensor
+# (src/WideAngleCameraSensor.cc:152, :199, the same lines on gz-sensors8 and gz-sensors10),
+# ThermalCameraSensor (src/ThermalCameraSensor.cc:184, :231) and BoundingBoxCameraSensor
+# (src/BoundingBoxCameraSensor.cc:167, :237). RgbdCameraSensor always uses TOPIC/camera_info
+# (src/RgbdCameraSensor.cc:252).
+GZ_READS_CAMERA_INFO_TOPIC = frozenset({"camera"})
+# Wide-angle cameras: WideAngleCameraSensor publishes its image on <topic> (gz-sensors8
+# c8159af:src/WideAngleCameraSensor.cc:174-176) and camera_info beside it (:199). It was added
+# in gz-sensors7 (gazebosim/gz-sensors 6c18e47, #171): ign-sensors6 (Fortress) has no
+# src/WideAngleCameraSensor.cc, and gz-sim creates the sensor from gz-sim8 on
+# (gazebosim/gz-sim@gz-sim8 b81e26d:src/SdfEntityCreator.cc:1125-1128; @gz-sim10 ccd6694:
+# 1159-1162; @ign-gazebo6 aab5556 has no WIDE_ANGLE_CAMERA branch). sdformat reads both
+# spellings (gazebosim/sdformat@sdf14 8512585:src/Sensor.cc:329).
+GZ_WIDE_ANGLE_TYPES = frozenset({"wideanglecamera", "wide_angle_camera"})
+GZ_NO_WIDE_ANGLE_RELEASES = frozenset({"fortress"})
+
 # Which read <camera><depth_camera><clip>: RgbdCameraSensor does
 # (src/RgbdCameraSensor.cc:313-322); DepthCameraSensor renders depth within the camera's own
 # <clip> (src/DepthCameraSensor.cc:349-358).
