@@ -217,13 +217,13 @@ def test_fortress_maps_gz_sim_names_to_ignition_gazebo(check) -> None:
 
 def test_sk409_on_gazebo_sim_says_the_image_follows_the_intrinsics(check) -> None:
     # gz-sensors builds the render projection from <lens><intrinsics> (gazebosim/gz-sensors@
-    # gz-sensors8:src/CameraSensor.cc:858-872): camera_info matches the image; horizontal_fov
-    # is what no longer holds. (Gazebo Classic renders with them but its camera_info does
+    # gz-sensors8 c8159af:src/CameraSensor.cc:858-873, K from them at :729): camera_info
+    # matches the image; horizontal_fov is what no longer holds. (Gazebo Classic renders with them but its camera_info does
     # not: the Classic tests below.)
     lens = "<lens><intrinsics><fx>400</fx><fy>400</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics></lens>"
     robot = gz_robot().replace("<clip><near>0.05</near><far>50</far></clip></camera>", "<clip><near>0.05</near><far>50</far></clip>" + lens + "</camera>", 1)
     f = next(f for f in check(robot, target="harmonic").findings if f.rule == "SK409")
-    assert "renders with the intrinsics" in f.message and "camera_info will not" not in f.message
+    assert "renders with <lens><intrinsics> fx 400" in f.message and "camera_info will not" not in f.message
     assert "SK409" not in rules_of(check(robot.replace("<fx>400</fx>", "<fx>381.36</fx>"), target="harmonic"))
 
 
@@ -529,3 +529,43 @@ def test_gz_plain_camera_keeps_its_camera_info_topic(check) -> None:
     cam = next(s for s in check(robot, target="harmonic").robot.sensors if s.name == "wide")  # type: ignore[union-attr]
     assert "/wide/info" in gz_topics(cam) and "/wide/camera_info" not in gz_topics(cam)
     assert sensor_topics(cam, "harmonic")[0]["camera_info"] == "/wide/info"
+
+
+def _gz_lens(lens: str) -> str:
+    return gz_robot().replace("<clip><near>0.05</near><far>50</far></clip></camera>", "<clip><near>0.05</near><far>50</far></clip><lens>" + lens + "</lens></camera>", 1)
+
+
+def test_sk409_on_gazebo_sim_the_projection_wins_and_k_must_follow(check) -> None:
+    # gz-sensors builds the render projection from <intrinsics> and then again from
+    # <projection> p_fx, p_fy, p_cx, p_cy, so the projection wins (gazebosim/gz-sensors@
+    # gz-sensors8 c8159af:src/CameraSensor.cc:858-873 then :898-914; @gz-sensors10 ff8c92b
+    # :802-837; @ign-sensors6 7cfaddf :290-325). camera_info K is <intrinsics> (else taken
+    # from horizontal_fov, :844-857), P is <projection> (:729-739, :744-757).
+    intr = "<intrinsics><fx>400</fx><fy>400</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics>"
+    proj = "<projection><p_fx>{}</p_fx><p_fy>400</p_fy><p_cx>320</p_cx><p_cy>240</p_cy><tx>0</tx><ty>0</ty></projection>"
+    for target in ("fortress", "harmonic", "jetty"):
+        f = next(f for f in check(_gz_lens(intr + proj.format(450)), target=target).findings if f.rule == "SK409")
+        assert "renders the image with <lens><projection> (p_fx 450" in f.message
+        assert "camera_info K carries fx 400.0000 (from <lens><intrinsics>)" in f.message
+    # no <intrinsics>: K comes from horizontal_fov 1.3962634 at width 640 (fx 381.36)
+    f = next(f for f in check(_gz_lens(proj.format(450)), target="harmonic").findings if f.rule == "SK409")
+    assert "p_fx 450" in f.message and "fx 381.3612 (from width 640 and horizontal_fov 1.39626)" in f.message
+    # near miss: projection and K agree (and with horizontal_fov): nothing to say
+    ok = intr.replace("400</fx>", "381.3613</fx>").replace("400</fy>", "381.3613</fy>")
+    agree = proj.replace("400</p_fy>", "381.3613</p_fy>").format(381.3613)
+    assert "SK409" not in rules_of(check(_gz_lens(ok + agree), target="harmonic"))
+    assert "SK409" not in rules_of(check(_gz_lens(agree.replace("<p_fy>381.3613</p_fy>", "")), target="harmonic"))
+    # near miss: intrinsics off horizontal_fov, but the projection renders what horizontal_fov
+    # says: the old intrinsics-vs-fov warning would be wrong; K-vs-projection is what is off
+    f = next(f for f in check(_gz_lens(intr + agree), target="harmonic").findings if f.rule == "SK409")
+    assert "K does not match the image" in f.message and "spans" not in f.message
+
+
+def test_sk409_on_gazebo_sim_projection_off_horizontal_fov_names_p_fx(check) -> None:
+    # K and projection agree but both are off horizontal_fov: the image spans what p_fx
+    # gives (gz-sensors@gz-sensors8 c8159af:src/CameraSensor.cc:898-914)
+    intr = "<intrinsics><fx>400</fx><fy>400</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics>"
+    proj = "<projection><p_fx>400</p_fx><p_fy>400</p_fy><p_cx>320</p_cx><p_cy>240</p_cy></projection>"
+    f = next(f for f in check(_gz_lens(intr + proj), target="harmonic").findings if f.rule == "SK409")
+    assert "lens p_fx 400" in f.message and "renders with <lens><projection> p_fx 400" in f.message
+    assert f.fix is not None and f.fix.startswith("set p_fx to 381.36")

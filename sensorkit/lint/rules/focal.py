@@ -3,8 +3,10 @@
 Gazebo Classic renders with ``<lens><intrinsics>`` when given, else with ``horizontal_fov``,
 while gazebo_ros_camera publishes camera_info from ``<focal_length>``, else from
 ``horizontal_fov`` (sources in :data:`sensorkit.knowledge.gazebo_ros.CLASSIC_FOCAL_LENGTH_PARAM`).
-Gazebo Sim renders and publishes the intrinsics alike, so there it is ``horizontal_fov``
-that no longer holds.
+Gazebo Sim renders with ``<lens><projection>`` when given, else with ``<intrinsics>``, else
+with ``horizontal_fov``; its camera_info K comes from ``<intrinsics>`` (else horizontal_fov)
+and P from ``<projection>``: a projection K disagrees with leaves K off the image, and
+otherwise it is ``horizontal_fov`` that no longer holds.
 """
 
 from __future__ import annotations
@@ -26,8 +28,8 @@ from sensorkit.model.targets import is_gz
     "warning",
     "image and camera_info focal lengths disagree: Classic renders with <lens><intrinsics> "
     "(else horizontal_fov) but camera_info comes from focal_length (else horizontal_fov); "
-    "gz lens intrinsics that disagree with horizontal_fov (Gazebo Sim renders with them: "
-    "the image does not span horizontal_fov)",
+    "gz lens projection that disagrees with camera_info K (Gazebo Sim renders with <projection> "
+    "when given, else <intrinsics>), or that renders other than horizontal_fov",
     "gazebo_ros_camera, at run time",
 )
 def focal_length(ctx: Context) -> Iterator[Finding]:
@@ -105,23 +107,75 @@ def _classic_intrinsics(
 def _gz_intrinsics(
     ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
 ) -> Iterator[Finding]:
-    # Gazebo Sim renders with <lens><intrinsics> when given (gazebosim/gz-sensors@
-    # gz-sensors8:src/CameraSensor.cc:858-872 builds the projection from them), so image
-    # and camera_info agree and it is horizontal_fov that is not what the image spans.
-    # (Gazebo Classic renders with them too but publishes camera_info without them: see
-    # _classic_intrinsics.)
-    if cam.lens_intrinsics is None:
+    # What gz-sensors renders with and what camera_info carries (gazebosim/gz-sensors@
+    # gz-sensors8 c8159af:src/CameraSensor.cc, UpdateLensIntrinsicsAndProjection, called at
+    # :318 before PopulateInfo at :334): without <intrinsics>, K is taken from the
+    # horizontal_fov projection (:844-857); with them, the render projection is built from
+    # them (:858-873); then, with <projection>, the render projection is built again from
+    # p_fx, p_fy, p_cx, p_cy (:898-914), so the projection wins. camera_info K is
+    # LensIntrinsics (:729-739), P is LensProjection (:744-757). The same order on
+    # @gz-sensors10 ff8c92b (:766-795, :802-837; K :664, P :679) and @ign-sensors6 7cfaddf
+    # (inline in Load: :242-271, :290-325; K :740, P :755).
+    # (Gazebo Classic renders with the intrinsics but publishes camera_info without them:
+    # see _classic_intrinsics.)
+    proj = cam.lens_projection
+    if proj and "fx" not in proj:
+        return  # a <projection> without p_fx renders with sdformat's default: not judged
+    intr = cam.lens_intrinsics
+    keys = ("fx", "fy", "cx", "cy")
+    k: dict[str, float] = (
+        {"fx": expected} if intr is None else dict(zip(keys, intr[:4], strict=True))
+    )
+    if proj:
+        off: list[tuple[str, float, float]] = [
+            (key, proj[key], k[key])
+            for key in keys
+            if key in proj
+            and key in k
+            and math.isfinite(proj[key])
+            and abs(proj[key] - k[key]) > 1e-3 * max(1.0, abs(k[key]))
+        ]
+        if off:
+            yield _gz_k_off_projection(ctx, s, cam, hfov, off)
+            return
+        render_fx, whence = proj["fx"], f"<lens><projection> p_fx {proj['fx']:g}"
+    elif intr is not None:
+        render_fx, whence = intr[0], f"<lens><intrinsics> fx {intr[0]:g}"
+    else:
         return
-    fx = cam.lens_intrinsics[0]
-    if fx > 0 and abs(fx - expected) > 1e-3 * expected:
-        spans = 2.0 * math.atan(cam.width / (2.0 * fx)) if cam.width else hfov
+    if render_fx > 0 and abs(render_fx - expected) > 1e-3 * expected:
+        spans = 2.0 * math.atan(cam.width / (2.0 * render_fx)) if cam.width else hfov
+        tag = "p_fx" if proj else "fx"
         yield ctx.finding(
             "SK409",
             Severity.WARNING,
-            f"camera {s.name!r}: lens intrinsics fx {fx:g} disagrees with width {cam.width} and "
-            f"horizontal_fov {hfov:g} (which give {expected:.4f}): Gazebo Sim renders with the "
-            f"intrinsics, so the image spans {spans:.4f} rad, not the horizontal_fov written",
+            f"camera {s.name!r}: lens {tag} {render_fx:g} disagrees with width {cam.width} and "
+            f"horizontal_fov {hfov:g} (which give {expected:.4f}): Gazebo Sim renders with "
+            f"{whence}, so the image spans {spans:.4f} rad, not the horizontal_fov written",
             cam.source,
             sensor=s.name,
-            fix=f"set fx to {expected:.6f}, or horizontal_fov to {spans:.6f}",
+            fix=f"set {tag} to {expected:.6f}, or horizontal_fov to {spans:.6f}",
         )
+
+
+def _gz_k_off_projection(
+    ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, off: list[tuple[str, float, float]]
+) -> Finding:
+    """gz renders with <projection>, camera_info K says otherwise (sources in _gz_intrinsics)."""
+    src = (
+        "<lens><intrinsics>"
+        if cam.lens_intrinsics is not None
+        else (f"width {cam.width} and horizontal_fov {hfov:g}")
+    )
+    rendered = ", ".join(f"p_{key} {p:g}" for key, p, _ in off)
+    says = ", ".join(f"{key} {kv:.4f}" for key, _, kv in off)
+    return ctx.finding(
+        "SK409",
+        Severity.WARNING,
+        f"camera {s.name!r}: Gazebo Sim renders the image with <lens><projection> ({rendered}; "
+        f"the projection wins over <intrinsics> and horizontal_fov), but camera_info K carries "
+        f"{says} (from {src}); only P follows the projection: K does not match the image",
+        cam.source,
+        sensor=s.name,
+        fix="make <intrinsics> (or horizontal_fov) agree with <projection>, or remove <projection>",
+    )
