@@ -401,6 +401,33 @@ def test_sk402_only_for_sensors_that_share_a_link(check) -> None:
     assert "SK402" in rules_of(check(merged, target="classic"))
 
 
+def test_sk402_per_simulator(check) -> None:
+    # Gazebo Classic 11 creates both sensors of one name on one link (gazebosim/gazebo-classic@
+    # upstream/11.10.2+dfsg via elysia-best/gazebo-classic: gazebo/physics/Link.cc:185-209,
+    # gazebo/sensors/SensorManager.cc:488-531). Two depth cameras then both name their render
+    # texture "<name>_RttTex_Image" (gazebo/sensors/DepthCameraSensor.cc:101-102) and two cameras
+    # "<model::link>::<name>_RttTex" (CameraSensor.cc:146,167): Ogre throws for the second
+    # (OGRECave/ogre@006d77cb:OgreMain/src/OgreResourceManager.cpp ResourceManager::addImpl),
+    # uncaught (SensorManager.cc:320, gazebo/Server.cc:696): gzserver aborts.
+
+    def sk402(urdf: str, target: str) -> list[str]:
+        return [f.severity.label for f in check(urdf, target=target).findings if f.rule == "SK402"]
+
+    depths = robot(camera=camera_sensor(stype="depth"), lidar=camera_sensor(stype="depth", plugin_name="p2"))
+    assert sk402(depths, "classic") == ["error"]
+    cameras = robot(camera=camera_sensor(), lidar=camera_sensor(plugin_name="p2"))
+    assert sk402(cameras, "classic") == ["error"]
+    # A camera and a depth camera of one name name different textures; a lidar none: both
+    # work, only a look-up by scoped name finds the first (SensorManager.cc:883-888).
+    mixed = robot(camera=camera_sensor(stype="depth"), lidar=camera_sensor(plugin_name="p2"))
+    assert sk402(mixed, "classic") == ["warning"]
+    lidar = robot(lidar=lidar_sensor(name="front_camera"))
+    assert sk402(lidar, "classic") == ["warning"]
+    # Gazebo Sim: sdformat refuses any duplicate in one link (gazebosim/sdformat@sdf14:src/Link.cc:167).
+    assert sk402(lidar, "harmonic") == ["error"]
+    assert sk402(robot(lidar=lidar_sensor()), "classic") == []
+
+
 def test_range_sensors_may_share_a_topic(check) -> None:
     def sonar(name: str, link: str) -> str:
         return (f'<gazebo reference="{link}"><sensor name="{name}" type="ray"><update_rate>10</update_rate><ray><scan><horizontal>'

@@ -36,3 +36,16 @@ def frame_bytes(width: int, height: int, fmt: str | None, depth: bool) -> int:
     """Bytes of one image: depth images are 32-bit floats, colour R8G8B8 unless said."""
     per = 4 if depth else BYTES_PER_PIXEL.get(fmt or "R8G8B8", 3)
     return width * height * per
+
+# Gazebo Classic sensor types whose second sensor of one name on one link makes gzserver
+# abort: both sensors are created (gazebosim/gazebo-classic@upstream/11.10.2+dfsg, Debian
+# import elysia-best/gazebo-classic: gazebo/physics/Link.cc:185-209 calls createSensor for
+# every <sensor>; gazebo/sensors/SensorManager.cc:488-531 CreateSensor has no duplicate
+# check), and each names an Ogre render texture after link and sensor name: a camera
+# "<model::link>::<name>_RttTex" (gazebo/sensors/CameraSensor.cc:146,167), a depth camera
+# "<name>_RttTex_Image" (gazebo/sensors/DepthCameraSensor.cc:101-102). Ogre throws
+# ERR_DUPLICATE_ITEM "Resource with the name ... already exists" for the second
+# (OGRECave/ogre@006d77cb82da7b069cdb3188628dc047e4422b40:OgreMain/src/OgreResourceManager.cpp,
+# ResourceManager::addImpl), uncaught around sensor->Init() (SensorManager.cc:320) and
+# sensors::run_once() (gazebo/Server.cc:651,696).
+CLASSIC_TEXTURE_NAMED_TYPES = frozenset({"camera", "depth"})

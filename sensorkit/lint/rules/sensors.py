@@ -8,6 +8,7 @@ from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.limits import (
+    CLASSIC_TEXTURE_NAMED_TYPES,
     PLAUSIBLE_CAMERA_PIXELS,
     PLAUSIBLE_LIDAR_RAYS,
     PROTOBUF_MAX_BYTES,
@@ -79,14 +80,22 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
 @rule(
     "SK402",
     "error",
-    "sensor names unique within the link they end up on after fixed-joint lumping (sdformat "
-    "refuses a duplicate); every sensor has a name",
+    "sensor names unique within the link they end up on after fixed-joint lumping (Gazebo Sim: "
+    "sdformat refuses a duplicate; Gazebo Classic: two cameras abort gzserver, other types are "
+    "found by name only once); every sensor has a name",
 )
 def unique_sensors(ctx: Context) -> Iterator[Finding]:
-    # sdformat loads a link's sensors with loadUniqueRepeated: a second sensor of the same
-    # name in one link is a DUPLICATE_NAME error (gazebosim/sdformat@sdf14:src/Link.cc:167,
-    # src/Utils.hh:128-136). Sensors on different links are scoped apart (world::model::link::
-    # sensor), so equal names there collide only through topics or nodes: SK605 and SK604.
+    # Gazebo Sim: sdformat loads a link's sensors with loadUniqueRepeated: a second sensor of
+    # the same name in one link is a DUPLICATE_NAME error (gazebosim/sdformat@sdf14:
+    # src/Link.cc:167, src/Utils.hh:128-136). Sensors on different links are scoped apart
+    # (world::model::link::sensor), so equal names there collide only through topics or
+    # nodes: SK605 and SK604.
+    # Gazebo Classic 11 creates both (gazebosim/gazebo-classic@upstream/11.10.2+dfsg via
+    # elysia-best/gazebo-classic: gazebo/physics/Link.cc:185-209, gazebo/sensors/
+    # SensorManager.cc:488-531, no duplicate check); see CLASSIC_TEXTURE_NAMED_TYPES for the
+    # types that then abort gzserver. Any other type works, but SensorManager::GetSensor
+    # matches the scoped name world::model::link::sensor and returns the first
+    # (SensorManager.cc:883-888), so the second cannot be looked up by name.
     conv = ctx.conversion
     by_link: dict[tuple[str, str], list[Sensor]] = defaultdict(list)
     for s in ctx.robot.sensors:
@@ -102,21 +111,36 @@ def unique_sensors(ctx: Context) -> Iterator[Finding]:
         link = conv.survivor(s.reference) if s.reference in ctx.robot.link_map else s.reference
         by_link[(str(link), s.name)].append(s)
     for (link, name), items in by_link.items():
+        where = (
+            f"on link {link!r}"
+            if all(x.reference == link for x in items)
+            else f"on links {', '.join(sorted({str(x.reference) for x in items}))}, which lumping merges into {link!r}"
+        )
         for s in items[1:]:
-            where = (
-                f"on link {link!r}"
-                if all(x.reference == link for x in items)
-                else f"on links {', '.join(sorted({str(x.reference) for x in items}))}, which lumping merges into {link!r}"
-            )
+            severity, what = _duplicate_effect(ctx, s, items[0])
             yield ctx.finding(
                 "SK402",
-                Severity.ERROR,
-                f"sensor name {name!r} is used {len(items)} times {where}: sdformat refuses the duplicate",
+                severity,
+                f"sensor name {name!r} is used {len(items)} times {where}: {what}",
                 s.source,
                 sensor=name,
                 link=s.reference,
                 fix="give every sensor on a link its own name",
             )
+
+
+def _duplicate_effect(ctx: Context, s: Sensor, first: Sensor) -> tuple[Severity, str]:
+    if is_gz(ctx.target):
+        return Severity.ERROR, "sdformat refuses the duplicate"
+    if s.type == first.type and s.type in CLASSIC_TEXTURE_NAMED_TYPES:
+        return Severity.ERROR, (
+            f"Gazebo Classic creates both {s.type} sensors, and the second's render texture name is "
+            "already taken: Ogre throws 'Resource with the name ... already exists' and gzserver aborts"
+        )
+    return Severity.WARNING, (
+        "Gazebo Classic creates and runs both, but finds a sensor by its scoped name "
+        "(world::model::link::sensor) and gets only the first"
+    )
 
 
 def _cameras(ctx: Context) -> Iterator[Sensor]:
