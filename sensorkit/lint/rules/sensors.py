@@ -81,8 +81,8 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
     "SK402",
     "error",
     "sensor names unique within the link they end up on after fixed-joint lumping (Gazebo Sim: "
-    "sdformat refuses a duplicate; Gazebo Classic: two cameras abort gzserver, other types are "
-    "found by name only once); every sensor has a name",
+    "sdformat refuses a duplicate; Gazebo Classic: two cameras or two depth cameras abort "
+    "gzserver, other pairs are found by name only once: warning); every sensor has a name",
 )
 def unique_sensors(ctx: Context) -> Iterator[Finding]:
     # Gazebo Sim: sdformat loads a link's sensors with loadUniqueRepeated: a second sensor of
