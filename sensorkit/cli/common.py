@@ -244,10 +244,6 @@ def handle_errors(func: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def stderr_is_tty() -> bool:
-    return sys.stderr.isatty()
-
-
 COLOR_CHOICES = ("auto", "always", "never")
 
 
