@@ -14,8 +14,18 @@ every mesh reference is missing by construction.
 A robot still to be fetched is listed in tests/realworld/wanted.yaml and marked
 ``pending: true`` in robots.yaml: until its files are in the corpus it is skipped.
 
-Used by test_realworld.py (no unlabelled finding, no stale label, precision >= 95 %) and
-by benchmarks/corpus_precision.py (figures, and a skeleton for new findings to label).
+A true label also says its ``impact``: ``defect`` when what the finding names changes what
+the robot does (a sensor that publishes nothing, in the wrong frame, with a wrong
+calibration), ``minor`` when it is true but harmless. An error is a promise that the
+sensor will not work as written, so an error labelled ``minor`` fails the tests.
+
+A finding that stops being reported keeps its label, with ``gone:`` saying why (the rule
+change and its source): the tests then hold that it stays gone, and the label is the
+record of why it went.
+
+Used by test_realworld.py (no unlabelled finding, no stale label, precision >= 95 %, no
+minor error) and by benchmarks/corpus_precision.py (figures, and a skeleton for new
+findings to label).
 """
 
 from __future__ import annotations
@@ -169,6 +179,14 @@ def labels(corpus: Corpus) -> dict[str, dict[Key, dict[str, Any]]]:
     return out
 
 
+IMPACTS = ("defect", "minor")
+
+
+def live(table: dict[Key, dict[str, Any]]) -> dict[Key, dict[str, Any]]:
+    """The labels of findings still reported (not marked ``gone``)."""
+    return {k: lab for k, lab in table.items() if "gone" not in lab}
+
+
 def skeleton(outcome: Outcome, known: dict[Key, dict[str, Any]]) -> str:
     """YAML for the findings that have no label yet (verdict left for a person)."""
     lines = []
@@ -179,6 +197,6 @@ def skeleton(outcome: Outcome, known: dict[Key, dict[str, Any]]) -> str:
         msg = outcome.messages[key].replace('"', "'")
         lines.append(
             f"    - {{rule: {rule}, file: {file}, line: {line if line is not None else 'null'}, "
-            f'verdict: ?, why: ""}}  # {msg[:160]}'
+            f'verdict: ?, impact: ?, why: ""}}  # {msg[:160]}'
         )
     return "\n".join(lines)
