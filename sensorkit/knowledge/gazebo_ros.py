@@ -233,3 +233,157 @@ CLASSIC_FOCAL_LENGTH_PARAM = {"ros2": "focal_length", "ros1": "focalLength"}
 # cameras, and sdformat says intrinsics "cannot be used with WideAngleCamera"
 # (gazebosim/sdformat@sdf9:sdf/1.7/camera.sdf:145).
 CLASSIC_NO_INTRINSICS_TYPES = frozenset({"wideanglecamera", "wide_angle_camera"})
+
+# What an ignored ROS 1 tag costs under ROS 2 (SK602's severity, issue 23): by what the
+# tag sets when its value differs from what the ROS 2 plugin does without it.
+#   "name":        a topic, namespace or frame (the data goes elsewhere, or TF cannot place
+#                  it as the user meant): error;
+#   "calibration": what camera_info or the IMU orientation says: error;
+#   "drive":       the joints and wheel geometry a drive plugin moves: error;
+#   "behaviour":   a rate, noise, limit or flag (the sensor works, not as tuned): warning;
+#   "nothing":     logging, or read by no ROS 1 plugin either: info.
+# A value equal to what ROS 2 does anyway is info whatever its role.
+ROS1_PARAM_ROLE: dict[str, str] = {
+    **dict.fromkeys(
+        (
+            "frameName",
+            "cameraName",
+            "robotNamespace",
+            "imageTopicName",
+            "cameraInfoTopicName",
+            "depthImageTopicName",
+            "depthImageInfoTopicName",
+            "depthImageCameraInfoTopicName",
+            "pointCloudTopicName",
+            "topicName",
+            "bodyName",
+            "commandTopic",
+            "odometryTopic",
+            "odometryFrame",
+            "robotBaseFrame",
+            "remap",
+        ),
+        "name",
+    ),
+    **dict.fromkeys(
+        (
+            "hackBaseline",
+            "baseline",
+            "focalLength",
+            "Cx",
+            "Cy",
+            "CxPrime",
+            "rpyOffset",
+            "rpyOffsets",
+        ),
+        "calibration",
+    ),
+    **dict.fromkeys(
+        (
+            "leftJoint",
+            "rightJoint",
+            "leftFrontJoint",
+            "rightFrontJoint",
+            "leftRearJoint",
+            "rightRearJoint",
+            "wheelSeparation",
+            "wheelDiameter",
+        ),
+        "drive",
+    ),
+    # The ROS 1 camera utils put distortionK1..T2 in camera_info only, never in the image
+    # (noetic-devel f9e1a46:gazebo_plugins/src/gazebo_ros_camera_utils.cpp:199-237 read
+    # them, :580-584 fill D); ROS 2 takes D from the SDF <distortion> the image is rendered
+    # with (ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:402-414). Ignoring them
+    # makes camera_info agree with the image: a warning, not a broken calibration.
+    **dict.fromkeys(
+        (
+            "distortionK1",
+            "distortionK2",
+            "distortionK3",
+            "distortionT1",
+            "distortionT2",
+            "updateRate",
+            "updateRateHZ",
+            "gaussianNoise",
+            "xyzOffset",
+            "xyzOffsets",
+            "initialOrientationAsReference",
+            "wheelTorque",
+            "wheelAcceleration",
+            "publishWheelTF",
+            "publishOdomTF",
+            "publishWheelJointState",
+            "odometrySource",
+            "pointCloudCutoff",
+            "pointCloudCutoffMax",
+        ),
+        "behaviour",
+    ),
+    # alwaysOn: no plugin in ROS 1's gazebo_plugins or gazebo_ros reads it (noetic-devel
+    # f9e1a46: `git grep '"alwaysOn"'` finds nothing); rosDebugLevel sets the log level
+    # only (gazebo_ros_utils.cpp); serviceName names ROS 1's IMU calibration service.
+    **dict.fromkeys(("alwaysOn", "rosDebugLevel", "serviceName"), "nothing"),
+}
+# Tags a ROS 1 plugin of the same library read but never used, or never read at all: they
+# change nothing in either generation. gazebo_ros_imu_sensor (noetic-devel f9e1a46):
+# frameName is its frame (:200-210), bodyName is read by nothing; xyzOffset is read
+# "POSITION OFFSET, UNUSED" (:237-247) and only offset.Rot() is applied (:107).
+ROS1_UNUSED_BY_ROS1: dict[str, frozenset[str]] = {
+    "gazebo_ros_imu_sensor": frozenset({"bodyName", "xyzOffset"}),
+}
+# What the ROS 2 plugin does when the tag's ROS 2 form is absent, for tags whose ROS 2
+# behaviour is a plain value (names and camera numbers are computed by the rule from the
+# sensor). ros-simulation/gazebo_ros_pkgs@ros2 (d52f7c4): gazebo_ros_diff_drive.cpp:257-258
+# (max_wheel_acceleration 0, max_wheel_torque 5), :310 wheel_separation 0.34, :326
+# wheel_diameter 0.15, :345 update_rate 100, :362-365 odometry_frame "odom",
+# robot_base_frame "base_footprint", odometry_source 1 (WORLD), :379-380 publish_wheel_tf
+# and publish_odom_tf false; gazebo_ros_planar_move.cpp:141-145 odom/base_footprint and
+# update_rate 20, :182 publish_odom_tf true; gazebo_ros_imu_sensor.cpp:74-82
+# initial_orientation_as_reference false; gazebo_ros_camera.cpp:476-478 min_depth 0.4,
+# max_depth infinity, :399 hack_baseline 0. ROS 2's IMU plugin adds no noise and no offset
+# of its own (gazebo_ros_imu_sensor.cpp:136-140 copies the sensor's readings).
+# With no <left_joint>/<right_joint> the drive has no joint and does not start
+# ("Inconsistent number of joints specified. Plugin will not work.", gazebo_ros_diff_drive.cpp
+# :261-300): "(none)".
+ROS2_PLAIN_DEFAULTS: dict[str, dict[str, str]] = {
+    "gazebo_ros_diff_drive": {
+        "leftJoint": "(none)",
+        "rightJoint": "(none)",
+        "wheelAcceleration": "0",
+        "wheelTorque": "5",
+        "wheelSeparation": "0.34",
+        "wheelDiameter": "0.15",
+        "updateRate": "100",
+        "odometryFrame": "odom",
+        "robotBaseFrame": "base_footprint",
+        "odometrySource": "1",
+        "publishWheelTF": "false",
+        "publishOdomTF": "false",
+        "publishWheelJointState": "false",
+    },
+    "gazebo_ros_planar_move": {
+        "odometryFrame": "odom",
+        "robotBaseFrame": "base_footprint",
+        "updateRate": "20",
+        "publishOdomTF": "true",
+    },
+    "gazebo_ros_imu_sensor": {
+        "initialOrientationAsReference": "false",
+        "gaussianNoise": "0",
+        "xyzOffset": "0 0 0",
+        "rpyOffset": "0 0 0",
+        "xyzOffsets": "0 0 0",
+        "rpyOffsets": "0 0 0",
+    },
+    "gazebo_ros_camera": {
+        "pointCloudCutoff": "0.4",
+        "pointCloudCutoffMax": "inf",
+        "hackBaseline": "0",
+        "baseline": "0",
+    },
+}
+# ROS 1 spellings of a ROS 2 value: odometrySource "world"/"encoder" (noetic-devel
+# f9e1a46:gazebo_plugins/src/gazebo_ros_diff_drive.cpp:104-107, enum ENCODER 0, WORLD 1)
+# is the ROS 2 integer.
+ROS1_VALUE_SPELLINGS: dict[str, dict[str, str]] = {"odometrySource": {"world": "1", "encoder": "0"}}

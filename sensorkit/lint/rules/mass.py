@@ -143,11 +143,22 @@ def _few(names: list[str], n: int = 8) -> str:
 
 @rule(
     "SK302",
-    "error",
-    "inertia finite, positive definite, triangle inequality (tolerance as gz-math)",
+    "error/warning",
+    "inertia finite, positive definite, triangle inequality (tolerance as gz-math): an error on Gazebo Sim "
+    "for a link that survives fixed-joint lumping (sdformat refuses it and gz-sim refuses to spawn the "
+    "robot); moments that are not positive definite or break the triangle inequality are a warning "
+    "otherwise (Gazebo Classic simulates the values as written)",
     "gz sdf -k",
 )
 def inertia_valid(ctx: Context) -> Iterator[Finding]:
+    # Gazebo Sim: sdformat's Link::Load reports LINK_INERTIA_INVALID when gz-math's
+    # MassMatrix3 rejects the values (gazebosim/sdformat@sdf14:src/Link.cc:302-309), and
+    # gz-sim's create service refuses an entity whose SDF has any error
+    # (gazebosim/gz-sim@gz-sim8:src/systems/user_commands/UserCommands.cc:925-930). A link
+    # a fixed joint lumps has its inertia added to its parent's first, so only a surviving
+    # link is known to be refused. Gazebo Classic takes ixx..izz as written, unchecked
+    # (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/physics/Inertial.cc:127-149):
+    # it simulates a body no real one is, which a user would fix.
     # Links read from the same <mass> and <inertia> text share their mass object and
     # inertia dict (the reader's memo): each such combination is judged once. Keyed by
     # identity, so values that compare equal but print differently (0.0 and -0.0) stay
@@ -166,10 +177,15 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
             else:
                 problem = judged[key] = inertia_problem(inertial)
         if problem:
+            refused = is_gz(ctx.target) and not ctx.conversion.is_lumped(link.name)
+            # Only the moments' shape is a matter of target: no mass, a negative one or a
+            # missing or unreadable moment stay errors everywhere.
+            shape_only = problem.startswith(("inertia is not positive definite", "principal moments"))
             yield ctx.finding(
                 "SK302",
-                Severity.ERROR,
-                f"link {link.name!r} inertial: {problem}",
+                Severity.ERROR if refused or not shape_only else Severity.WARNING,
+                f"link {link.name!r} inertial: {problem}"
+                + (": sdformat reports it invalid and gz-sim refuses to spawn the robot" if refused and shape_only else ""),
                 inertial.source,
                 link=link.name,
                 fix="compute the inertia from the link's shape and mass (box, cylinder, sphere formulas)",

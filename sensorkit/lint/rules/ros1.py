@@ -12,15 +12,19 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import ROS1_TO_ROS2_PARAMS, ROS2_PLUGINS
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.plugins import ros_name
+from sensorkit.lint.rules.ros1_values import consequence, full_name
 from sensorkit.model.parse import children, local
 from sensorkit.model.robot import all_plugins
 
 
 @rule(
     "SK602",
-    "error",
+    "error/warning/info",
     "ROS 1 parameter tags inside a ROS 2 plugin (`frameName`, `cameraName`, `imageTopicName`, `topicName`, "
-    "`robotNamespace`, `hackBaseline`, `updateRate`, ...) are silently ignored: name the ROS 2 form",
+    "`robotNamespace`, `hackBaseline`, `updateRate`, ...) are silently ignored: name the ROS 2 form. Severity "
+    "by consequence: error when the ignored value moves a topic or frame, or changes a calibration or a drive's "
+    "geometry; warning when it changes a rate, noise, limit or flag; info when the value is what ROS 2 does "
+    "anyway, or no plugin ever read it",
 )
 def ros1_params(ctx: Context) -> Iterator[Finding]:
     if ctx.target != "classic":
@@ -33,22 +37,27 @@ def ros1_params(ctx: Context) -> Iterator[Finding]:
         for el in p.param_elements():
             tag = local(el)
             if tag in ROS1_TO_ROS2_PARAMS:
+                severity, why = consequence(ctx, p, tag, (el.text or "").strip())
                 yield ctx.finding(
                     "SK602",
-                    Severity.ERROR,
-                    f"<{tag}> is a ROS 1 parameter: the ROS 2 {p.filename} never reads it and says nothing",
+                    severity,
+                    f"<{tag}> is a ROS 1 parameter: the ROS 2 {p.filename} never reads it{why}",
                     el,
                     sensor=sensor,
-                    fix=f"use {ROS1_TO_ROS2_PARAMS[tag]}",
+                    fix=f"use {ROS1_TO_ROS2_PARAMS[tag]}"
+                    if severity is not Severity.INFO
+                    else f"remove it (or write {ROS1_TO_ROS2_PARAMS[tag]})",
                 )
         ros = p.ros_block()
         if ros is not None:
             for el in children(ros, "remap"):
                 src, dst = el.get("from", "FROM"), el.get("to", "TO")
+                same = full_name(p, src) == full_name(p, dst)
                 yield ctx.finding(
                     "SK602",
-                    Severity.ERROR,
-                    f'<remap from="{src}" to="{dst}"/> is ROS 1 launch syntax: gazebo_ros ignores it',
+                    Severity.INFO if same else Severity.ERROR,
+                    f'<remap from="{src}" to="{dst}"/> is ROS 1 launch syntax: gazebo_ros ignores it'
+                    + (f": both names resolve to {full_name(p, dst)}, so nothing changes" if same else ""),
                     el,
                     sensor=sensor,
                     fix=f"<remapping>{src}:={dst}</remapping>",

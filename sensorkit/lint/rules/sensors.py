@@ -380,10 +380,27 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     return lo, hi
 
 
+def _backwards_sweep(ctx: Context, s: Sensor, spec: LidarSpec, label: str, lo: float, hi: float) -> Finding:
+    """Gazebo Classic's CPU ray casts beam i at min + i * (max - min) / (samples - 1)
+    (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/physics/MultiRayShape.cc:75-93):
+    min above max sweeps the same arc backwards, published with a negative angle_increment.
+    It works: a warning."""
+    return ctx.finding(
+        "SK406",
+        Severity.WARNING,
+        f"lidar {s.name!r}: {label} min_angle {lo:g} is above max_angle {hi:g}: Gazebo "
+        "Classic sweeps the same arc backwards, so scans carry a negative angle_increment",
+        spec.source,
+        sensor=s.name,
+        fix="swap them",
+    )
+
+
 @rule(
     "SK406",
     "error",
-    "lidar: samples >= 1, min_angle < max_angle, 0 <= range min < max (min 0 is an error only on a "
+    "lidar: samples >= 1, min_angle < max_angle (a warning for a Gazebo Classic CPU ray, which sweeps "
+    "backwards), 0 <= range min < max (min 0 is an error only on a "
     "Gazebo Sim gpu_lidar); vertical block sane; "
     "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
 )
@@ -414,10 +431,13 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
             if samples is not None and samples < 1:
                 yield err(f"{label} samples {samples} < 1", "use at least 1 sample")
             if lo is not None and hi is not None and (lo > hi or (lo == hi and (samples or 1) > 1)):
-                yield err(
-                    f"{label} min_angle {lo:g} must be below max_angle {hi:g}",
-                    "swap them or widen the range",
-                )
+                if lo > hi and s.type == "ray" and not is_gz(ctx.target):
+                    yield _backwards_sweep(ctx, s, spec, label, lo, hi)
+                else:
+                    yield err(
+                        f"{label} min_angle {lo:g} must be below max_angle {hi:g}",
+                        "swap them or widen the range",
+                    )
             if samples is not None and samples >= 1 and res is not None:
                 beams = samples * res
                 if res <= 0:
