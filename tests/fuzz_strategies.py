@@ -185,7 +185,10 @@ def plugin_params(spec: PluginSpec) -> list[str]:
     names += [p for p, _ in spec.topics if p]
     if spec.topic_ns_param:
         names.append(spec.topic_ns_param)
-    names += list(spec.sensor_params)
+    if spec.owns is not None and spec.owns.param:
+        names.append(spec.owns.param)
+    if spec.owner_class_param:
+        names.append(spec.owner_class_param)
     if spec.frame_default_param:
         names.append(spec.frame_default_param)
     return list(dict.fromkeys(names))

@@ -292,7 +292,7 @@ def test_realsense_plugin_is_model_level_with_sensor_params(ros: str) -> None:
     # pal-robotics/realsense_gazebo_plugin@src/RealSensePlugin.cpp:91-118,136-146
     spec = _spec("librealsense_gazebo_plugin.so", ros)
     assert spec.level == "model"
-    assert spec.sensor_params == ("prefix",)
+    assert spec.owns is not None and spec.owns.param == "prefix"
     assert "depthOpticalframeName" in spec.frame_params
     assert "colorOpticalframeName" in spec.frame_params
 

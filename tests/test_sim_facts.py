@@ -499,7 +499,8 @@ def test_gz_wideanglecamera_ignores_camera_info_topic(check, tmp_path) -> None:
     wide = next(s for s in check(robot, target="harmonic").robot.sensors if s.name == "wide")  # type: ignore[union-attr]
     assert "/wide/camera_info" in gz_topics(wide) and "/wide/info" not in gz_topics(wide)
     assert sensor_topics(wide, "harmonic")[0]["camera_info"] == "/wide/camera_info"
-    # SK607 knows the topics it publishes: a bridge carrying only its camera_info satisfies it
+    # SK607 knows the topics it publishes: a bridge carrying only its camera_info is seen as
+    # the camera's (the warning names the image it lacks), not as no entry at all
     path = tmp_path / "wide.urdf"
     path.write_text(robot)
     yaml = tmp_path / "bridge.yaml"
@@ -507,10 +508,12 @@ def test_gz_wideanglecamera_ignores_camera_info_topic(check, tmp_path) -> None:
                     "  ros_type_name: sensor_msgs/msg/CameraInfo\n  gz_type_name: gz.msgs.CameraInfo\n"
                     "  direction: GZ_TO_ROS\n")
     report = validate_file(path, Options(target="harmonic", bridges=(str(yaml),)))
-    assert not any(f.rule == "SK607" and f.sensor == "wide" for f in report.findings)
+    sk607 = [f for f in report.findings if f.rule == "SK607" and f.sensor == "wide"]
+    assert len(sk607) == 1 and "bridges its camera_info (/wide/camera_info) but not its image" in sk607[0].message
     yaml.write_text(yaml.read_text().replace("wide/camera_info", "wide/info"))
     report = validate_file(path, Options(target="harmonic", bridges=(str(yaml),)))
-    assert any(f.rule == "SK607" and f.sensor == "wide" for f in report.findings)
+    sk607 = [f for f in report.findings if f.rule == "SK607" and f.sensor == "wide"]
+    assert len(sk607) == 1 and "names any of its topics" in sk607[0].message
 
 
 def test_gz_plain_camera_keeps_its_camera_info_topic(check) -> None:

@@ -15,7 +15,28 @@ from sensorkit.describe.intrinsics import InvalidValue
 
 if TYPE_CHECKING:
     from sensorkit.describe.bridge import BridgeEntry
+    from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Sensor
+
+NO_PLUGIN = "no ROS plugin: the sensor publishes nothing to ROS"
+
+
+def _no_plugin(sensor: Sensor, target: str, robot: Robot | None) -> str:
+    """Why a sensor without a plugin of its own has no topics: nothing publishes it, or a
+    model-level plugin reads it (the same answer SK607 gives, from sensorkit.model.owners)."""
+    if robot is None:
+        return NO_PLUGIN
+    from sensorkit.model.owners import sensor_owner
+
+    owner = sensor_owner(robot, sensor, target)
+    if owner is None:
+        return NO_PLUGIN
+    if owner.certain:
+        return f"no plugin of its own: {owner.how}; sensorkit does not name the topics it publishes"
+    return (
+        f"no plugin of its own, and {owner.how}: sensorkit cannot tell whether it publishes "
+        "this sensor"
+    )
 
 __all__ = ["gz_roles", "sensor_topics"]
 
@@ -24,13 +45,13 @@ def _abs(topic: str) -> str:
     return "/" + topic.strip().strip("/")
 
 
-def _ros2_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
+def _ros2_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], list[str]]:
     from sensorkit.lint.rules.topic_names import resolved_topics
     from sensorkit.model.frames import ros_plugin
 
     plugin = ros_plugin(sensor)
     if plugin is None:
-        return {}, ["no ROS plugin: the sensor publishes nothing to ROS"]
+        return {}, [_no_plugin(sensor, "classic", robot)]
     topics: dict[str, str] = {}
     pairs = resolved_topics(plugin, sensor)
     if not pairs:
@@ -67,13 +88,13 @@ def _ros2_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
     return topics, []
 
 
-def _ros1_topics(sensor: Sensor) -> tuple[dict[str, str], list[str]]:
+def _ros1_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], list[str]]:
     """gazebo_ros_pkgs (ROS 1) names: ``/<robotNamespace>/<cameraName>/<...TopicName>``."""
     from sensorkit.model.frames import ros_plugin
 
     plugin = ros_plugin(sensor, "ros1")
     if plugin is None:
-        return {}, ["no ROS plugin: the sensor publishes nothing to ROS"]
+        return {}, [_no_plugin(sensor, "ros1", robot)]
     ns = (plugin.param("robotNamespace") or "").strip("/")
 
     def full(*parts: str) -> str:
@@ -129,7 +150,9 @@ def _gz_entries(sensor: Sensor, target: str) -> list[BridgeEntry]:
     return sensor_entries(sensor.element, target)
 
 
-def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str]]:
+def sensor_topics(
+    sensor: Sensor, target: str, robot: Robot | None = None
+) -> tuple[dict[str, str], list[str]]:
     """``(role -> ROS topic, notes)``: the ROS topics of ``sensor`` under ``target``.
 
     Roles: ``image``, ``camera_info``, ``depth_image``, ``depth_camera_info``,
@@ -139,7 +162,9 @@ def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str
     names after namespace and remapping (``~/out:=scan`` -> ``/scan``). Gazebo Sim: the
     ROS names of the ros_gz_bridge entries ``sensorkit new`` writes for the sensor's
     ``<topic>`` (``X/image`` -> ``/X/image_raw``, ...); a sensor without ``<topic>``
-    publishes under the world's scoped name, which no file can name.
+    publishes under the world's scoped name, which no file can name. With ``robot``, a
+    sensor without a plugin of its own that a model-level plugin reads says so in its notes
+    rather than "publishes nothing" (:mod:`sensorkit.model.owners`, as SK607 does).
     """
     from sensorkit.model.targets import is_gz
 
@@ -157,8 +182,8 @@ def sensor_topics(sensor: Sensor, target: str) -> tuple[dict[str, str], list[str
             return {}, [f"sensor type {sensor.type!r} has no ros_gz_bridge message type"]
         return _gz_roles(sensor, entries), []
     if target == "ros1":
-        return _ros1_topics(sensor)
-    return _ros2_topics(sensor)
+        return _ros1_topics(sensor, robot)
+    return _ros2_topics(sensor, robot)
 
 
 def gz_roles(sensor: Sensor, entry: BridgeEntry) -> list[str]:

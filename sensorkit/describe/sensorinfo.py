@@ -217,7 +217,7 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
     infos: list[SensorInfo] = []
     for sensor in robot.sensors:
         frames = sensor_frames(robot, sensor, chosen, conversion)
-        topics, notes = sensor_topics(sensor, chosen)
+        topics, notes = sensor_topics(sensor, chosen, robot)
         info = SensorInfo(
             sensor=sensor,
             link=frames.link,

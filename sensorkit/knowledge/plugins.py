@@ -19,6 +19,28 @@ PARAM = "param"  # the default is another parameter's value (``frame_default_par
 LITERAL = "literal"  # a fixed string (``frame_default_value``)
 
 
+# How a model-level plugin finds the sensors it reads (``SensorOwnership.how``):
+BY_NAME_SUFFIX = "name_suffix"  # sensors named <value of ``param``, default ""> + a suffix
+BY_ROS2_CONTROL = "ros2_control"  # sensors named by the URDF's <ros2_control><sensor name=...>
+BY_ROS_PARAMS = "ros_params"  # sensors named in ROS parameters, which a URDF does not hold
+
+
+@dataclass(frozen=True)
+class SensorOwnership:
+    """Which sensors of the robot a model-level plugin looks up by name, as its source says.
+
+    With BY_ROS_PARAMS the names are not in the description: the plugin *may* read any
+    sensor of ``sensor_types``, and sensorkit cannot tell which.
+    """
+
+    how: str  # BY_NAME_SUFFIX, BY_ROS2_CONTROL or BY_ROS_PARAMS
+    sensor_types: frozenset[str] = frozenset()  # SDF sensor types it reads (empty: any)
+    param: str | None = None  # with BY_NAME_SUFFIX: the parameter holding the prefix
+    suffixes: tuple[str, ...] = ()  # with BY_NAME_SUFFIX
+    where: str = ""  # with BY_ROS_PARAMS: the parameters naming the sensors, in words
+    source: str = ""  # repo@ref:path:line it was read from
+
+
 @dataclass(frozen=True)
 class PluginSpec:
     """What one plugin family does, as its source code says."""
@@ -48,7 +70,13 @@ class PluginSpec:
     # and its default when absent ("" for none).
     topic_ns_param: str | None = None
     topic_ns_default: str | None = None
-    sensor_params: tuple[str, ...] = ()  # model plugins that publish sensors named by these params
+    # The sensors a model-level plugin reads by name (and publishes, or hands to
+    # ros_control): see :class:`SensorOwnership`. None: it reads none.
+    owns: SensorOwnership | None = None
+    # A parameter naming a class the plugin loads, which decides what it reads
+    # (gazebo_ros_control's <robotSimType>), and its default: see HARDWARE_SIMS.
+    owner_class_param: str | None = None
+    owner_class_default: str | None = None
     # Every SDF parameter the plugin's Load() reads, as its source says (empty: not recorded).
     # Where a library has a ROS 1 and a ROS 2 spec, both recorded, the parameters only one of
     # them reads tell which generation a description was written for (see
@@ -670,6 +698,11 @@ PLUGINS: tuple[PluginSpec, ...] = (
         libraries=("gazebo_ros_control",),
         ros="ros1",
         level="model",  # gazebo_ros_control_plugin.cpp:314; controllers, no sensor data
+        # What it reads is decided by the RobotHWSim class it loads: <robotSimType>
+        # (gazebo_ros_control_plugin.cpp:105-107), default DefaultRobotHWSim (:111), created
+        # by name at :181; the classes sensorkit knows are in HARDWARE_SIMS.
+        owner_class_param="robotSimType",
+        owner_class_default="gazebo_ros_control/DefaultRobotHWSim",
         source="ros-simulation/gazebo_ros_pkgs@gazebo_ros_control/CMakeLists.txt:69 (noetic-devel f9e1a46)",
     ),
     # ---------------------------------------------------------------------------------------
@@ -681,6 +714,14 @@ PLUGINS: tuple[PluginSpec, ...] = (
         libraries=("gazebo_ros2_control",),
         ros="ros2",
         level="model",  # gazebo_ros2_control_plugin.cpp:504 GZ_REGISTER_MODEL_PLUGIN (humble)
+        # GazeboSystem reads each <ros2_control><sensor name> by the Gazebo sensor's leaf
+        # name (gazebo_system.cpp:568-589, s->Name() != sensor_name at :578), IMU (:608) and
+        # force-torque (:619) sensors.
+        owns=SensorOwnership(
+            how=BY_ROS2_CONTROL,
+            sensor_types=frozenset({"imu", "force_torque"}),
+            source="ros-controls/gazebo_ros2_control@humble 42d875b:gazebo_ros2_control/src/gazebo_system.cpp:568-619",
+        ),
         source="ros-controls/gazebo_ros2_control@gazebo_ros2_control/CMakeLists.txt:31 (humble 42d875b)",
     ),
     PluginSpec(
@@ -690,6 +731,13 @@ PLUGINS: tuple[PluginSpec, ...] = (
         libraries=("gz_ros2_control-system", "ign_ros2_control-system"),
         ros="gz",
         level="model",
+        # GzSystem reads each IMU entity whose name a <ros2_control><sensor name> matches
+        # (gz_system.cpp:426-448, comp.name == _name->Data() at :448; jazzy fa9ced4).
+        owns=SensorOwnership(
+            how=BY_ROS2_CONTROL,
+            sensor_types=frozenset({"imu"}),
+            source="ros-controls/gz_ros2_control@jazzy fa9ced4:gz_ros2_control/src/gz_system.cpp:426-448",
+        ),
         source="ros-controls/gz_ros2_control@gz_ros2_control/CMakeLists.txt:35 (rolling e19b0ef)",
     ),
     # ---------------------------------------------------------------------------------------
@@ -883,7 +931,16 @@ PLUGINS: tuple[PluginSpec, ...] = (
             ("infrared2TopicName", None),
             ("pointCloudTopicName", None),
         ),
-        sensor_params=("prefix",),  # RealSensePlugin.cpp:115-116, default "" (:37)
+        owns=SensorOwnership(
+            how=BY_NAME_SUFFIX,
+            param="prefix",  # RealSensePlugin.cpp:115-116, default "" (:37)
+            # SensorManager::GetSensor(prefix + "depth"/"ired1"/"ired2"/"color"),
+            # RealSensePlugin.cpp:135-147 (names: RealSensePlugin.h:32-35); Gazebo Classic
+            # matches the sensor's own (leaf) name when no scoped name matches
+            # (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/sensors/SensorManager.cc:550-561, :885)
+            suffixes=("depth", "color", "ired1", "ired2"),
+            source="pal-robotics/realsense_gazebo_plugin@melodic-devel 49ab134:src/RealSensePlugin.cpp:135-147",
+        ),
         source="pal-robotics/realsense_gazebo_plugin@src/RealSensePlugin.cpp:92 (melodic-devel 49ab134)",
     ),
     PluginSpec(
@@ -907,7 +964,12 @@ PLUGINS: tuple[PluginSpec, ...] = (
             ("infrared2TopicName", None),
             ("pointCloudTopicName", None),
         ),
-        sensor_params=("prefix",),  # RealSensePlugin.cpp:117-118, default "" (:38)
+        owns=SensorOwnership(
+            how=BY_NAME_SUFFIX,
+            param="prefix",  # RealSensePlugin.cpp:117-118, default "" (:38)
+            suffixes=("depth", "color", "ired1", "ired2"),  # RealSensePlugin.h:32-35
+            source="pal-robotics/realsense_gazebo_plugin@foxy-devel 73b3061:src/RealSensePlugin.cpp:139-149",
+        ),
         source="pal-robotics/realsense_gazebo_plugin@src/RealSensePlugin.cpp:94 (foxy-devel 73b3061)",
     ),
     # ---------------------------------------------------------------------------------------
@@ -1006,6 +1068,30 @@ PLUGINS: tuple[PluginSpec, ...] = (
         source="gazebosim/gz-sim@src/systems/battery_plugin/LinearBatteryPlugin.cc:748 (gz-sim8 b81e26d)",
     ),
 )
+
+
+# The RobotHWSim classes gazebo_ros_control (ROS 1) loads by <robotSimType>, and the sensors
+# each reads (None: none). A class not listed is unknown: it may read sensors by name, and
+# sensorkit cannot tell which.
+HARDWARE_SIMS: dict[str, SensorOwnership | None] = {
+    # Joints only: default_robot_hw_sim.cpp looks up no sensor (no SensorManager call in
+    # the file; ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46).
+    "gazebo_ros_control/DefaultRobotHWSim": None,
+    # PAL's RobotHWSim: IMU sensors by the Gazebo sensor name in the ROS parameter
+    # imu/<id>/gazebo_sensor_name (pal_hardware_gazebo.cpp:263-280: getIds(nh, "imu"),
+    # fetchParam "gazebo_sensor_name", SensorManager::GetSensor). Its force-torque values
+    # come from a joint (force_torque/<id>/sensor_joint, model->GetJoint, :175-181), not
+    # from a Gazebo sensor.
+    "pal_hardware_gazebo/PalHardwareGazebo": SensorOwnership(
+        how=BY_ROS_PARAMS,
+        sensor_types=frozenset({"imu"}),
+        where="the ROS parameters imu/<id>/gazebo_sensor_name",
+        source="pal-robotics/pal_hardware_gazebo@melodic-devel 320e672:src/pal_hardware_gazebo.cpp:263-280",
+    ),
+    # PAL's transmission variant derives from RobotHWSim directly
+    # (include/pal_hardware_gazebo/pal_hardware_transmission_gazebo.h:44) and reads no sensor.
+    "pal_hardware_gazebo/PalHardwareTransmissionGazebo": None,
+}
 
 
 def lookup(filename_or_library: str, ros: str) -> PluginSpec | None:

@@ -1,7 +1,8 @@
 """SK607, SK612: what reaches ROS.
 
-A sensor that publishes nothing to ROS (no plugin on Classic; on Gazebo Sim, no
-ros_gz_bridge entry for any of its topics), and a bridge entry of a sensor message type
+A sensor that publishes nothing to ROS (no plugin on Classic and no model-level plugin
+that reads it, see sensorkit.model.owners; on Gazebo Sim, no ros_gz_bridge entry for any
+of its topics, or for a camera's image while its camera_info is bridged), and a bridge entry of a sensor message type
 that no sensor of the robot feeds.
 """
 
@@ -13,7 +14,7 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_sim import gz_never_created
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import gz_primary_topic, gz_topics, is_bridged, norm_topic
-from sensorkit.model.parse import local
+from sensorkit.model.owners import sensor_owner
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 
@@ -24,47 +25,70 @@ def _scoped_link(ctx: Context, s: Sensor) -> str:
     return ctx.conversion.survivor(ref) if ref in ctx.robot.link_map else ref
 
 
-def _ros2_control_sensors(ctx: Context) -> set[str]:
-    """Sensors a ros2_control simulation plugin reads by name: a <ros2_control><sensor name=...>
-    matching the simulator sensor's name. Gazebo Classic's gazebo_ros2_control
-    (ros-controls/gazebo_ros2_control@humble:gazebo_ros2_control/src/gazebo_system.cpp:554-589,
-    IMU and force-torque) and Gazebo Sim's gz_ros2_control
-    (ros-controls/gz_ros2_control@jazzy:gz_ros2_control/src/gz_system.cpp:426-448;
-    @humble:ign_ros2_control/src/ign_system.cpp:430-452, IMU). Only with the plugin loaded."""
-    plugins = (
-        ("gz_ros2_control", "ign_ros2_control") if is_gz(ctx.target) else ("gazebo_ros2_control",)
+def _camera_split(s: Sensor, topics: list[str]) -> tuple[list[str], str] | None:
+    """``(image topics, camera_info topic)`` of a gz camera, from :func:`gz_topics` order
+    (or the scoped default); None for a sensor that is not a camera."""
+    if s.kind not in ("camera", "depth", "rgbd", "multicamera"):
+        return None
+    if not s.topic:
+        name = f"/sensor/{s.name}"
+        images = [f"{name}/image", f"{name}/depth_image"] if s.kind == "rgbd" else [topics[0]]
+        return images, f"{name}/camera_info"
+    if s.kind == "rgbd":
+        return topics[:2], topics[3]
+    return [topics[0]], topics[-1]
+
+
+def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Finding | None:
+    """SK607 for a gz sensor when a bridge is known: none of its topics bridged, or a
+    camera whose camera_info is bridged and none of its images."""
+    scoped = not s.topic
+    topics = gz_topics(s) if s.topic else [topic, f"/sensor/{s.name}/"]
+    files = ", ".join(ctx.bridge.files) if ctx.bridge else ""
+    shown = topic if s.topic else f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}"
+    fix_topic = topic.lstrip("/") if s.topic else "..." + topic
+    if any(is_bridged(t, scoped, bridged) for t in topics):
+        # A camera_info without its image: ROS gets the calibration of a camera it never sees.
+        split = _camera_split(s, gz_topics(s) if s.topic else [topic])
+        if split is None or not is_bridged(split[1], scoped, bridged):
+            return None
+        images, info = split
+        if any(is_bridged(t, scoped, bridged) for t in images):
+            return None
+        # Info, not a warning: projects often bridge the image with ros_gz_image's
+        # image_bridge from a launch file, which sensorkit does not read (MOGI-ROS/
+        # Week-9-10-Simple-arm@425c335:bme_ros2_simple_arm/launch/spawn_robot.launch.py:133-138
+        # bridges /gripper_camera/image and /table_camera/image so, beside a gz_bridge.yaml
+        # that carries only their camera_info).
+        return ctx.finding(
+            "SK607",
+            Severity.INFO,
+            f"camera {s.name!r}: {files} bridges its camera_info ({info}) but not its image "
+            f"({', '.join(images)}): unless a launch file bridges the image some other way "
+            "(ros_gz_image's image_bridge), ROS gets the calibration of a camera it never sees",
+            s.source,
+            sensor=s.name,
+            fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic} (sensor_msgs/msg/Image)",
+        )
+    return ctx.finding(
+        "SK607",
+        Severity.WARNING,
+        f"sensor {s.name!r} publishes on gz topic {shown}, and no entry of "
+        f"{files} names any of its topics: unless a launch "
+        "file bridges them some other way, ROS never sees this sensor",
+        s.source,
+        sensor=s.name,
+        fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic}",
     )
-    if not any(p.library.startswith(plugins) for p in ctx.robot.model_plugins):
-        return set()
-    root = ctx.robot.document.root
-    return {
-        el.get("name", "")
-        for block in root
-        if local(block) == "ros2_control"
-        for el in block
-        if local(el) == "sensor"
-    }
-
-
-def _is_published_by_model_plugin(ctx: Context, s: Sensor) -> bool:
-    """A model-level plugin names this sensor among its parameters (it publishes it by name)."""
-    for p in ctx.robot.model_plugins:
-        for el in p.element.iter():
-            if (
-                el is not p.element
-                and isinstance(el.tag, str)
-                and (el.text or "").strip() == s.name
-            ):
-                return True
-    return False
 
 
 @rule(
     "SK607",
     "warning",
     "a sensor publishes nothing to ROS (no plugin on classic, and no model-level plugin that "
-    "publishes it by name; on gz: no ros_gz_bridge entry for its topic when a bridge is known, "
-    "info on the scoped default topic when none is)",
+    "reads it by name: info when one may and sensorkit cannot tell; on gz: no ros_gz_bridge "
+    "entry for its topic when a bridge is known, info for a camera's image when only its "
+    "camera_info is bridged, and on the scoped default topic when no bridge is known)",
 )
 def publishes_nothing(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
@@ -73,11 +97,11 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
         if bridge is not None and bridge.files
         else None
     )
-    via_control = _ros2_control_sensors(ctx)
     for s in ctx.robot.sensors:
+        owner = sensor_owner(ctx.robot, s, ctx.target)
         if is_gz(ctx.target):
             topic = gz_primary_topic(s)
-            if topic is None or (s.kind == "imu" and s.name in via_control):
+            if topic is None or (owner is not None and owner.certain):
                 continue
             if gz_never_created(ctx.target, s.type):  # never created (SK613): nothing to bridge
                 continue
@@ -94,29 +118,21 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                         fix=f"add <topic>{s.name}</topic> (a short, stable name) and bridge it",
                     )
                 continue
-            # Any of its topics will do: images often travel through ros_gz_image's
-            # image_bridge, started by a launch file, while camera_info goes through the YAML.
-            topics = gz_topics(s) if s.topic else [topic, f"/sensor/{s.name}/"]
-            if any(is_bridged(t, not s.topic, bridged) for t in topics):
-                continue
-            shown = (
-                topic if s.topic else f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}"
-            )
+            found = _gz_unbridged(ctx, s, topic, bridged)
+            if found is not None:
+                yield found
+        elif s.plugins or (owner is not None and owner.certain):
+            continue
+        elif owner is not None:
             yield ctx.finding(
                 "SK607",
-                Severity.WARNING,
-                f"sensor {s.name!r} publishes on gz topic {shown}, and no entry of "
-                f"{', '.join(bridge.files) if bridge else ''} names any of its topics: unless a launch "
-                "file bridges them some other way, ROS never sees this sensor",
+                Severity.INFO,
+                f"sensor {s.name!r} has no plugin, and {owner.how}: sensorkit cannot tell "
+                "whether it reads this sensor; if it does not, nothing publishes it to ROS",
                 s.source,
                 sensor=s.name,
-                fix=f"add a GZ_TO_ROS entry with gz_topic_name: {topic.lstrip('/') if s.topic else '...' + topic}",
             )
-        elif (
-            not s.plugins
-            and s.name not in via_control
-            and not _is_published_by_model_plugin(ctx, s)
-        ):
+        else:
             yield ctx.finding(
                 "SK607",
                 Severity.WARNING,
