@@ -110,6 +110,13 @@ CASES: list[tuple[str, str, str, str, str]] = [
      robot(lidar=lidar_sensor(noise="<noise><type>gaussian_quantized</type><stddev>0.01</stddev></noise>")), "classic", ".urdf"),
     ("SK409", robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><focal_length>500</focal_length>")),
      robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><focal_length>381.3612981450099</focal_length>")), "classic", ".urdf"),
+    # SK412: sdformat@sdf9:sdf/1.7/camera.sdf:146-158 defaults, gazebo-classic@11.10.2:gazebo/rendering/Camera.cc:194-210
+    # (more, with Gazebo Sim, in tests/test_lens_defaults.py)
+    ("SK412", robot(camera=camera_sensor(camera='<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height></image>'
+                                             '<lens><intrinsics><fx>381.3613</fx><fy>381.3613</fy></intrinsics></lens></camera>')),
+     robot(camera=camera_sensor(camera='<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height></image>'
+                                      '<lens><intrinsics><fx>381.3613</fx><fy>381.3613</fy><cx>320</cx><cy>240</cy></intrinsics></lens></camera>')),
+     "classic", ".urdf"),
     ("SK501", robot(camera=camera_sensor(params="<frame_name>camera_optcal_frame</frame_name>")), CLEAN, "classic", ".urdf"),
     ("SK502", robot(camera=camera_sensor(params="<frame_name>camera_link</frame_name>")), CLEAN, "classic", ".urdf"),
     ("SK502", robot(optical_rpy="0 0 -1.5707963267948966"), robot(optical_rpy="-1.5680 0 -1.5708"), "classic", ".urdf"),

@@ -36,6 +36,7 @@ __all__ = [
     "camera_size",
     "convention_of",
     "depth_range",
+    "gz_lens",
     "lidar_scans",
     "plugin_number",
     "published_intrinsics",
@@ -131,6 +132,36 @@ def _distortion(cam: CameraSpec) -> tuple[float, float, float, float, float] | N
     return (k1, k2, p1, p2, k3)
 
 
+def gz_lens(
+    cam: CameraSpec, notes: list[str]
+) -> tuple[tuple[float, float, float, float, float] | None, dict[str, float]]:
+    """``(lens_intrinsics, projection)`` as Gazebo Sim loads ``cam``'s ``<lens>`` blocks: a
+    value a written block leaves out takes sdformat's default, with a note (sources:
+    :data:`sensorkit.knowledge.gazebo_sim.SDF_LENS_INTRINSICS_DEFAULTS`). A block with a value
+    that is not a number is taken as written (the parser already said so)."""
+    from sensorkit.knowledge.gazebo_sim import LENS_DEFAULTED_TAGS, lens_block_values
+
+    lens, projection = cam.lens_intrinsics, dict(cam.lens_projection)
+    keys = {"p_fx": "fx", "p_fy": "fy", "p_cx": "cx", "p_cy": "cy", "tx": "tx", "ty": "ty"}
+    given = {
+        "intrinsics": cam.lens_intrinsics_given,
+        "projection": {tag: projection[key] for tag, key in keys.items() if key in projection},
+    }
+    for block, left_out in cam.lens_left_out.items():
+        values = lens_block_values(block, given[block])
+        if len(given[block]) + len(left_out) < len(values):
+            continue  # a value written but unreadable: not modelled
+        if block == "intrinsics":
+            lens = (values["fx"], values["fy"], values["cx"], values["cy"], values["s"])
+        else:
+            projection = {keys[tag]: v for tag, v in values.items()}
+        defaulted = [t for t in LENS_DEFAULTED_TAGS[block] if t in left_out]
+        if defaulted:
+            said = ", ".join(f"{t}={values[t]:g}" for t in defaulted)
+            notes.append(f"<lens><{block}> leaves out {said}: sdformat's defaults (see SK412)")
+    return lens, projection
+
+
 def published_intrinsics(
     sensor: Sensor, cam: CameraSpec, target: str, *, convention: Convention | None = None
 ) -> tuple[Intrinsics, list[str]]:
@@ -173,7 +204,7 @@ def published_intrinsics(
         if ros1:  # gazebo_ros_camera_utils (ROS 1) treats 0 as "compute it"
             cx = cx or None
             cy = cy or None
-        if cam.lens_intrinsics is not None:
+        if cam.lens_intrinsics is not None or "intrinsics" in cam.lens_left_out:
             notes.append(CLASSIC_LENS_NOTE)
         return (
             camera_intrinsics(
@@ -191,18 +222,19 @@ def published_intrinsics(
             notes,
         )
     if conv == "gz":
+        lens, projection = gz_lens(cam, notes)
         return (
             camera_intrinsics(
                 width,
                 height,
                 hfov,
                 "gz",
-                lens_intrinsics=cam.lens_intrinsics,
+                lens_intrinsics=lens,
                 distortion=distortion,
                 # gz-sensors fills camera_info P from <lens><projection> (p_fx, p_fy, p_cx,
                 # p_cy, tx, ty); without it, from the intrinsics, tx 0
                 # (gazebosim/gz-sensors@gz-sensors8:src/CameraSensor.cc:741-752, :876-890).
-                projection=dict(cam.lens_projection),
+                projection=projection,
             ),
             notes,
         )

@@ -232,3 +232,62 @@ GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"
 # clamps ranges to [min, max] with it (gz-sensors@gz-sensors8:src/Lidar.cc:523), and gz-sim
 # never creates a CPU lidar anyway (GZ_NEVER_CREATED above).
 GZ_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_lidar", "gpu_ray"})
+
+
+# sdformat's defaults for the values a <lens><intrinsics> or <lens><projection> block leaves
+# out. sdf::Camera::Load reads each with `Get<double>(tag, current)` once the block is there
+# (gazebosim/sdformat@sdf14 8512585:src/Camera.cc:421-435 intrinsics, :437-452 projection;
+# @sdf12 b9417e5 (Fortress) and @sdf13 31bbc9b: :419-433, :435-450), and Element::Get falls
+# back to the element description's default for a child that is not written
+# (@sdf14:include/sdf/Element.hh:1075-1077, `else if (this->HasElementDescription(_key))
+# result.first = this->ElementDescription(_key)->Get<T>(_errors)`); the parser also adds the required intrinsics children with their
+# defaults (@sdf14:src/parser.cc:2046-2076). Those defaults: @sdf12, @sdf13 and @sdf14
+# sdf/1.9/camera.sdf:181-193 (fx 277, fy 277, cx 160, cy 120, s 0, required="1") and
+# :200-215 (p_fx 277, p_fy 277, p_cx 160, p_cy 120, tx 0, ty 0, required="0"); the private
+# members start with the same numbers (@sdf14:src/Camera.cc:181-208). gz-sensors then renders
+# with them and publishes them: camera_info K from LensIntrinsics*, P from LensProjection*
+# (gazebosim/gz-sensors@gz-sensors8 c8159af:src/CameraSensor.cc:729-735 K, :744-752 P); the
+# render projection is built from <intrinsics> (:858-873), then from <projection> (:898-914);
+# the same on @ign-sensors6 7cfaddf (Fortress: Load :257-271, :309-325; K :740-746, P :755-763)
+# and @gz-sensors10 ff8c92b (Jetty: P :679-687, render :783, :824; sdformat@sdf16 9a26f90:
+# src/Camera.cc:411-441, sdf/1.9/camera.sdf:181-209 the same defaults).
+# Gazebo Classic (sdformat9) reads the same intrinsics defaults (@sdf9:sdf/1.7/camera.sdf:
+# 146-158) through `sdfIntrinsics->Get<double>("fx")` and renders with them
+# (elysia-best/gazebo-classic@debian/11.10.2+dfsg-1:gazebo/rendering/Camera.cc:194-210,
+# Camera::LoadCameraIntrinsics); it never reads <lens><projection> (no "projection" or "p_fx"
+# element is read anywhere under gazebo/).
+SDF_LENS_INTRINSICS_DEFAULTS: dict[str, float] = {
+    "fx": 277.0,
+    "fy": 277.0,
+    "cx": 160.0,
+    "cy": 120.0,
+    "s": 0.0,
+}
+SDF_LENS_PROJECTION_DEFAULTS: dict[str, float] = {
+    "p_fx": 277.0,
+    "p_fy": 277.0,
+    "p_cx": 160.0,
+    "p_cy": 120.0,
+    "tx": 0.0,
+    "ty": 0.0,
+}
+# The values whose default makes a wrong camera: focal lengths and principal point (a left-out
+# skew, tx or ty is 0, which is what a mono camera or a left eye means).
+LENS_DEFAULTED_TAGS: dict[str, tuple[str, ...]] = {
+    "intrinsics": ("fx", "fy", "cx", "cy"),
+    "projection": ("p_fx", "p_fy", "p_cx", "p_cy"),
+}
+# Which <lens> blocks each simulator reads (sources above).
+LENS_BLOCKS_READ: dict[str, tuple[str, ...]] = {
+    "gz": ("intrinsics", "projection"),
+    "classic": ("intrinsics",),
+}
+
+
+def lens_block_values(block: str, written: dict[str, float]) -> dict[str, float]:
+    """Every value of a written ``<lens>`` block (``"intrinsics"`` or ``"projection"``, keyed by
+    its SDF tags) as sdformat loads it: the written ones, sdformat's default for the rest."""
+    defaults = (
+        SDF_LENS_INTRINSICS_DEFAULTS if block == "intrinsics" else SDF_LENS_PROJECTION_DEFAULTS
+    )
+    return {tag: written.get(tag, default) for tag, default in defaults.items()}

@@ -60,6 +60,17 @@ EXAMPLES: dict[str, Example] = {
         good='<plugin name="cam" filename="libgazebo_ros_camera.so">\n'
         "  <frame_name>camera_optical_frame</frame_name>\n</plugin>",
     ),
+    "SK412": Example(
+        why=(
+            "sdformat gives what a <lens><projection> or <intrinsics> block leaves out its "
+            "defaults, fx=fy=277, cx=160, cy=120, whatever the image size: Gazebo Sim renders "
+            "with them and publishes them in camera_info, so a right eye written with only "
+            "<tx> sees a different image and stereo matching uses the wrong P."
+        ),
+        bad="<lens><projection><tx>-55.4</tx></projection></lens>",
+        good="<lens><projection>\n  <p_fx>554.383</p_fx><p_fy>554.383</p_fy>"
+        "<p_cx>320</p_cx><p_cy>240</p_cy>\n  <tx>-55.4</tx>\n</projection></lens>",
+    ),
     "SK301": Example(
         why=(
             "Gazebo drops a link without mass that a moving joint holds, and everything "

@@ -59,6 +59,9 @@ class CameraSpec:
     depth_far: float | None = None
     lens_intrinsics: tuple[float, float, float, float, float] | None = None
     lens_projection: dict[str, float] = field(default_factory=dict)  # p_fx.. tx ty as written
+    lens_intrinsics_given: dict[str, float] = field(default_factory=dict)  # fx.. s as written
+    # each <lens> block written ("intrinsics", "projection") and the tags it leaves out
+    lens_left_out: dict[str, tuple[str, ...]] = field(default_factory=dict)
     distortion: dict[str, float] = field(default_factory=dict)
     noise: Noise | None = None
     pose: Origin | None = None  # multicamera: each camera's own pose
@@ -235,11 +238,19 @@ def read_camera(el: etree._Element, locate: Locate) -> CameraSpec:
         vals = [
             _num(text_of(intr, k), f"lens intrinsics {k}", p) for k in ("fx", "fy", "cx", "cy", "s")
         ]
+        tags = ("fx", "fy", "cx", "cy", "s")
+        cam.lens_left_out["intrinsics"] = tuple(t for t in tags if child(intr, t) is None)
+        cam.lens_intrinsics_given = {
+            t: float(v) for t, v in zip(tags, vals, strict=True) if v is not None
+        }
         if all(v is not None for v in vals[:4]):
             fx, fy, cx, cy = (float(v) for v in vals[:4])  # type: ignore[arg-type]
             cam.lens_intrinsics = (fx, fy, cx, cy, float(vals[4] or 0.0))
     proj = child(child(el, "lens"), "projection")
     if proj is not None:
+        cam.lens_left_out["projection"] = tuple(
+            t for t in ("p_fx", "p_fy", "p_cx", "p_cy", "tx", "ty") if child(proj, t) is None
+        )
         for tag, key in (
             ("p_fx", "fx"),
             ("p_fy", "fy"),

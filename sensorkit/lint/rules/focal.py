@@ -1,4 +1,5 @@
-"""SK409: the focal length the image is rendered with against the one camera_info carries.
+"""SK409: the focal length the image is rendered with against the one camera_info carries;
+SK412: a partial <lens><intrinsics>/<projection>, whose left-out values take sdformat's defaults.
 
 Gazebo Classic renders with ``<lens><intrinsics>`` when given, else with ``horizontal_fov``,
 while gazebo_ros_camera publishes camera_info from ``<focal_length>``, else from
@@ -16,6 +17,7 @@ from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import CLASSIC_FOCAL_LENGTH_PARAM, CLASSIC_NO_INTRINSICS_TYPES
+from sensorkit.knowledge.gazebo_sim import LENS_BLOCKS_READ, LENS_DEFAULTED_TAGS, lens_block_values
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import publishing_plugin, ros_generation
 from sensorkit.model.parse import parse_float
@@ -178,4 +180,109 @@ def _gz_k_off_projection(
         cam.source,
         sensor=s.name,
         fix="make <intrinsics> (or horizontal_fov) agree with <projection>, or remove <projection>",
+    )
+
+
+@rule(
+    "SK412",
+    "warning",
+    "partial lens projection/intrinsics: the left-out values take sdformat's defaults "
+    "fx=fy=277, cx=160, cy=120",
+    "none",
+)
+def partial_lens(ctx: Context) -> Iterator[Finding]:
+    # sdformat fills what a written <lens><intrinsics>/<projection> leaves out with 277, 277,
+    # 160, 120; Gazebo Sim renders with those and publishes them in camera_info, Gazebo
+    # Classic renders with the intrinsics ones and never reads <projection> (sources at
+    # sensorkit.knowledge.gazebo_sim.SDF_LENS_INTRINSICS_DEFAULTS).
+    sim = "gz" if is_gz(ctx.target) else "classic"
+    for s in ctx.robot.sensors:
+        cam = s.camera if s.is_camera else None
+        if cam is None or not cam.lens_left_out or s.type in CLASSIC_NO_INTRINSICS_TYPES:
+            continue  # a wide-angle camera is no pinhole: its lens is not judged
+        natural = _natural_lens(cam)
+        for block in LENS_BLOCKS_READ[sim]:
+            left_out = cam.lens_left_out.get(block, ())
+            missing = [t for t in LENS_DEFAULTED_TAGS[block] if t in left_out]
+            values = lens_block_values(block, _written(cam, block))
+            if not missing or all(
+                natural.get(t.removeprefix("p_")) is not None
+                and abs(values[t] - natural[t.removeprefix("p_")])
+                <= _TOLERANCE[t.removeprefix("p_")]
+                for t in missing
+            ):
+                continue  # nothing left out, or the defaults are what the image gives anyway
+            yield _partial_lens_finding(ctx, s, cam, block, sim, missing, values, natural)
+
+
+_TOLERANCE = {"fx": 0.5, "fy": 0.5, "cx": 0.5, "cy": 0.5}  # pixels
+
+
+def _written(cam: CameraSpec, block: str) -> dict[str, float]:
+    """The values a <lens> block writes, keyed by its SDF tags."""
+    if block == "intrinsics":
+        return dict(cam.lens_intrinsics_given)
+    return {
+        (f"p_{k}" if k in ("fx", "fy", "cx", "cy") else k): v
+        for k, v in cam.lens_projection.items()
+    }
+
+
+def _natural_lens(cam: CameraSpec) -> dict[str, float]:
+    """fx, fy, cx, cy the image and horizontal_fov give (gz's K without a lens block, to the
+    pixel): what left-out lens values would be harmless at."""
+    out: dict[str, float] = {}
+    hfov = cam.hfov if cam.hfov is not None else 1.047
+    if cam.width is not None and cam.width > 0 and 0 < hfov < math.pi and math.tan(hfov / 2) > 0:
+        out["fx"] = out["fy"] = cam.width / (2.0 * math.tan(hfov / 2.0))
+        out["cx"] = cam.width / 2.0
+    if cam.height is not None and cam.height > 0:
+        out["cy"] = cam.height / 2.0
+    return out
+
+
+def _partial_lens_finding(
+    ctx: Context,
+    s: Sensor,
+    cam: CameraSpec,
+    block: str,
+    sim: str,
+    missing: list[str],
+    values: dict[str, float],
+    natural: dict[str, float],
+) -> Finding:
+    p = "p_" if block == "projection" else ""
+    said = ", ".join(f"{t}={values[t]:g}" for t in missing)
+    fx, fy, cx, cy = (values[p + k] for k in ("fx", "fy", "cx", "cy"))
+    if block == "projection":
+        what = (
+            f"Gazebo Sim publishes camera_info P = [{fx:g}, 0, {cx:g}, {values['tx']:g}; 0, {fy:g}, "
+            f"{cy:g}, {values['ty']:g}; 0, 0, 1, 0] and renders the image with it"
+        )
+    elif sim == "gz":
+        what = (
+            f"Gazebo Sim publishes camera_info K = [{fx:g}, 0, {cx:g}; 0, {fy:g}, {cy:g}; 0, 0, 1]"
+            + ("" if "projection" in cam.lens_left_out else " (and P from it)")
+            + " and renders the image with it"
+        )
+    else:
+        what = (
+            f"Gazebo Classic renders the image with fx {fx:g}, fy {fy:g}, cx {cx:g}, cy {cy:g} "
+            "(gazebo_ros_camera's camera_info never reads <intrinsics>)"
+        )
+    gives = ", ".join(f"{k} {v:.4g}" for k, v in natural.items())
+    fix = ", ".join(
+        f"<{t}>{natural[t.removeprefix('p_')]:.6g}</{t}>"
+        for t in missing
+        if t.removeprefix("p_") in natural
+    )
+    return ctx.finding(
+        "SK412",
+        Severity.WARNING,
+        f"camera {s.name!r}: <lens><{block}> leaves out {', '.join(missing)}, which take "
+        f"sdformat's defaults ({said}): {what}"
+        + (f"; the image and horizontal_fov give {gives}" if gives else ""),
+        cam.source,
+        sensor=s.name,
+        fix=f"write {fix}" if fix else f"write {', '.join(missing)}",
     )
