@@ -14,7 +14,9 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     gz_frames,
     input,
     mass,
+    placement,
     plugins,
+    principal,
     ros1,
     sensors,
     topics,
@@ -30,6 +32,7 @@ RULE_ORDER = (
     "SK607", "SK612", "SK608", "SK609", "SK610", "SK611", "SK614",  # ... bridge, gz_frames
     "SK401", "SK402", "SK403", "SK404", "SK405", "SK406", "SK407", "SK408", "SK409",  # sensors
     "SK613",  # sensors
+    "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
 )  # fmt: skip
 put_in_order(RULE_ORDER)
