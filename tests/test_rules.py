@@ -20,6 +20,12 @@ def _tree(*parts: str) -> str:
 
 # (rule, triggering description, near miss, target, file suffix)
 CASES: list[tuple[str, str, str, str, str]] = [
+    ("SK410",
+     robot(camera=camera_sensor(camera="<image><width>640</width><height>480</height></image>")),
+     robot(camera=camera_sensor()), "classic", ".urdf"),
+    ("SK411",
+     robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><cx>0.0045</cx>")),
+     robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><cx>320.5</cx>")), "classic", ".urdf"),
     ("SK104",
      robot(extra='<link name="m"><visual><geometry><mesh filename="meshes/nothere.stl"/></geometry></visual>' + inertial() + "</link>" + joint("mj", "base_link", "m")),
      robot(extra='<link name="m"><visual><geometry><mesh filename="model://somewhere/x.stl"/></geometry></visual>' + inertial() + "</link>" + joint("mj", "base_link", "m")),

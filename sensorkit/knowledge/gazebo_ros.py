@@ -387,3 +387,28 @@ ROS2_PLAIN_DEFAULTS: dict[str, dict[str, str]] = {
 # f9e1a46:gazebo_plugins/src/gazebo_ros_diff_drive.cpp:104-107, enum ENCODER 0, WORLD 1)
 # is the ROS 2 integer.
 ROS1_VALUE_SPELLINGS: dict[str, dict[str, str]] = {"odometrySource": {"world": "1", "encoder": "0"}}
+
+# The principal point camera_info carries (SK411). Gazebo Classic renders a sensor camera
+# without <lens><intrinsics> through a symmetric frustum (aspect ratio and FOVy only:
+# elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/rendering/Camera.cc:2033-2035;
+# with intrinsics, a custom projection: :2027-2030), so the image's principal point is its
+# centre. ROS 1 GazeboRosCameraUtils reads <Cx>/<Cy> (ros-simulation/gazebo_ros_pkgs@
+# noetic-devel f9e1a46:gazebo_plugins/src/gazebo_ros_camera_utils.cpp:167-181), replaces
+# only 0 by (width + 1) / 2, (height + 1) / 2 (:506-509) and publishes them as K[2], K[5]
+# (:588, :591) and P[2], P[6] (:609, :613); the camera, depth camera, openni kinect,
+# multicamera, triggered camera and prosilica plugins all use it. ROS 2 gazebo_ros_camera
+# takes <cx>/<cy> with default (width + 1) / 2, (height + 1) / 2, a written 0 kept as 0
+# (@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:360-364), into k[2], k[5]
+# (:429, :432). Per generation: (cx tag, cy tag, a written 0 means "computed").
+PRINCIPAL_POINT_PARAMS = {"ros1": ("Cx", "Cy", True), "ros2": ("cx", "cy", False)}
+PRINCIPAL_POINT_FAMILIES = frozenset(
+    {
+        "gazebo_ros camera (ROS 2)",
+        "gazebo_plugins camera (ROS 1)",
+        "gazebo_plugins triggered camera (ROS 1)",
+        "gazebo_plugins multicamera (ROS 1)",
+        "gazebo_plugins depth camera (ROS 1)",
+        "gazebo_plugins openni kinect (ROS 1)",
+        "gazebo_plugins prosilica (ROS 1)",
+    }
+)

@@ -14,7 +14,9 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     gz_frames,
     input,
     mass,
+    placement,
     plugins,
+    principal,
     ros1,
     sensors,
     topics,
@@ -31,6 +33,7 @@ RULE_ORDER = (
     "SK401", "SK402", "SK403", "SK404", "SK405", "SK406", "SK407", "SK408", "SK409",  # sensors
     "SK613",  # sensors
     "SK412",  # focal
+    "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
 )  # fmt: skip
 put_in_order(RULE_ORDER)
