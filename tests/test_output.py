@@ -11,6 +11,7 @@ from builders import camera_sensor, gz_robot, lidar_sensor, robot
 from conftest import ROOT
 from conftest import run_cli as cli
 
+from sensorkit.base.findings import Severity
 from sensorkit.lint.rules import RULES
 
 BAD = ROOT / "tests/robots/acceptance/sk502_bad.urdf"
@@ -110,6 +111,19 @@ def test_readme_rule_table_matches_registry() -> None:
     assert begin in readme and end in readme, "README lacks the generated rule table markers"
     table = readme.split(begin, 1)[1].split(end, 1)[0]
     assert table == rule_table(fixable), "README rule table drifted: run `sensorkit rules --format markdown`"
+
+
+def test_the_severity_contract_is_in_the_readme_and_in_rules() -> None:
+    """Issue 23: the promise each severity makes is written once (SEVERITY_CONTRACT) and
+    said in shared terms in the README and by `sensorkit rules`."""
+    from sensorkit.base.findings import SEVERITY_CONTRACT
+
+    readme = (ROOT / "README.md").read_text()
+    listing = cli("rules").stdout
+    for level, promise in SEVERITY_CONTRACT.items():
+        assert f"- **{level.label}**: {promise}" in readme, level
+        assert promise in listing, level
+    assert set(SEVERITY_CONTRACT) == {Severity.ERROR, Severity.WARNING, Severity.INFO}
 
 
 def test_validate_does_not_import_pybullet_or_trimesh() -> None:

@@ -27,6 +27,16 @@ class Severity(enum.IntEnum):
             raise ValueError(msg) from None
 
 
+# What each severity promises the user (issue 23). Every rule's severity is judged by it;
+# `sensorkit rules` and the README print it.
+SEVERITY_CONTRACT: dict[Severity, str] = {
+    Severity.ERROR: "the sensor will not work as written: no data, data in a frame TF cannot "
+    "place, or geometry or calibration that is wrong",
+    Severity.WARNING: "it works, but something a user would fix",
+    Severity.INFO: "true and harmless, or a limit of what sensorkit knows",
+}
+
+
 @dataclass(frozen=True)
 class SourceRef:
     """Where an element came from: a file and a 1-based line (None when unknown)."""

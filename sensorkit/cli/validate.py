@@ -347,3 +347,8 @@ def rules(
         if colored:  # the first severity's colour (error/warning: red)
             sev = f"\x1b[{styles[info.severity.split('/')[0]]}m{sev}\x1b[0m"
         typer.echo(f"{rid}  {sev} {fixable(rid) or '-':<11} {info.title}", color=colored)
+    from sensorkit.base.findings import SEVERITY_CONTRACT
+
+    typer.echo("\nseverity is a promise:")
+    for level, promise in sorted(SEVERITY_CONTRACT.items(), reverse=True):
+        typer.echo(f"  {level.label:<8} {promise}")
