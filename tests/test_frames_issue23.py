@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from builders import joint, lidar_sensor, link
+from builders import OPTICAL, inertial, joint, lidar_sensor, link
 from conftest import rules_of
 
 SENSORS = '<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors"/></gazebo>'
@@ -50,3 +50,67 @@ def test_ros1_velodyne_frame_name_with_leading_slash_is_the_link(check) -> None:
     assert "SK501" not in rules_of(r)
     assert "SK501" not in rules_of(check(_velodyne("vlp16_link")))
 
+
+# --- false class 1: Gazebo Sim stereo, two cameras on one link -----------------------
+
+def _gz_cam(name: str, y: float, frame: str, topic: str | None = None) -> str:
+    return (
+        f'<sensor name="{name}" type="camera"><pose>0 {y} 0 0 0 0</pose><update_rate>30</update_rate>'
+        f"<topic>{topic or name + '/image_raw'}</topic><gz_frame_id>{frame}</gz_frame_id>"
+        '<camera><horizontal_fov>1.2</horizontal_fov><image><width>640</width><height>480</height>'
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera></sensor>"
+    )
+
+
+def _gz_stereo(right_frame: str = "left_optical_frame", *, right_link: str = "stereo_link",
+               left_topic: str | None = None, right_topic: str | None = None) -> str:
+    return _tree(
+        '<link name="base_link"/>', link("stereo_link", inertial()),
+        joint("stereo_joint", "base_link", "stereo_link", "0.2 0 0.3"),
+        link("other_link", inertial()),
+        joint("other_joint", "base_link", "other_link", "0.2 0 0.3", type="revolute",
+              extra='<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'),
+        '<link name="left_optical_frame"/>',
+        joint("left_optical_joint", "stereo_link", "left_optical_frame", "0 0.06 0", OPTICAL),
+        '<link name="half_optical_frame"/>',
+        joint("half_optical_joint", "stereo_link", "half_optical_frame", "0 0.01 0", OPTICAL),
+        f'<gazebo reference="stereo_link">{_gz_cam("left", 0.06, "left_optical_frame", left_topic)}</gazebo>',
+        f'<gazebo reference="{right_link}">{_gz_cam("right", -0.06, right_frame, right_topic)}</gazebo>',
+        SENSORS,
+    )
+
+
+def _sk503(report: object) -> list[str]:
+    return [f.sensor for f in report.findings if f.rule == "SK503"]  # type: ignore[attr-defined]
+
+
+def test_gz_stereo_right_eye_in_left_optical_frame_is_not_sk503(check) -> None:
+    # near miss: gz-sim gives the second camera on a link the baseline |y_right - y_left|
+    # (gazebosim/gz-sim@ign-gazebo6:src/systems/sensors/Sensors.cc:831-861,
+    # @gz-sim8:src/systems/sensors/Sensors.cc:1189-1224), which gz-sensors writes into
+    # camera_info as P[3] = -fx * baseline (gazebosim/gz-sensors@ign-sensors6:
+    # src/CameraSensor.cc:805-815, @gz-sensors8:src/CameraSensor.cc:794-804): the right eye
+    # stamped with the left optical frame, 0.12 m to its left, is the ROS stereo convention.
+    for target in ("fortress", "harmonic"):
+        assert _sk503(check(_gz_stereo(), target=target)) == []
+
+
+def test_gz_stereo_topic_swap_decides_the_right_eye(check) -> None:
+    # Sensors.cc:851-855 (ign-gazebo6): the first camera is the right one when its topic
+    # holds "right" and the second's "left". Here the description's first camera ("left",
+    # at +0.06) is published on a "right" topic, so gz gives it the baseline, not the
+    # second: the second, stamped 0.12 m away, keeps baseline 0 and SK503 stays.
+    r = check(_gz_stereo(left_topic="stereo/right/image", right_topic="stereo/left/image"), target="harmonic")
+    assert _sk503(r) == ["right"]
+
+
+def test_gz_stereo_offset_that_is_not_the_baseline_is_sk503(check) -> None:
+    # trigger: the right eye stamped with a frame 0.07 m to its left, not the 0.12 m baseline.
+    assert _sk503(check(_gz_stereo("half_optical_frame"), target="harmonic")) == ["right"]
+
+
+def test_gz_cameras_on_two_links_are_no_stereo_pair(check) -> None:
+    # trigger: the second camera is on another link (a revolute joint: no lumping), so
+    # gz-sim pairs nothing (Sensors.cc:842-844 looks the parent up) and the offset is real.
+    r = check(_gz_stereo(right_link="other_link"), target="harmonic")
+    assert _sk503(r) == ["right"]
