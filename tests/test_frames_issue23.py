@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from builders import OPTICAL, inertial, joint, lidar_sensor, link
+from builders import OPTICAL, camera_sensor, inertial, joint, lidar_sensor, link, robot
 from conftest import rules_of
 
 SENSORS = '<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors"/></gazebo>'
@@ -114,3 +114,110 @@ def test_gz_cameras_on_two_links_are_no_stereo_pair(check) -> None:
     # gz-sim pairs nothing (Sensors.cc:842-844 looks the parent up) and the offset is real.
     r = check(_gz_stereo(right_link="other_link"), target="harmonic")
     assert _sk503(r) == ["right"]
+
+
+# --- miss 3: an optical joint with the wrong rotation --------------------------------
+
+WRONG = "-1.5707963267948966 0 1.5707963267948966"  # yaw +pi/2: the image looks backwards
+
+
+def _fix(path, *, unsafe: bool = False):  # type: ignore[no-untyped-def]
+    from sensorkit.fix.apply import fix_paths
+    from sensorkit.lint.engine import Options
+
+    return fix_paths([path], Options(target="classic"), unsafe=unsafe).files[0]
+
+
+def _validate(path):  # type: ignore[no-untyped-def]
+    from sensorkit.lint.engine import Options, validate_file
+
+    return validate_file(path, Options(target="classic"))
+
+
+def test_sk502_on_a_dedicated_optical_link_points_at_its_joint_rpy(check, tmp_path) -> None:
+    text = robot(optical_rpy=WRONG)
+    (f,) = [f for f in check(text, target="classic").findings if f.rule == "SK502"]
+    line = text.splitlines().index(next(x for x in text.splitlines() if 'name="camera_optical_joint"' in x)) + 1
+    assert (f.joint, f.line) == ("camera_optical_joint", line)
+    assert f.fix == "write rpy=\"-1.5707963267948966 0 -1.5707963267948966\" on joint 'camera_optical_joint'"
+    path = tmp_path / "rover.urdf"
+    path.write_text(text)
+    ff = _fix(path)  # safe: the rpy is corrected in place, no second optical frame
+    assert len(ff.applied) == 1
+    new = path.read_text()
+    assert new == text.replace(f'rpy="{WRONG}"', f'rpy="{OPTICAL}"')
+    assert "SK502" not in {x.rule for x in _validate(path).findings}
+
+
+def test_sk502_in_xacro_writes_pi_over_two(check, tmp_path) -> None:
+    text = robot(optical_rpy="${-pi/2} 0 ${pi/2}").replace(
+        '<robot name="rover">', '<robot name="rover" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    )
+    path = tmp_path / "rover.urdf.xacro"
+    path.write_text(text)
+    (f,) = [f for f in _validate(path).findings if f.rule == "SK502"]
+    assert f.joint == "camera_optical_joint"
+    # a xacro expression is not rewritten: it says where to change it
+    ff = _fix(path)
+    assert not ff.applied and path.read_text() == text
+    path.write_text(text.replace("${-pi/2} 0 ${pi/2}", WRONG))
+    _fix(path)
+    assert 'rpy="${-pi/2} 0 ${-pi/2}"' in path.read_text()
+
+
+def test_sk502_on_an_optical_link_with_other_roles_is_refused(check, tmp_path) -> None:
+    # near miss for the in-place fix: a link hangs off the optical frame, so turning it
+    # would move that link too; the finding stays on the sensor and the fix is refused
+    # with the reason, never a second optical frame beside the wrong one.
+    extra = '<link name="marker"/>' + joint("marker_joint", "camera_optical_frame", "marker", "0 0 0.1")
+    text = robot(optical_rpy=WRONG, extra=extra)
+    (f,) = [f for f in check(text, target="classic").findings if f.rule == "SK502"]
+    assert f.joint is None
+    path = tmp_path / "rover.urdf"
+    path.write_text(text)
+    ff = _fix(path, unsafe=True)
+    assert path.read_text() == text
+    assert any("links hang off 'camera_optical_frame'" in n.text for n in ff.notes if n.finding.rule == "SK502")
+
+
+def _optical_named(name: str, rpy: str, parent_rpy: str = "0 0 0") -> str:
+    return _tree(
+        '<link name="base_link"/>', link("cam2_link"),
+        joint("cam2_joint", "base_link", "cam2_link", "0.1 0 0.2", parent_rpy),
+        f'<link name="{name}"/>', joint("cam2_optical_joint", "cam2_link", name, "0 0 0", rpy),
+    )
+
+
+def test_sk508_link_named_optical_that_is_not(check) -> None:
+    r = check(_optical_named("cam2_optical_frame", "0 0 0"), target="classic")
+    (f,) = [f for f in r.findings if f.rule == "SK508"]
+    assert (f.link, f.joint, f.severity.name) == ("cam2_optical_frame", "cam2_optical_joint", "WARNING")
+    assert "SK508" in rules_of(check(_optical_named("cam2_link_optical", "0 0 1.5707963267948966"), target="classic"))
+
+
+def test_sk508_near_misses(check) -> None:
+    # a correct optical link; one optical from a link above its parent (its parent is an
+    # intermediate frame already turned); a name where "optical" is no optical frame
+    # (PX4's optical_flow_link, an optical-flow sensor's body, x forward).
+    assert "SK508" not in rules_of(check(_optical_named("cam2_optical_frame", OPTICAL), target="classic"))
+    turned = _tree(
+        '<link name="base_link"/>', '<link name="cam_color_frame"/>',
+        joint("a", "base_link", "cam_color_frame", "0 0 0", OPTICAL),
+        '<link name="cam_color_optical_frame"/>', joint("b", "cam_color_frame", "cam_color_optical_frame"),
+    )
+    assert "SK508" not in rules_of(check(turned, target="classic"))
+    assert "SK508" not in rules_of(check(_optical_named("optical_flow_link", "0 0 0"), target="classic"))
+
+
+def test_sk508_leaves_a_stamped_frame_to_sk502(check) -> None:
+    r = check(robot(optical_rpy=WRONG), target="classic")
+    assert "SK502" in rules_of(r) and "SK508" not in rules_of(r)
+
+
+
+def test_sk502_does_not_blame_an_optical_joint_that_writes_the_optical_rotation(check) -> None:
+    # near miss (ROBOTIS OP3's head camera): the optical joint is right, the sensor's
+    # <pose> turns the camera; the finding stays on the sensor and names no joint.
+    cam = camera_sensor(extra="<update_rate>30</update_rate><pose>0 0 0 -1.5708 0 -3.141592</pose>")
+    (f,) = [f for f in check(robot(camera=cam), target="classic").findings if f.rule == "SK502"]
+    assert f.joint is None

@@ -14,8 +14,10 @@ from sensorkit.knowledge.gazebo_sim import (
     gz_never_created,
 )
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
+from sensorkit.model.parse import child
 from sensorkit.model.parts import Joint
 from sensorkit.model.robot import Robot
 from sensorkit.model.targets import is_gz
@@ -265,11 +267,32 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         )
         if fr.how == "default":
             where = "the plugin names no frame, so Gazebo uses the link it sits on after lumping"
+        message = (
+            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
+            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}"
+        )
+        joint, rpy, _why = blamed_optical_joint(ctx, s, fr, frame)
+        if joint is not None and rpy is not None:
+            # The frame is a link whose only role is this camera's optical frame: the wrong
+            # rotation is its joint's rpy, and that is where the finding points.
+            text = rpy_text(rpy, robot.document.expanded)
+            origin = child(joint.element, "origin")
+            yield ctx.finding(
+                "SK502",
+                Severity.ERROR,
+                f"{message}; the rotation comes from joint {joint.name!r}",
+                origin if origin is not None else joint.element,
+                sensor=s.name,
+                frame=frame,
+                link=fr.link,
+                joint=joint.name,
+                fix=f'write rpy="{text}" on joint {joint.name!r}',
+            )
+            continue
         yield ctx.finding(
             "SK502",
             Severity.ERROR,
-            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
-            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}",
+            message,
             s.source,
             sensor=s.name,
             frame=frame,
