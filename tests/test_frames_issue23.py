@@ -214,6 +214,46 @@ def test_sk508_leaves_a_stamped_frame_to_sk502(check) -> None:
     assert "SK502" in rules_of(r) and "SK508" not in rules_of(r)
 
 
+# --- miss 4: units: a sensor more than 10 m from the link it hangs off ----------------
+
+def _mounted(xyz: str, pose: str = "0 0 0 0 0 0", root: str = "base_link") -> str:
+    cam = camera_sensor(params="<frame_name>cam_optical_frame</frame_name>", extra=f"<pose>{pose}</pose>")
+    return _tree(
+        f'<link name="{root}"/>' if root == "world" else "", link("base_link"),
+        joint("root_joint", "world", "base_link") if root == "world" else "",
+        link("cam_link"), joint("cam_joint", "base_link", "cam_link", xyz),
+        '<link name="cam_optical_frame"/>', joint("cam_optical_joint", "cam_link", "cam_optical_frame", "0 0 0", OPTICAL),
+        f'<gazebo reference="cam_link">{cam}</gazebo>',
+    )
+
+
+def test_sk509_millimetres_written_as_metres(check) -> None:
+    r = check(_mounted("150 0 300"), target="classic")
+    (f,) = [f for f in r.findings if f.rule == "SK509"]
+    assert (f.sensor, f.link, f.severity.name) == ("front_camera", "base_link", "WARNING")
+    assert "335.41 m" in f.message
+    # the sensor <pose> counts too (on a link that is not lumped: its joint's parent)
+    moving = _mounted("0.15 0 0.3", pose="12 0 0 0 0 0").replace('type="fixed"><parent link="base_link"/><child link="cam_link"/>', 'type="revolute"><parent link="base_link"/><child link="cam_link"/>')
+    moving = moving.replace('<origin xyz="0.15 0 0.3" rpy="0 0 0"/></joint>', '<origin xyz="0.15 0 0.3" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>', 1)
+    assert "SK509" in rules_of(check(moving, target="classic"))
+
+
+def test_sk509_near_misses(check) -> None:
+    assert "SK509" not in rules_of(check(_mounted("9 0 0"), target="classic"))
+    assert "SK509" not in rules_of(check(_mounted("0.15 0 0.3"), target="classic"))
+
+
+def test_sk509_a_sensor_fixed_to_the_world_is_not_measured(check) -> None:
+    # a camera on a fixed joint to a link named world stands in the world (a scene
+    # camera 20 m away), not on the robot
+    cam = camera_sensor(params="<frame_name>cam_link</frame_name>")
+    scene = _tree(
+        '<link name="world"/>', link("base_link"), joint("root_joint", "world", "base_link"),
+        link("cam_link"), joint("cam_joint", "world", "cam_link", "20 0 5"),
+        f'<gazebo reference="cam_link">{cam}</gazebo>',
+    )
+    assert "SK509" not in rules_of(check(scene, target="classic"))
+
 
 def test_sk502_does_not_blame_an_optical_joint_that_writes_the_optical_rotation(check) -> None:
     # near miss (ROBOTIS OP3's head camera): the optical joint is right, the sensor's

@@ -1,9 +1,9 @@
-"""SK508: frames as the joints write them; and the optical joint SK502 blames.
+"""SK508, SK509: frames as the joints write them; and the optical joint SK502 blames.
 
 SK502 judges the frame a camera stamps; when that frame is a link whose only role is to
 be the camera's optical frame, the wrong rotation is its joint's ``rpy``, and that is what
 SK502 points at (:func:`dedicated_optical_joint`, :func:`optical_rpy_for`). SK508 judges a
-link named optical that no camera stamps.
+link named optical that no camera stamps; SK509 a sensor mounted implausibly far away.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 
 ANGLE_TOL = math.radians(0.5)  # as SK502
 HALF_PI = math.pi / 2
+FAR_M = 10.0  # SK509
 POSITION_TOL = 1e-3  # as SK503
 
 
@@ -188,4 +189,46 @@ def optical_named(ctx: Context) -> Iterator[Finding]:
             frame=name,
             fix=f'give joint {joint.name!r} rpy="{optical}" if its parent is the camera\'s body '
             "frame (x forward, z up); if the link is no optical frame, rename it",
+        )
+
+
+@rule(
+    "SK509",
+    "warning",
+    f"a sensor sits more than {FAR_M:g} m from the link it hangs off (millimetres written as "
+    "metres): its origin, its `<pose>` through the fixed joints that lumping merges, measured from "
+    "the link Gazebo attaches it to, or, when its own link is not lumped, from the parent link of "
+    "the joint into its link (a link named `world` is the world: not measured)",
+)
+def far_sensor(ctx: Context) -> Iterator[Finding]:
+    robot, conv = ctx.robot, ctx.conversion
+    for s in robot.sensors:
+        ref = s.reference
+        if ref is None or ref not in robot.link_map:
+            continue
+        anchor = conv.survivor(ref)
+        if anchor == ref:
+            pj = robot.parent_joint.get(ref)
+            if pj is None or pj.parent is None:
+                continue
+            anchor = pj.parent
+        if anchor == "world":
+            continue
+        T = robot.T_link_link(anchor, ref)
+        if T is None:
+            continue
+        T_sensor = tf.pose_matrix(tf.compose(tf.matrix_pose(T), s.pose.pose()))
+        dist = tf.norm(tf.translation(T_sensor))
+        if dist <= FAR_M:
+            continue
+        yield ctx.finding(
+            "SK509",
+            Severity.WARNING,
+            f"sensor {s.name!r} sits {dist:.2f} m from {anchor!r}, the link it hangs off: "
+            "a sensor that far out is most likely millimetres written as metres (URDF and SDF "
+            "lengths are metres)",
+            s.source,
+            sensor=s.name,
+            link=anchor,
+            fix="write the joint origins and the sensor <pose> between them in metres",
         )
