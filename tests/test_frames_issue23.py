@@ -261,3 +261,14 @@ def test_sk502_does_not_blame_an_optical_joint_that_writes_the_optical_rotation(
     cam = camera_sensor(extra="<update_rate>30</update_rate><pose>0 0 0 -1.5708 0 -3.141592</pose>")
     (f,) = [f for f in check(robot(camera=cam), target="classic").findings if f.rule == "SK502"]
     assert f.joint is None
+
+
+def test_sk508_leaves_a_frame_a_lidar_stamps_to_sk504(check) -> None:
+    lid = lidar_sensor(params="<frame_name>laser_optical_frame</frame_name>")
+    text = _tree(
+        '<link name="base_link"/>', link("laser_link"), joint("laser_joint", "base_link", "laser_link", "0 0 0.2"),
+        '<link name="laser_optical_frame"/>', joint("lo", "laser_link", "laser_optical_frame", "0 0 0", "0 0 1.5707963267948966"),
+        f'<gazebo reference="laser_link">{lid}</gazebo>',
+    )
+    r = check(text, target="classic")
+    assert "SK504" in rules_of(r) and "SK508" not in rules_of(r)

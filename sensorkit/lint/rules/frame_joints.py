@@ -3,7 +3,7 @@
 SK502 judges the frame a camera stamps; when that frame is a link whose only role is to
 be the camera's optical frame, the wrong rotation is its joint's ``rpy``, and that is what
 SK502 points at (:func:`dedicated_optical_joint`, :func:`optical_rpy_for`). SK508 judges a
-link named optical that no camera stamps; SK509 a sensor mounted implausibly far away.
+link named optical that no sensor stamps; SK509 a sensor mounted implausibly far away.
 """
 
 from __future__ import annotations
@@ -151,12 +151,16 @@ OPTICAL_NAME = re.compile(r"(?:^|[_/\-])optical(?:$|[_\-](?:frame|link)(?:$|[_\-
     "SK508",
     "warning",
     "a link named as an optical frame (`optical` as a word of its name, last or before `frame`/`link`) "
-    "that no camera stamps is optical: its rotation from its parent link, or from some link above "
-    "it, is Rz(-pi/2)*Rx(-pi/2) within 0.5 degree (a frame a camera stamps is SK502's)",
+    "that no sensor stamps is optical: its rotation from its parent link, or from some link above "
+    "it, is Rz(-pi/2)*Rx(-pi/2) within 0.5 degree (a frame a sensor stamps is SK502's or SK504's)",
 )
 def optical_named(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    stamped = {ctx.frames_of(s).camera_frame for s in robot.sensors if s.is_camera}
+    # A frame a sensor stamps is judged by SK502 (cameras) or SK504 (lidars, IMUs).
+    stamped: set[str | None] = set()
+    for s in robot.sensors:
+        fr = ctx.frames_of(s)
+        stamped |= {fr.camera_frame if s.is_camera else None, fr.published, fr.image_frame}
     for lk in robot.links:
         name = lk.name
         if name in stamped or not OPTICAL_NAME.search(name):

@@ -394,7 +394,7 @@ def _gz_stereo_right_eye(ctx: Context, s: Sensor, off: tuple[float, float, float
         and conv.survivor(c.reference) == link
         and not gz_never_created(ctx.target, c.type)
     ]
-    if len(on_link) < 2 or s not in on_link:
+    if len(on_link) < 2 or not any(c is s for c in on_link):
         return False
     first = on_link[0]
     if s is first:
