@@ -134,6 +134,8 @@ CASES: list[tuple[str, str, str, str, str]] = [
     ("SK506", robot(extra='<link name="camera_depth_frame"/>' + joint("cdj", "camera_link", "camera_depth_frame", rpy=OPTICAL),
                     camera=camera_sensor(params="<frame_name>camera_depth_frame</frame_name>")), CLEAN, "classic", ".urdf"),
     ("SK507", robot(extra='<link name="odom"/>' + joint("oj", "odom", "base_footprint")), robot(extra='<link name="world"/>' + joint("wj", "world", "base_footprint")), "classic", ".urdf"),
+    ("SK508", robot(extra='<link name="rear_optical_frame"/>' + joint("rear_optical_joint", "base_link", "rear_optical_frame")), robot(extra='<link name="rear_optical_frame"/>' + joint("rear_optical_joint", "base_link", "rear_optical_frame", rpy=OPTICAL)), "classic", ".urdf"),
+    ("SK509", robot(lidar=lidar_sensor(params="<frame_name>laser_link</frame_name>").replace("<update_rate>", "<pose>0 0 250 0 0 0</pose><update_rate>", 1)), robot(lidar=lidar_sensor(params="<frame_name>laser_link</frame_name>").replace("<update_rate>", "<pose>0 0 9 0 0 0</pose><update_rate>", 1)), "classic", ".urdf"),
     ("SK601", robot(lidar=lidar_sensor(plugin="libgazebo_ros_laser.so", params="<frame_name>laser_link</frame_name>")), CLEAN, "classic", ".urdf"),
     ("SK601", robot(camera=camera_sensor(stype="depth", plugin="libgazebo_ros_openni_kinect.so")), robot(camera=camera_sensor(stype="depth")), "classic", ".urdf"),
     ("SK601", GZ_CLEAN.replace("</robot>", '<gazebo><plugin filename="libgazebo_ros_diff_drive.so" name="dd"/></gazebo></robot>'), GZ_CLEAN, "harmonic", ".urdf"),

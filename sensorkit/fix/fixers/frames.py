@@ -139,6 +139,16 @@ def _optical_frame(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) -> F
     if existing is not None:
         title = f"publish in {existing!r}, the optical frame at the camera"
         return _publish_in(fx, f, s, existing, title)
+    if f.rule == "SK502" and f.frame in fx.robot.link_map:
+        from sensorkit.lint.rules.frame_joints import OPTICAL_NAME, blamed_optical_joint
+
+        if OPTICAL_NAME.search(f.frame or ""):
+            # Meant as the optical frame: a second one would leave this wrong one in TF.
+            _joint, _rpy, why = blamed_optical_joint(fx.ctx, s, fr, f.frame)
+            raise NotFixable(
+                f"{f.frame!r} is meant as the optical frame: sensorkit neither adds a second "
+                f"one beside it nor turns it here ({why}); correct it by hand"
+            )
     return _add_optical_frame(fx, f, s, fr)
 
 
@@ -203,12 +213,50 @@ def _add_optical_frame(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) 
 @fixer(
     "SK502",
     "safe/unsafe",
-    "point the frame parameter at the optical frame already at the camera (safe); with none, add "
-    "`LINK_optical_frame` on a fixed joint with the exact rotation and point at it (unsafe)",
+    "a stamped link whose only role is the optical frame gets its joint's rpy corrected in place "
+    "(safe); else point the frame parameter at the optical frame already at the camera (safe); "
+    "with none, add `LINK_optical_frame` on a fixed joint with the exact rotation and point at it (unsafe)",
 )
 def optical_frame(fx: FixContext, f: Finding) -> Fix:
     s, fr = _sensor(fx, f)
+    if f.joint is not None:
+        return _optical_joint_rpy(fx, f, s, fr)
     return _optical_frame(fx, f, s, fr)
+
+
+def _optical_joint_rpy(fx: FixContext, f: Finding, s: Sensor, fr: SensorFrames) -> Fix:
+    """The stamped frame is a link whose only role is to be this camera's optical frame
+    (SK502 named its joint): write the joint's rpy that makes it optical, in place, rather
+    than add a second optical frame and leave the wrong one in TF."""
+    from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text
+
+    joint, rpy, why = blamed_optical_joint(fx.ctx, s, fr, f.frame)
+    if joint is None or rpy is None or joint.name != f.joint:
+        raise NotFixable(why or f"joint {f.joint!r} is not the one into {f.frame!r}")
+    origin = child(joint.element, "origin")
+    if origin is None:
+        raise NotFixable(f"joint {joint.name!r} has no <origin> to edit")
+    w = fx.written(origin)
+    a = w.tag.attr("rpy")
+    if a is None:
+        raise NotFixable(
+            f"<origin> at {w.where} has no rpy as written: add the optical one by hand"
+        )
+    if is_expr(a.raw):
+        raise NotFixable(
+            f'rpy="{a.raw}" at {w.where} is computed by xacro: change it where its value comes from'
+        )
+    if fx.copies_of(w) > 1:
+        raise NotFixable(
+            f"{w.where} is in a xacro macro used {fx.copies_of(w)} times: correct its rpy there by hand"
+        )
+    new = rpy_text(rpy, fx.xacro)
+    return Fix(
+        f,
+        (w.file.set_attr(a, new),),
+        f'joint {joint.name!r}: rpy "{a.raw}" -> "{new}" (the optical rotation at the camera)',
+        claims=frozenset({f"rpy:{w.where}"}),
+    )
 
 
 @fixer(

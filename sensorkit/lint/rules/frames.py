@@ -14,8 +14,10 @@ from sensorkit.knowledge.gazebo_sim import (
     gz_never_created,
 )
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
+from sensorkit.model.parse import child
 from sensorkit.model.parts import Joint
 from sensorkit.model.robot import Robot
 from sensorkit.model.targets import is_gz
@@ -265,11 +267,32 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
         )
         if fr.how == "default":
             where = "the plugin names no frame, so Gazebo uses the link it sits on after lumping"
+        message = (
+            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
+            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}"
+        )
+        joint, rpy, _why = blamed_optical_joint(ctx, s, fr, frame)
+        if joint is not None and rpy is not None:
+            # The frame is a link whose only role is this camera's optical frame: the wrong
+            # rotation is its joint's rpy, and that is where the finding points.
+            text = rpy_text(rpy, robot.document.expanded)
+            origin = child(joint.element, "origin")
+            yield ctx.finding(
+                "SK502",
+                Severity.ERROR,
+                f"{message}; the rotation comes from joint {joint.name!r}",
+                origin if origin is not None else joint.element,
+                sensor=s.name,
+                frame=frame,
+                link=fr.link,
+                joint=joint.name,
+                fix=f'write rpy="{text}" on joint {joint.name!r}',
+            )
+            continue
         yield ctx.finding(
             "SK502",
             Severity.ERROR,
-            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
-            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}",
+            message,
             s.source,
             sensor=s.name,
             frame=frame,
@@ -296,6 +319,8 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
         off = tf.translation(T)  # in the sensor's own frame
         dist = tf.norm(off)
         if dist <= POSITION_TOL or _stereo_right_eye(s, fr, off):
+            continue
+        if is_gz(ctx.target) and _gz_stereo_right_eye(ctx, s, off):
             continue
         yield ctx.finding(
             "SK503",
@@ -335,6 +360,81 @@ def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, floa
     if not baseline > 0:
         return False
     return tf.norm((off[0], off[1] - baseline, off[2])) <= POSITION_TOL
+
+
+def _gz_stereo_right_eye(ctx: Context, s: Sensor, off: tuple[float, float, float]) -> bool:
+    """Gazebo Sim's stereo pairs: the right eye stamped with the left eye's optical frame.
+
+    gz-sim gives a camera a baseline itself when another camera was created on the same
+    parent link before it (gazebosim/gz-sim@ign-gazebo6:src/systems/sensors/Sensors.cc:831-861,
+    the same at @gz-sim8:src/systems/sensors/Sensors.cc:1189-1224): the first camera on the
+    link is the left one, unless its Topic() holds "right" and the new one's "left" (then
+    they swap, :851-855), and the right one gets SetBaseline(|y_right - y_left|), the two
+    sensors' y in the link's frame (:857-860). Every gz camera type derives from
+    CameraSensor (gazebosim/gz-sensors@gz-sensors8:include/gz/sensors/DepthCameraSensor.hh:64,
+    RgbdCameraSensor.hh:52, ThermalCameraSensor.hh:64, ...), so the dynamic_cast at :832
+    takes them all. SetBaseline writes P[3] = -fx * baseline into camera_info
+    (gazebosim/gz-sensors@ign-sensors6:src/CameraSensor.cc:805-815,
+    @gz-sensors8:src/CameraSensor.cc:794-804): the ROS stereo convention, as Classic's
+    hack_baseline (see _stereo_right_eye). The parent is the link after fixed-joint lumping,
+    so cameras of lumped links pair up too (gz-sim@gz-sim8:src/rendering/RenderUtil.cc:1323 passes the parent node's
+    name); sensorkit takes the cameras in the order the description lists them. Accepted,
+    as for Classic, only when the stamped frame sits exactly that baseline to the right
+    eye's left, (0, +baseline, 0) in its frame.
+    """
+    robot, conv = ctx.robot, ctx.conversion
+    if not s.is_camera or s.reference is None:
+        return False
+    link = conv.survivor(s.reference)
+    on_link = [
+        c
+        for c in robot.sensors
+        if c.is_camera
+        and c.reference is not None
+        and conv.survivor(c.reference) == link
+        and not gz_never_created(ctx.target, c.type)
+    ]
+    if len(on_link) < 2 or not any(c is s for c in on_link):
+        return False
+    first = on_link[0]
+    if s is first:
+        # The first camera is a right eye only when a later one swaps with it (its topic
+        # holds "right", the later one's "left"); the last such SetBaseline wins.
+        swaps = [c for c in on_link[1:] if _swaps(robot, link, first, c)]
+        if not swaps:
+            return False
+        left = swaps[-1]
+    elif _swaps(robot, link, first, s):
+        return False  # s is the left eye: its baseline stays 0
+    else:
+        left = first
+    y = [_y_on_link(robot, c, link) for c in (left, s)]
+    if y[0] is None or y[1] is None:
+        return False
+    baseline = abs(y[1] - y[0])
+    return baseline > 0 and tf.norm((off[0], off[1] - baseline, off[2])) <= POSITION_TOL
+
+
+def _swaps(robot: Robot, link: str, first: Sensor, later: Sensor) -> bool:
+    """gz-sim's swap (Sensors.cc:851-855 at ign-gazebo6): the first camera's topic holds
+    "right" and the later one's "left"."""
+    return "right" in _gz_topic(first, link, robot) and "left" in _gz_topic(later, link, robot)
+
+
+def _gz_topic(s: Sensor, link: str, robot: Robot) -> str:
+    """The sensor's Topic() as gz-sensors has it: its <topic>, else the scoped default
+    /world/WORLD/model/MODEL/link/LINK/sensor/NAME/image (see topic_names.py)."""
+    return s.topic or f"/world/WORLD/model/{robot.name}/link/{link}/sensor/{s.name}/image"
+
+
+def _y_on_link(robot: Robot, s: Sensor, link: str) -> float | None:
+    """The sensor's y in ``link``'s frame (its <pose> after lumping)."""
+    from sensorkit.model.frames import render_pose
+
+    T_world_link, T_world_render = robot.world_pose(link), render_pose(robot, s)
+    if T_world_link is None or T_world_render is None:
+        return None
+    return tf.translation(tf.relative(tf.pose_matrix(T_world_link), T_world_render))[1]
 
 
 @rule(
