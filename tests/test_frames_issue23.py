@@ -51,6 +51,23 @@ def test_ros1_velodyne_frame_name_with_leading_slash_is_the_link(check) -> None:
     assert "SK501" not in rules_of(check(_velodyne("vlp16_link")))
 
 
+def test_ros1_velodyne_macro_with_organize_cloud_is_still_ros1(check) -> None:
+    # The hector-style macro the issue met: topicName, frameName, gaussianNoise and
+    # organize_cloud. Upstream ROS 1 reads organize_cloud since 1.0.11 (effeed2, kept in
+    # Winsleo/velodyne_simulator@a7cec2a, package.xml 1.0.13 catkin:
+    # velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:128-133), so it is no sign of
+    # the ROS 2 port: auto validates as ROS 1, SK501 on the declared frame, no lumping.
+    params = VELODYNE_PARAMS + "<organize_cloud>false</organize_cloud>"
+    sensor = lidar_sensor("vlp16", plugin="libgazebo_ros_velodyne_laser.so", params=params.format(frame="robot/vlp16_link"))
+    r = check(_tree(
+        '<link name="base_link"/>', link("vlp16_link"), joint("vlp16_joint", "base_link", "vlp16_link", "0 0 0.3"),
+        f'<gazebo reference="vlp16_link">{sensor}</gazebo>',
+    ))
+    assert r.target == "ros1"
+    assert [f.frame for f in r.findings if f.rule == "SK501"] == ["robot/vlp16_link"]
+    assert not {"SK303", "SK503"} & rules_of(r)
+
+
 # --- false class 1: Gazebo Sim stereo, two cameras on one link -----------------------
 
 def _gz_cam(name: str, y: float, frame: str, topic: str | None = None) -> str:

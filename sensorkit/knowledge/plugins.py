@@ -108,10 +108,16 @@ def stamped_frame(spec: PluginSpec, frame: str) -> str:
 # (master fe021b6, the upstream ROS 1 code: robotNamespace, frameName, min_range, max_range,
 # min_intensity, topicName, gaussianNoise); lmark1/velodyne_simulator's fork (master e08185a)
 # reads the same at the same lines and adds staticTopicName/staticFrameName (:191).
+# Upstream ROS 1 (1.0.11 and later, catkin) reads organize_cloud too: Kevin Hallenbeck's
+# effeed2 "Add organize_cloud parameter to match velodyne_pointcloud" (2021-02-23), as kept
+# in the ROS 1 fork Winsleo/velodyne_simulator@a7cec2a (package.xml 1.0.13, catkin):
+# velodyne_gazebo_plugins/src/GazeboRosVelodyneLaser.cpp:128-133. So organize_cloud is no
+# sign of the ROS 2 port (issue 23, fact 8).
 VELODYNE_ROS1_PARAMS = frozenset(
     {
         "robotNamespace",
         "frameName",
+        "organize_cloud",
         "min_range",
         "max_range",
         "min_intensity",
