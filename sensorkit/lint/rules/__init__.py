@@ -14,6 +14,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     gz_frames,
     input,
     mass,
+    noise,
     placement,
     plugins,
     principal,
