@@ -101,3 +101,49 @@ def test_sk408_unknown_noise_on_gz_by_sensor(check) -> None:
     # (src/Imu.cc:105-107); gz-sensors builds no noise for 'none' (gz-sensors8:src/ImuSensor.cc:164-167).
     assert _severities(check(_imu_robot("foo"), target="fortress"), "SK408") == [Severity.WARNING]
     assert _severities(check(_imu_robot("foo"), target="harmonic"), "SK408") == [Severity.ERROR]
+
+
+def test_sk408_custom_is_unknown_to_gazebo_sim(check) -> None:
+    # Classic takes 'custom' (gazebo/sensors/Noise.cc:55-63); sdformat takes only none, gaussian,
+    # gaussian_quantized (sdf12:src/Noise.cc:90-102): on a camera the robot is refused.
+    cam = robot(camera=_camera(noise=NOISE.format(t="custom")))
+    assert _severities(check(cam, target="classic"), "SK408") == []
+    assert _severities(check(cam, target="harmonic"), "SK408") == [Severity.ERROR]
+
+
+# --- SK409: a wrong calibration is an error, a rounding a warning ----------------------
+# camera_info's fx comes from the plugin's focal length, else width / (2 tan(hfov / 2))
+# (ros-simulation/gazebo_ros_pkgs@ros2 (d52f7c4):gazebo_plugins/src/gazebo_ros_camera.cpp:366-374),
+# while Gazebo Classic renders the image with horizontal_fov (elysia-best/gazebo-classic@
+# upstream/11.10.2+dfsg:gazebo/rendering/Camera.cc:852-855). Width 640 and horizontal_fov
+# 1.3962634 give fx 381.3612. The floor is sensorkit's: camera_info moving the image edge
+# (320 px from the centre) by more than 1 px.
+
+
+def _focal(f: str) -> str:
+    return robot(camera=camera_sensor(params=f"<frame_name>camera_optical_frame</frame_name><focal_length>{f}</focal_length>"))
+
+
+def test_sk409_focal_length_off_by_pixels_is_an_error(check) -> None:
+    # 350: the edge lands 320 * 31.36 / 381.36 = 26 px off
+    assert _severities(check(_focal("350"), target="classic"), "SK409") == [Severity.ERROR]
+    # 381: 320 * 0.36 / 381.36 = 0.3 px, a rounding: a warning
+    assert _severities(check(_focal("381"), target="classic"), "SK409") == [Severity.WARNING]
+    assert _severities(check(_focal("381.36124"), target="classic"), "SK409") == []
+
+
+def test_sk409_gz_k_off_the_projection(check) -> None:
+    # gz-sensors renders with <projection> and publishes K from <intrinsics> (gazebosim/
+    # gz-sensors@gz-sensors8 (c8159af):src/CameraSensor.cc:898-914 and :729-739).
+    def lens(k_fx: str, k_cx: str = "320") -> str:
+        return robot(camera=camera_sensor(plugin="", camera=(
+            "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+            "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
+            f"<intrinsics><fx>{k_fx}</fx><fy>381.3612</fy><cx>{k_cx}</cx><cy>240</cy><s>0</s></intrinsics>"
+            "<projection><p_fx>381.3612</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
+            "<tx>0</tx><ty>0</ty></projection></lens></camera>")))
+    assert _severities(check(lens("400"), target="harmonic"), "SK409") == [Severity.ERROR]
+    assert _severities(check(lens("381.8"), target="harmonic"), "SK409") == [Severity.WARNING]
+    # a principal point: an error past SK411's floor (10 % of the width), a warning below
+    assert _severities(check(lens("381.3612", "400"), target="harmonic"), "SK409") == [Severity.ERROR]
+    assert _severities(check(lens("381.3612", "330"), target="harmonic"), "SK409") == [Severity.WARNING]
