@@ -251,6 +251,13 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
     "sdformat (bounds only)",
 )
 def camera_fov(ctx: Context) -> Iterator[Finding]:
+    # An error at and past pi: Gazebo Classic renders vfov = 2 atan(tan(hfov / 2) / ratio),
+    # clamped to [0.001, 0.999 pi] (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:
+    # gazebo/rendering/Camera.cc:2025-2035, LimitFOV :1563-1566): past pi tan is negative and
+    # the image collapses to a 0.001 rad sliver; camera_info's fx = width / (2 tan(hfov / 2))
+    # (gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:366-374) is then
+    # negative, or about 0 at pi. Gazebo Sim computes the same vfov and hands it to ogre-next
+    # (gazebosim/gz-rendering@gz-rendering8 ff0c5b8:ogre2/src/Ogre2Camera.cc:181-183).
     for s in _cameras(ctx):
         for cam in s.cameras:
             if any(p.startswith("horizontal_fov") for p in cam.problems):
@@ -331,6 +338,10 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
                     )
             near, far = cam.near, cam.far
             if near is not None and far is not None:
+                # near <= 0: Ogre throws "Near clip distance must be greater than zero."
+                # (OGRECave/ogre@v1-9-0:OgreMain/src/OgreFrustum.cpp:124-128; Gazebo Classic
+                # passes <clip><near> straight to it, gazebo/rendering/Camera.cc:814-815).
+                # near >= far is not verified against a simulator here (issue 23 audit).
                 if not 0 < near < far:
                     yield ctx.finding(
                         "SK405",
