@@ -53,6 +53,10 @@ WIDE_ANGLE = {"wideanglecamera", "wide_angle_camera"}
     "none (silently ignored)",
 )
 def gazebo_reference(ctx: Context) -> Iterator[Finding]:
+    # An error when the block carries a sensor or plugin: sdformat's URDF conversion inserts a
+    # <gazebo reference> block only into the link of that name (gazebosim/sdformat@sdf9
+    # (9ee2d4f):src/parser_urdf.cc:2084-2095, called per created link at :2851), so a block
+    # naming no link is inserted nowhere and its sensor never exists.
     robot = ctx.robot
     for block in robot.gazebo:
         ref = block.reference
