@@ -15,6 +15,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     gz_frames,
     input,
     mass,
+    noise,
     placement,
     plugins,
     principal,

@@ -27,11 +27,13 @@ from sensorkit.model.targets import is_gz
 
 @rule(
     "SK409",
-    "warning",
+    "error/warning",
     "image and camera_info focal lengths disagree: Classic renders with <lens><intrinsics> "
     "(else horizontal_fov) but camera_info comes from focal_length (else horizontal_fov); "
     "gz lens projection that disagrees with camera_info K (Gazebo Sim renders with <projection> "
-    "when given, else <intrinsics>), or that renders other than horizontal_fov",
+    "when given, else <intrinsics>): an error when camera_info misplaces the image edge by more "
+    "than 1 px (a principal point: by more than SK411's 10 % and 1 px), a warning below; a gz "
+    "lens that renders other than horizontal_fov, with camera_info matching the image: warning",
     "gazebo_ros_camera, at run time",
 )
 def focal_length(ctx: Context) -> Iterator[Finding]:
@@ -54,6 +56,22 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
             yield from _classic_focal_length(ctx, s, cam, hfov, expected)
 
 
+# When a camera_info that disagrees with the image is a wrong calibration (an error) rather
+# than a rounding (a warning). sensorkit's materiality floor, not a simulator fact: a focal
+# length is wrong when it moves the image edge (width / 2 from the centre) by more than one
+# pixel, the unit the image measures in; a principal point when SK411 would call it far.
+EDGE_PX = 1.0
+
+
+def _focal_severity(size: int | None, rendered: float, published: float) -> Severity:
+    """ERROR when camera_info's focal length ``published`` puts the image edge more than
+    EDGE_PX pixels from where the ``rendered`` one draws it."""
+    if not size or rendered <= 0 or not math.isfinite(published):
+        return Severity.WARNING
+    edge_shift = size / 2.0 * abs(published - rendered) / rendered
+    return Severity.ERROR if edge_shift > EDGE_PX else Severity.WARNING
+
+
 def _classic_focal_length(
     ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
 ) -> Iterator[Finding]:
@@ -63,7 +81,7 @@ def _classic_focal_length(
         if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
             yield ctx.finding(
                 "SK409",
-                Severity.WARNING,
+                _focal_severity(cam.width, expected, f),
                 f"camera {s.name!r}: focal_length {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
                 f"(which give {expected:.6f}); camera_info and the rendered image will not match",
                 p.source,
@@ -94,7 +112,7 @@ def _classic_intrinsics(
     whence = f"<{tag}>" if given else f"width {cam.width} and horizontal_fov {hfov:g}"
     yield ctx.finding(
         "SK409",
-        Severity.WARNING,
+        _focal_severity(cam.width, fx, published),
         f"camera {s.name!r}: Gazebo Classic renders the image with <lens><intrinsics> fx {fx:g}, "
         f"but {spec.family} publishes camera_info fx {published:.4f} (from {whence}, it never "
         "reads the intrinsics): camera_info does not match the image",
@@ -173,7 +191,7 @@ def _gz_k_off_projection(
     says = ", ".join(f"{key} {kv:.4f}" for key, _, kv in off)
     return ctx.finding(
         "SK409",
-        Severity.WARNING,
+        _k_off_severity(cam, off),
         f"camera {s.name!r}: Gazebo Sim renders the image with <lens><projection> ({rendered}; "
         f"the projection wins over <intrinsics> and horizontal_fov), but camera_info K carries "
         f"{says} (from {src}); only P follows the projection: K does not match the image",
@@ -181,6 +199,19 @@ def _gz_k_off_projection(
         sensor=s.name,
         fix="make <intrinsics> (or horizontal_fov) agree with <projection>, or remove <projection>",
     )
+
+
+def _k_off_severity(cam: CameraSpec, off: list[tuple[str, float, float]]) -> Severity:
+    """ERROR when any of K's fx, fy, cx, cy is materially off the projection the image has."""
+    from sensorkit.lint.rules.principal import FAR
+
+    for key, rendered, k in off:
+        size = cam.width if key in ("fx", "cx") else cam.height
+        if key in ("fx", "fy") and _focal_severity(size, rendered, k) is Severity.ERROR:
+            return Severity.ERROR
+        if key in ("cx", "cy") and size and abs(rendered - k) > max(FAR * size, 1.0):
+            return Severity.ERROR
+    return Severity.WARNING
 
 
 @rule(

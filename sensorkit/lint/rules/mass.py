@@ -97,6 +97,10 @@ def inertia_problem(inertial: Inertial) -> str | None:
     "sdformat, at spawn",
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
+    # An error: sdformat's URDF conversion returns before creating the link or recursing into its
+    # children when a link not lumped away has no <inertial> or mass <= 0 ("urdf2sdf: link[...]
+    # is not modeled in sdf.", "child links ignored": gazebosim/sdformat@sdf9 (9ee2d4f):
+    # src/parser_urdf.cc:2658-2760; the recursion it skips is :2776-2780).
     robot, conv = ctx.robot, ctx.conversion
     lost_by: dict[str, list[str]] = {}  # cause -> the links it drops, in conv.dropped's order
     for n, c in conv.dropped.items():

@@ -148,6 +148,12 @@ def _frame_advice(ctx: Context, s: Sensor) -> str:
     "plugin matches the sensor type (camera plugin on camera/depth/multicamera; ray plugin on ray/gpu_ray; imu plugin on imu)",
 )
 def plugin_sensor_type(ctx: Context) -> Iterator[Finding]:
+    # An error: the plugin gets no data from a sensor of another type. Gazebo Classic's
+    # CameraPlugin logs "CameraPlugin requires a CameraSensor." and dereferences the null sensor
+    # (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:plugins/CameraPlugin.cc:43-53); RayPlugin
+    # throws "RayPlugin requires a Ray Sensor as its parent" (plugins/RayPlugin.cc:45-49); ROS 2
+    # gazebo_ros_imu_sensor logs "Parent is not an imu sensor. Exiting." and returns
+    # (ros-simulation/gazebo_ros_pkgs@ros2 (d52f7c4):gazebo_plugins/src/gazebo_ros_imu_sensor.cpp:69-73).
     if is_gz(ctx.target):
         return
     from sensorkit.knowledge import plugins as known
@@ -196,6 +202,11 @@ def node_names(ctx: Context) -> Iterator[Finding]:
     for p in all_plugins(ctx.robot):
         if not _is_ros2_gazebo_plugin(p) or not p.name:
             continue
+        # An error: gazebo_ros::Node::Get logs "Found multiple nodes with same name" and returns
+        # nullptr for a second node of one full name (ros-simulation/gazebo_ros_pkgs@ros2
+        # (d52f7c4):gazebo_ros/src/node.cpp:118-129, since 3.7.0, the Humble line), which the
+        # plugin then dereferences (e.g. gazebo_plugins/src/gazebo_ros_camera.cpp:155-158).
+        # Foxy and Galactic (branches foxy b6f7bf1, galactic 95cd859) had no such check.
         # Only plugins that load and that sensorkit knows make a ROS 2 node of their name.
         if plugin_problem(p, ctx.target) is not None or (
             p.library not in ROS2_LIBRARIES and known.lookup(p.filename, "ros2") is None

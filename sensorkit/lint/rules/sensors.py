@@ -16,7 +16,7 @@ from sensorkit.knowledge.limits import (
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.parse import local
-from sensorkit.model.sensors import CameraSpec, LidarSpec, Noise, Sensor
+from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
 from sensorkit.model.targets import is_gz
 
 # sdformat's <image><format> values and the gz-rendering spellings it also accepts.
@@ -42,7 +42,6 @@ IMAGE_FORMATS = {
     "RGBA_INT8",
     "BGRA_INT8",
 }
-NOISE_TYPES = {"none", "gaussian", "gaussian_quantized", "custom"}
 WIDE_ANGLE = {"wideanglecamera", "wide_angle_camera"}
 
 
@@ -54,6 +53,10 @@ WIDE_ANGLE = {"wideanglecamera", "wide_angle_camera"}
     "none (silently ignored)",
 )
 def gazebo_reference(ctx: Context) -> Iterator[Finding]:
+    # An error when the block carries a sensor or plugin: sdformat's URDF conversion inserts a
+    # <gazebo reference> block only into the link of that name (gazebosim/sdformat@sdf9
+    # (9ee2d4f):src/parser_urdf.cc:2084-2095, called per created link at :2851), so a block
+    # naming no link is inserted nowhere and its sensor never exists.
     robot = ctx.robot
     for block in robot.gazebo:
         ref = block.reference
@@ -151,9 +154,11 @@ def _cameras(ctx: Context) -> Iterator[Sensor]:
 
 @rule(
     "SK403",
-    "error",
-    "camera image width/height positive integers; format known; above 4096x4096 (warning: "
-    "beyond any real camera; over 2 GB Gazebo Sim cannot publish)",
+    "error/warning",
+    "camera image width/height positive integers; format known (an error on Gazebo Sim, where "
+    "sdformat refuses it; a warning on Gazebo Classic, which renders PF_R8G8B8 that gazebo_ros "
+    "labels bgr8, unless it is a Classic-only format gazebo_ros mislabels); above 4096x4096 "
+    "(warning: beyond any real camera; over 2 GB Gazebo Sim cannot publish)",
     "sdformat (format)",
 )
 def camera_image(ctx: Context) -> Iterator[Finding]:
@@ -182,14 +187,35 @@ def camera_image(ctx: Context) -> Iterator[Finding]:
             if cam.width and cam.height and cam.width > 0 and cam.height > 0:
                 yield from _too_large_camera(ctx, s, cam)
             if cam.format is not None and cam.format not in IMAGE_FORMATS:
-                yield ctx.finding(
-                    "SK403",
-                    Severity.ERROR,
-                    f"sensor {s.name!r}: image format {cam.format!r} is unknown",
-                    cam.source,
-                    sensor=s.name,
-                    fix="use R8G8B8 (or B8G8R8, L8, L16, R_FLOAT32, BAYER_*)",
-                )
+                yield _unknown_format(ctx, s, cam)
+
+
+def _unknown_format(ctx: Context, s: Sensor, cam: CameraSpec) -> Finding:
+    """Error where the camera does not work, warning on Classic, where it renders bgr8
+    (sources: sensorkit.knowledge.sdf_values)."""
+    from sensorkit.knowledge.sdf_values import (
+        CLASSIC_EXTRA_IMAGE_FORMATS,
+        CLASSIC_UNKNOWN_FORMAT,
+        GZ_UNKNOWN_FORMAT,
+    )
+
+    msg = f"sensor {s.name!r}: image format {cam.format!r} is unknown"
+    if is_gz(ctx.target):
+        severity, msg = Severity.ERROR, f"{msg}: {GZ_UNKNOWN_FORMAT}"
+    elif cam.format in CLASSIC_EXTRA_IMAGE_FORMATS:
+        severity = Severity.ERROR
+        msg += (": Gazebo Classic renders it in its own layout, but gazebo_ros does not know it "
+                "and labels the image bgr8, 3 bytes a pixel: the image is garbled")
+    else:
+        severity, msg = Severity.WARNING, f"{msg}: {CLASSIC_UNKNOWN_FORMAT}"
+    return ctx.finding(
+        "SK403",
+        severity,
+        msg,
+        cam.source,
+        sensor=s.name,
+        fix="use R8G8B8 (or B8G8R8, L8, L16, R_FLOAT32, BAYER_*)",
+    )
 
 
 def _as_float(n: int) -> float:
@@ -229,6 +255,13 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
     "sdformat (bounds only)",
 )
 def camera_fov(ctx: Context) -> Iterator[Finding]:
+    # An error at and past pi: Gazebo Classic renders vfov = 2 atan(tan(hfov / 2) / ratio),
+    # clamped to [0.001, 0.999 pi] (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:
+    # gazebo/rendering/Camera.cc:2025-2035, LimitFOV :1563-1566): past pi tan is negative and
+    # the image collapses to a 0.001 rad sliver; camera_info's fx = width / (2 tan(hfov / 2))
+    # (gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:366-374) is then
+    # negative, or about 0 at pi. Gazebo Sim computes the same vfov and hands it to ogre-next
+    # (gazebosim/gz-rendering@gz-rendering8 ff0c5b8:ogre2/src/Ogre2Camera.cc:181-183).
     for s in _cameras(ctx):
         for cam in s.cameras:
             if any(p.startswith("horizontal_fov") for p in cam.problems):
@@ -309,6 +342,10 @@ def camera_clip(ctx: Context) -> Iterator[Finding]:
                     )
             near, far = cam.near, cam.far
             if near is not None and far is not None:
+                # near <= 0: Ogre throws "Near clip distance must be greater than zero."
+                # (OGRECave/ogre@v1-9-0:OgreMain/src/OgreFrustum.cpp:124-128; Gazebo Classic
+                # passes <clip><near> straight to it, gazebo/rendering/Camera.cc:814-815).
+                # near >= far is not verified against a simulator here (issue 23 audit).
                 if not 0 < near < far:
                     yield ctx.finding(
                         "SK405",
@@ -518,47 +555,6 @@ def update_rate(ctx: Context) -> Iterator[Finding]:
                 sensor=s.name,
                 fix="write a positive rate in Hz",
             )
-
-
-def _noises(s: Sensor) -> list[Noise]:
-    out = [n for n in (c.noise for c in s.cameras) if n is not None]
-    if s.lidar is not None and s.lidar.noise is not None:
-        out.append(s.lidar.noise)
-    out.extend(s.imu_noise)
-    return out
-
-
-@rule("SK408", "error", "noise type known, stddev >= 0")
-def noise(ctx: Context) -> Iterator[Finding]:
-    for s in ctx.robot.sensors:
-        for n in _noises(s):
-            for p in n.problems:
-                yield ctx.finding(
-                    "SK408",
-                    Severity.ERROR,
-                    f"sensor {s.name!r}: {p}",
-                    n.source,
-                    sensor=s.name,
-                    fix="write numbers",
-                )
-            if n.type is not None and n.type not in NOISE_TYPES:
-                yield ctx.finding(
-                    "SK408",
-                    Severity.ERROR,
-                    f"sensor {s.name!r}: noise type {n.type!r} is unknown",
-                    n.source,
-                    sensor=s.name,
-                    fix="use gaussian, gaussian_quantized or none",
-                )
-            if n.stddev is not None and n.stddev < 0:
-                yield ctx.finding(
-                    "SK408",
-                    Severity.ERROR,
-                    f"sensor {s.name!r}: noise stddev {n.stddev:g} is negative",
-                    n.source,
-                    sensor=s.name,
-                    fix="stddev is a standard deviation: >= 0",
-                )
 
 
 @rule(

@@ -105,6 +105,9 @@ def ray_output_type(ctx: Context) -> Iterator[Finding]:
                     fix="add <output_type>sensor_msgs/LaserScan</output_type> (or PointCloud2 for a 3D lidar)",
                 )
             elif value not in RAY_OUTPUT_TYPES:
+                # An error: gazebo_ros_ray_sensor logs "Invalid <output_type> [...]" and returns
+                # from Load before it subscribes or publishes (ros-simulation/gazebo_ros_pkgs@ros2
+                # (d52f7c4):gazebo_plugins/src/gazebo_ros_ray_sensor.cpp:122-138).
                 yield ctx.finding(
                     "SK606",
                     Severity.ERROR,

@@ -13,6 +13,9 @@ from sensorkit.model.urdf import JOINT_TYPES
 
 @rule("SK201", "error", "link, joint and sensor-link names unique", "urdfdom")
 def unique_names(ctx: Context) -> Iterator[Finding]:
+    # An error: urdfdom refuses the whole robot ("link '%s' is not unique.", "joint '%s' is not
+    # unique.": ros/urdfdom@rolling (9a1f5b4):urdf_parser/src/model.cpp:177-181, :220-224), so
+    # robot_state_publisher has no model and publishes no TF.
     robot = ctx.robot
     for kind, items, by_name in (
         ("link", robot.links, robot.link_map),
@@ -47,6 +50,8 @@ def unique_names(ctx: Context) -> Iterator[Finding]:
 
 @rule("SK202", "error", "every joint has parent and child, and both links exist", "urdfdom")
 def joint_links(ctx: Context) -> Iterator[Finding]:
+    # An error: urdfdom's initTree throws for a joint whose parent or child link is missing and
+    # the parse fails, "Failed to build tree" (ros/urdfdom@rolling (9a1f5b4):urdf_parser/src/model.cpp:249-256).
     links = ctx.robot.link_map
     for j in ctx.robot.joints:
         if j.parent in links and j.child in links:
@@ -78,6 +83,8 @@ def joint_links(ctx: Context) -> Iterator[Finding]:
 
 @rule("SK203", "error", "exactly one root link; name every disconnected link", "urdfdom")
 def single_root(ctx: Context) -> Iterator[Finding]:
+    # An error: urdfdom's initRoot throws for more than one root and the parse fails, "Failed to
+    # find root link" (ros/urdfdom@rolling (9a1f5b4):urdf_parser/src/model.cpp:258-267).
     robot = ctx.robot
     if not robot.links:
         if robot.macros_only:  # a partial: no finding (the report counts it as skipped)
@@ -255,6 +262,10 @@ def _cycles(ctx: Context) -> Iterator[Finding]:
     "urdfdom (partly)",
 )
 def joint_types(ctx: Context) -> Iterator[Finding]:
+    # Errors urdfdom refuses the robot for (ros/urdfdom@rolling (9a1f5b4):urdf_parser/src/joint.cpp): "Joint [%s] has no known
+    # type" :420-421; a revolute / prismatic joint without <limit> :461-467; a <limit> without
+    # effort :136-137 or velocity :152-153. lower > upper is not checked by urdfdom and was not
+    # verified against a simulator in the issue 23 audit.
     for j in ctx.robot.joints:
         if j.type not in JOINT_TYPES:
             yield ctx.finding(
