@@ -126,8 +126,8 @@ def _include(reading: Reading, parent: Path, name: str, target: str | None,
         reading.problem(name, "an included launch file could not be resolved", line)
         _unknown_all(reading)
         return
-    file = Path(path) if Path(path).is_absolute() else parent.parent / path
-    if not file.is_file() or not reading.inside(file):
+    file = Path(path)  # a relative path depends on where launch is run from: not guessed
+    if not file.is_absolute() or not file.is_file() or not reading.inside(file):
         reading.problem(name, f"included launch file not found in the workspace: {path}", line)
         _unknown_all(reading)
         return
