@@ -77,6 +77,9 @@ class LaunchFacts:
     # unknown, so no rule may say a topic is not bridged.
     bridge_unknown: bool = False
     static_transforms: list[StaticTransform] = field(default_factory=list)
+    # A static_transform_publisher whose frames could not be resolved: it may publish any
+    # frame, so no rule may say a frame is missing from TF.
+    static_transform_unknown: bool = False
     # robot_state_publisher's frame_prefix: "" when given empty or absent from a
     # robot_state_publisher that was found, None when no robot_state_publisher was found
     # or its value could not be resolved (frame_prefix_unknown).
@@ -84,6 +87,8 @@ class LaunchFacts:
     frame_prefix_unknown: bool = False
     spawns: list[Spawn] = field(default_factory=list)
     remaps: list[NodeRemap] = field(default_factory=list)
+    # A remapping that could not be resolved: a topic may have another name than written.
+    remap_unknown: bool = False
     problems: list[LaunchProblem] = field(default_factory=list)
 
     @property
