@@ -13,8 +13,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from builders import gz_robot
 
+from sensorkit.base.errors import UsageError
 from sensorkit.base.findings import SourceRef
 from sensorkit.lint.engine import FileReport, Options, validate_file
 from sensorkit.loading.bridge import BridgeTopic
@@ -222,3 +224,81 @@ def test_sk615_silent_on_topics_no_known_sensor_publishes(tmp_path: Path) -> Non
     other = _entry("cmd_vel", "geometry_msgs/msg/Twist", "gz.msgs.Twist")
     back = BridgeTopic("scan", "scan", "sensor_msgs/msg/Image", "ROS_TO_GZ", LAUNCH, 9, "gz.msgs.Image")
     assert not _of(_run(tmp_path, _facts(SCAN, other, back)), "SK615")
+
+
+# --- topics: the ROS names after bridging and remapping ---------------------------------
+
+
+def test_topics_ros_name_after_the_launch_remaps_the_bridge(tmp_path: Path) -> None:
+    # Modelled on turtlebot4_simulator@humble a238c94:turtlebot4_ignition_bringup/launch/
+    # ros_ign_bridge.launch.py:88-99: the argument bridges the gz topic under its own name,
+    # and the node's remapping renames it "scan".
+    from sensorkit.describe.sensorinfo import describe, load
+    from sensorkit.describe.topics import BridgeConfig, bridge_remaps, robot_topics
+    from sensorkit.loading.launch_facts import NodeRemap
+
+    path = tmp_path / "rover.urdf"
+    path.write_text(gz_robot(lidar_tags="<topic>lidar/scan_raw</topic><gz_frame_id>laser_link</gz_frame_id>"))
+    raw = BridgeTopic("lidar/scan_raw", None, "sensor_msgs/msg/LaserScan", "GZ_TO_ROS", LAUNCH, 12, "gz.msgs.LaserScan")
+    remap = NodeRemap("ros_gz_bridge", "parameter_bridge", None, None, "lidar/scan_raw", "scan", SourceRef(LAUNCH, 14))
+    other = NodeRemap("nav2_bringup", "x", None, None, "lidar/scan_raw", "nope", SourceRef(LAUNCH, 30))
+    facts = _facts(raw, remaps=[remap, other])
+    info = describe(load(path), "harmonic")
+    config = BridgeConfig([LAUNCH], [raw], bridge_remaps(facts), [LAUNCH])
+    names = {t.name for t in robot_topics(info, config).ros_topics if t.sensor == "laser"}
+    assert names == {"/scan"}
+    # Near miss: without the remapping, the ROS name is the gz one.
+    plain = robot_topics(info, BridgeConfig([LAUNCH], [raw]))
+    assert {t.name for t in plain.ros_topics if t.sensor == "laser"} == {"/lidar/scan_raw"}
+
+
+# --- the CLI and the settings file -------------------------------------------------------
+
+
+def test_header_names_the_launch_files_read() -> None:
+    from sensorkit.lint.engine import launch_note
+    from sensorkit.lint.rules.base import Bridge
+
+    facts = LaunchFacts(files=[LAUNCH, "launch/rviz.launch.py"], bridges=[SCAN])
+    bridge = Bridge(files=["config/bridge.yaml", LAUNCH], topics=[SCAN])
+    assert launch_note(facts, bridge) == (
+        "bridges from config/bridge.yaml, launch/sim.launch.py; launch files read: launch/rviz.launch.py"
+    )
+    assert launch_note(LaunchFacts(), None) is None  # none read: the header is as before
+
+
+def test_validate_header_shows_the_launch_note(tmp_path: Path) -> None:
+    from sensorkit.lint.engine import Report
+    from sensorkit.lint.report import render
+
+    report = _run(tmp_path, _facts(SCAN, IMAGE, INFO))
+    assert report.launch_note == f"bridges from {LAUNCH}"
+    head = render(Report([report]), "text").splitlines()[0]
+    assert head.endswith(f"; bridges from {LAUNCH})")
+    plain = _run(tmp_path / "b", None)
+    assert plain.launch_note is None and render(Report([plain]), "text").splitlines()[0].endswith(")")
+
+
+def test_launch_flag_and_settings_key(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from sensorkit.cli import app
+    from sensorkit.lint.config import load_config
+
+    robot = tmp_path / "rover.urdf"
+    robot.write_text(gz_robot())
+    result = CliRunner().invoke(app, ["validate", str(robot), "--launch", str(tmp_path / "nope.launch.py")])
+    assert result.exit_code == 2 and "--launch" in result.output and "no such file" in result.output
+    (tmp_path / "launch").mkdir()
+    (tmp_path / "launch" / "sim.launch.xml").write_text("<launch/>")
+    (tmp_path / "sensorkit.toml").write_text('launch = ["launch/sim.launch.xml"]\n')
+    cfg = load_config(tmp_path)
+    assert cfg.launch == [str((tmp_path / "launch" / "sim.launch.xml").resolve())]
+    topics = CliRunner().invoke(
+        app, ["topics", str(robot), "--target", "classic", "--launch", str(robot)]
+    )
+    assert topics.exit_code == 0 and "--launch ignored" in topics.output
+    # Near miss: an unknown key is still refused.
+    (tmp_path / "sensorkit.toml").write_text('launches = ["x"]\n')
+    with pytest.raises(UsageError):
+        load_config(tmp_path)
