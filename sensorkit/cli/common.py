@@ -198,6 +198,19 @@ def target_simulator(target: str) -> dict[str, str]:
     return {"sim": "classic"}
 
 
+def launch_files(given: list[Path] | None, cfg: Any) -> tuple[str, ...]:
+    """``--launch`` files, else the settings file's ``launch`` (each must exist)."""
+    for item in given or ():
+        if not item.is_file():
+            die(f"--launch {item}: no such file")
+    if given:
+        return tuple(str(p) for p in given)
+    for item in cfg.launch:
+        if not Path(item).is_file():
+            die(f"{cfg.path}: launch {item}: no such file")
+    return tuple(cfg.launch)
+
+
 def fail_on_threshold(flag: str | None, cfg: Any) -> Any:
     """``--fail-on``, else the settings file's ``fail-on``, else error, as a Severity;
     ``never`` (no finding fails; a file that cannot be checked still does) is None. The

@@ -88,6 +88,11 @@ TargetOpt = Annotated[
     ),
 ]
 # validate's --bridge; topics' says "Gazebo Sim: " first
+LAUNCH_HELP = (
+    "a launch file to read for ros_gz_bridge entries, static transforms, frame_prefix and the "
+    "spawned model name (repeatable; default: the settings file's launch, else the launch "
+    "files beside the robot's package)"
+)
 BRIDGE_HELP = (
     "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; default: "
     "parameter_bridge YAMLs in the robot package's config/)"

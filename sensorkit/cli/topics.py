@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
-from sensorkit.cli.options import BRIDGE_HELP, FileArg, TargetOpt
+from sensorkit.cli.options import BRIDGE_HELP, LAUNCH_HELP, FileArg, TargetOpt
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
@@ -32,6 +32,9 @@ FormatOpt = Annotated[
 BridgeOpt = Annotated[
     list[Path] | None, typer.Option("--bridge", help="Gazebo Sim: " + BRIDGE_HELP)
 ]
+LaunchOpt = Annotated[
+    list[Path] | None, typer.Option("--launch", help="Gazebo Sim: " + LAUNCH_HELP)
+]
 
 
 @handle_errors
@@ -41,6 +44,7 @@ def topics(
     fmt: FormatOpt = "text",
     target: TargetOpt = None,
     bridge: BridgeOpt = None,
+    launch: LaunchOpt = None,
     *,
     reading: Reading,
 ) -> None:
@@ -60,10 +64,21 @@ def topics(
     files = [str(b) for b in bridge or ()]
     config_read = None
     if is_gz(info.target):
-        config_read = load_bridge(info.robot, info.target, files)
-    elif files:
+        from sensorkit.cli.common import launch_files
+        from sensorkit.lint.config import load_config
+
+        cfg = load_config(file, explicit=reading.flags.config)
+        config_read = load_bridge(
+            info.robot,
+            info.target,
+            files,
+            launch_files(launch, cfg),
+            tuple(reading.flags.package_path or ()),
+        )
+    elif files or launch:
+        flag = "--bridge" if files else "--launch"
         note(
-            f"sensorkit: note: --bridge ignored: target {info.target} is not Gazebo Sim",
+            f"sensorkit: note: {flag} ignored: target {info.target} is not Gazebo Sim",
             reading.quiet,
         )
     result = robot_topics(info, config_read)
@@ -90,7 +105,8 @@ def _say_notes_and_summary(result: RobotTopics) -> None:
         + (f" and {extra} gz topic{'' if extra == 1 else 's'} not bridged" if extra else "")
         + f" from {result.sensors} sensor{'' if result.sensors == 1 else 's'} of "
         f"{result.robot} (target {result.target}, {result.target_reason})"
-        + (f"; bridge: {', '.join(result.bridge_files)}" if result.bridge_files else ""),
+        + (f"; bridge: {', '.join(result.bridge_files)}" if result.bridge_files else "")
+        + (f"; launch: {', '.join(result.launch_files)}" if result.launch_files else ""),
         err=True,
     )
 

@@ -16,6 +16,7 @@ from sensorkit.cli.common import (
     exit_status,
     fail_on_threshold,
     handle_errors,
+    launch_files,
     note,
     say_file_errors,
     settings,
@@ -24,6 +25,7 @@ from sensorkit.cli.common import (
 )
 from sensorkit.cli.options import (
     BRIDGE_HELP,
+    LAUNCH_HELP,
     ArgOpt,
     ColorOpt,
     ConfigOpt,
@@ -80,6 +82,7 @@ TimeoutOpt = Annotated[
     float, typer.Option("--timeout", help="seconds one xacro expansion may take")
 ]
 BridgeOpt = Annotated[list[Path] | None, typer.Option("--bridge", help=BRIDGE_HELP)]
+LaunchOpt = Annotated[list[Path] | None, typer.Option("--launch", help=LAUNCH_HELP)]
 FixOpt = Annotated[
     bool, typer.Option("--fix", help="apply the safe fixes, then report what remains")
 ]
@@ -122,6 +125,7 @@ def validate(
     package_path: PackagePathOpt = None,
     timeout: TimeoutOpt = 60.0,
     bridge: BridgeOpt = None,
+    launch: LaunchOpt = None,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
@@ -156,7 +160,7 @@ def validate(
             raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
         files, overlay = stdin_robots(files, stdin_filename)
         flags = RobotFlags(config, arg, package_path, untrusted, env)
-        rules = _Rules(select, ignore, fail_on)
+        rules = _Rules(select, ignore, fail_on, launch)
         options = _options(
             files, flags, rules, overlay, target=target, timeout=timeout, bridge=bridge, quiet=quiet
         )
@@ -218,6 +222,7 @@ class _Rules:
     select: list[str] | None
     ignore: list[str] | None
     fail_on: str | None
+    launch: list[Path] | None = None  # --launch (not a rule flag, but taken from the file alike)
 
 
 def _options(
@@ -240,7 +245,13 @@ def _options(
     sep = [s for item in (rules.select or []) for s in item.split(",") if s] or cfg.select
     ign = [s for item in (rules.ignore or []) for s in item.split(",") if s] or cfg.ignore
     threshold = fail_on_threshold(rules.fail_on, cfg)
-    given = (("select", rules.select), ("ignore", rules.ignore), ("fail-on", rules.fail_on))
+    launch = launch_files(rules.launch, cfg)
+    given = (
+        ("select", rules.select),
+        ("ignore", rules.ignore),
+        ("fail-on", rules.fail_on),
+        ("launch", rules.launch),
+    )
     st.say_where(tuple(k for k, flag in given if not flag), quiet=quiet)
     return Options(
         target=st.target,
@@ -251,6 +262,7 @@ def _options(
         package_paths=st.package_paths,
         timeout=timeout,
         bridges=tuple(str(b) for b in bridge or ()),
+        launch=launch,
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
         overlay=overlay,

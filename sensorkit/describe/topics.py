@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from sensorkit.describe.sensorinfo import RobotInfo
     from sensorkit.describe.views import CameraView, SensorInfo
     from sensorkit.loading.bridge import BridgeTopic
+    from sensorkit.loading.launch_facts import LaunchFacts
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Plugin
 
@@ -82,6 +83,9 @@ class BridgeConfig:
 
     files: list[str]
     topics: list[BridgeTopic]
+    # ROS name -> the name a launch file remaps it to on a ros_gz_bridge node
+    remaps: dict[str, str] = field(default_factory=dict)
+    launch_files: list[str] = field(default_factory=list)  # the launch files read
 
 
 @dataclass
@@ -94,6 +98,7 @@ class RobotTopics:
     topics: list[Topic]
     sensors: int
     bridge_files: list[str] | None = None  # Gazebo Sim: the bridge files read
+    launch_files: list[str] = field(default_factory=list)  # the launch files read
     notes: list[str] = field(default_factory=list)
 
     @property
@@ -177,17 +182,50 @@ def gz_encoding(
 # --------------------------------------------------------------------------- bridge
 
 
-def load_bridge(robot: Robot, target: str, files: Sequence[str] = ()) -> BridgeConfig:
+def load_bridge(
+    robot: Robot,
+    target: str,
+    files: Sequence[str] = (),
+    launch: Sequence[str] = (),
+    package_paths: Sequence[str] = (),
+) -> BridgeConfig:
     """The bridge configuration for ``robot``: ``files``, else the package's ``config/``
-    parameter_bridge YAMLs (as ``sensorkit validate`` reads them).
+    parameter_bridge YAMLs, and the bridges of its launch files (``launch``, else those
+    the launch reader finds), as ``sensorkit validate`` reads them.
 
     Raises:
         UsageError: a file that is not a ros_gz_bridge configuration.
     """
-    from sensorkit.lint.engine import Options, load_bridges
+    from sensorkit.lint.engine import Options, _load_launch, load_bridges
 
-    found = load_bridges(robot, Options(target=target, bridges=tuple(files)))
-    return BridgeConfig(list(found.files), list(found.topics))
+    options = Options(
+        target=target,
+        bridges=tuple(files),
+        launch=tuple(launch),
+        package_paths=tuple(package_paths),
+    )
+    facts = _load_launch(robot, options)
+    found = load_bridges(robot, options, facts)
+    config = BridgeConfig(list(found.files), list(found.topics))
+    if facts is not None:
+        config.remaps = bridge_remaps(facts)
+        config.launch_files = list(facts.files)
+    return config
+
+
+# ros_gz_bridge's node: "ros_gz_bridge" on Humble and later, "ros_ign_bridge" on Fortress's
+# distributions (turtlebot/turtlebot4_simulator@humble a238c94:turtlebot4_ignition_bringup/
+# launch/ros_ign_bridge.launch.py:82-99 remaps the bridged scoped scan topic to "scan").
+BRIDGE_PACKAGES = frozenset({"ros_gz_bridge", "ros_ign_bridge"})
+
+
+def bridge_remaps(facts: LaunchFacts) -> dict[str, str]:
+    """The remappings the launch files give ros_gz_bridge nodes, by absolute ROS name."""
+    return {
+        _abs(r.src): _abs(r.dst)
+        for r in facts.remaps
+        if r.package in BRIDGE_PACKAGES and "$" not in r.src
+    }
 
 
 def _abs(topic: str) -> str:
@@ -366,12 +404,19 @@ def _gz_topics(
             out.append(
                 replace(
                     base,
-                    name=_abs(t.ros or t.gz),
+                    name=_ros_name(t, bridge),
                     bridge=f"{t.file}:{t.line}" if t.line else t.file,
                     notes=base.notes + extra,
                 )
             )
     return out
+
+
+def _ros_name(t: BridgeTopic, bridge: BridgeConfig) -> str:
+    """The ROS name a bridge entry publishes under: its ros name (parameter_bridge
+    arguments: the gz name), after the launch's remappings of the bridge node."""
+    name = _abs(t.ros or t.gz)
+    return bridge.remaps.get(name, name)
 
 
 def _sort_key(t: Topic) -> tuple[bool, str, str, str]:
@@ -414,6 +459,7 @@ def robot_topics(info: RobotInfo, bridge: BridgeConfig | None = None) -> RobotTo
         topics=topics,
         sensors=len(info.sensors),
         bridge_files=list(config.files) if gz else None,
+        launch_files=list(config.launch_files),
         notes=notes,
     )
     if gz and topics:
@@ -515,6 +561,7 @@ def topics_json(result: RobotTopics) -> str:
         "target": result.target,
         "target_reason": result.target_reason,
         "bridge_files": result.bridge_files,
+        "launch_files": result.launch_files,
         "topics": [_topic_json(t) for t in result.topics],
         "notes": result.notes,
     }

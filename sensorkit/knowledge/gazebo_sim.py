@@ -291,3 +291,73 @@ def lens_block_values(block: str, written: dict[str, float]) -> dict[str, float]
         SDF_LENS_INTRINSICS_DEFAULTS if block == "intrinsics" else SDF_LENS_PROJECTION_DEFAULTS
     )
     return {tag: written.get(tag, default) for tag, default in defaults.items()}
+
+
+# The gz message type a Gazebo Sim sensor advertises on each of its topics, in the order
+# sensorkit.lint.rules.topic_names.gz_topics lists them (SK615). Read in gz-sensors
+# (gazebosim/gz-sensors@gz-sensors8 c8159af; ign-sensors6 7cfaddf the same types):
+# - camera: Image on the topic (src/CameraSensor.cc:395; ign-sensors6 :385), CameraInfo on
+#   camera_info (:685; :696);
+# - depth camera: Image on the topic (src/DepthCameraSensor.cc:274; :301), PointCloudPacked
+#   on TOPIC/points (:302; :344), CameraInfo (CameraSensor::AdvertiseInfo, :297);
+# - rgbd camera: Image on TOPIC/image and TOPIC/depth_image (src/RgbdCameraSensor.cc:201,
+#   :215; :210, :224), PointCloudPacked on TOPIC/points (:229; :238), CameraInfo on
+#   TOPIC/camera_info (:252);
+# - gpu lidar: LaserScan on the topic (src/Lidar.cc:130; :129), PointCloudPacked on
+#   TOPIC/points (src/GpuLidarSensor.cc:151-155; :153);
+# - imu: IMU (src/ImuSensor.cc:142; :140); navsat: NavSat (src/NavSatSensor.cc:111; :98);
+#   magnetometer: Magnetometer (src/MagnetometerSensor.cc:108; :107); altimeter: Altimeter
+#   (src/AltimeterSensor.cc:106; :105); air_pressure: FluidPressure
+#   (src/AirPressureSensor.cc:117; :116).
+_CAMERA_MSGS = ("Image", "CameraInfo")
+_DEPTH_MSGS = ("Image", "PointCloudPacked", "CameraInfo")
+_RGBD_MSGS = ("Image", "Image", "PointCloudPacked", "CameraInfo")
+_LIDAR_MSGS = ("LaserScan", "PointCloudPacked")
+GZ_SENSOR_TOPIC_MSGS: dict[str, tuple[str, ...]] = {
+    "camera": _CAMERA_MSGS,
+    "depth_camera": _DEPTH_MSGS,
+    "depth": _DEPTH_MSGS,
+    "rgbd_camera": _RGBD_MSGS,
+    "rgbd": _RGBD_MSGS,
+    "gpu_lidar": _LIDAR_MSGS,
+    "gpu_ray": _LIDAR_MSGS,
+    "imu": ("IMU",),
+    "navsat": ("NavSat",),
+    "magnetometer": ("Magnetometer",),
+    "altimeter": ("Altimeter",),
+    "air_pressure": ("FluidPressure",),
+}
+
+# The ROS types ros_gz_bridge pairs with each of those gz types (gazebosim/ros_gz@jazzy
+# 739cb42:ros_gz_bridge/README.md:28 GPSFix-NavSat, :32 Altimeter, :50 CameraInfo,
+# :51 FluidPressure, :52 Image, :53 Imu-IMU, :56 LaserScan, :57 MagneticField-Magnetometer,
+# :58 NavSatFix-NavSat, :59 PointCloud2-PointCloudPacked; humble 5cc92f8 README.md:35-65
+# the same pairs, spelled ignition::msgs). Written without "/msg/" for comparison.
+GZ_TO_ROS_TYPES: dict[str, frozenset[str]] = {
+    "Image": frozenset({"sensor_msgs/Image"}),
+    "CameraInfo": frozenset({"sensor_msgs/CameraInfo"}),
+    "PointCloudPacked": frozenset({"sensor_msgs/PointCloud2"}),
+    "LaserScan": frozenset({"sensor_msgs/LaserScan"}),
+    "IMU": frozenset({"sensor_msgs/Imu"}),
+    "NavSat": frozenset({"sensor_msgs/NavSatFix", "gps_msgs/GPSFix"}),
+    "Magnetometer": frozenset({"sensor_msgs/MagneticField"}),
+    "FluidPressure": frozenset({"sensor_msgs/FluidPressure"}),
+    "Altimeter": frozenset({"ros_gz_interfaces/Altimeter"}),
+}
+
+# A subscriber of another type gets nothing: gz-transport runs a subscription's callback
+# only when its type is the published message's type (or the generic one)
+# (gazebosim/gz-transport@gz-transport13 e57e131e:src/NodeShared.cc:601-602, the same at
+# :574-575 for raw handlers; ign-transport11 2edc82f8 :608-609, gz-transport14 f1a871e1
+# :601). ros_gz_bridge subscribes with the gz type of the entry, so an entry whose types do
+# not match what the sensor publishes carries nothing.
+
+
+def gz_msg_name(gz_type: str) -> str:
+    """``gz.msgs.Image``, ``ignition.msgs.Image``, ``ignition::msgs::Image`` -> ``Image``."""
+    return gz_type.replace("::", ".").rsplit(".", 1)[-1]
+
+
+def ros_msg_name(ros_type: str) -> str:
+    """``sensor_msgs/msg/Image`` -> ``sensor_msgs/Image`` (the ROS 1 spelling)."""
+    return ros_type.strip().replace("/msg/", "/")

@@ -11,6 +11,7 @@ select = ["SK5", "SK6"]         # validate
 ignore = ["SK104"]
 fail-on = "warning"
 package-path = ["src"]          # relative to the file
+launch = ["launch/sim.launch.py"] # validate, topics: launch files to read (relative to the file)
 args = { namespace = "robot1" } # xacro arguments
 ```
 """
@@ -24,7 +25,7 @@ from typing import Any
 
 from sensorkit.base.errors import UsageError
 
-KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args"}
+KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args", "launch"}
 
 
 @dataclass
@@ -38,6 +39,7 @@ class Config:
     fail_on: str | None = None
     package_paths: list[str] = field(default_factory=list)
     args: dict[str, str] = field(default_factory=dict)
+    launch: list[str] = field(default_factory=list)  # launch files, made absolute
 
 
     def describe(self, used: Iterable[str]) -> str | None:
@@ -54,6 +56,7 @@ class Config:
             "fail-on": self.fail_on,
             "package-path": " ".join(self.package_paths),
             "args": " ".join(f"{k}:={v}" for k, v in self.args.items()),
+            "launch": " ".join(display_path(Path(p)) for p in self.launch),
         }
         parts = [f"{key} {values[key]}" for key in used if values.get(key)]
         if not parts:
@@ -171,4 +174,7 @@ def load_config(start: Path | None = None, *, explicit: Path | None = None) -> C
         msg = f"{path}: {_table(path)}args must be a table"
         raise UsageError(msg)
     cfg.args = {str(k): str(v) for k, v in args.items()}
+    cfg.launch = [
+        str((path.parent / p).resolve()) for p in _strings(table.get("launch", []), "launch", path)
+    ]
     return cfg

@@ -31,6 +31,7 @@ from sensorkit.model.targets import TARGETS, detect_target, is_gz
 
 if TYPE_CHECKING:
     from sensorkit.loading.bridge import BridgeTopic
+    from sensorkit.loading.launch_facts import LaunchFacts
     from sensorkit.loading.untrusted import Untrusted
 
 
@@ -53,6 +54,10 @@ class Options:
     # Bridge entries not on disk yet, read as if in the first bridge file: add-* checks
     # a sensor together with the entries the same add appends to the package's bridge.
     bridge_pending: tuple[BridgeTopic, ...] = ()
+    launch: tuple[str, ...] = ()  # launch files given with --launch (none: the reader looks)
+    # What the launch files say, when the caller has it already (tests, a re-check): used
+    # instead of reading them.
+    launch_facts: LaunchFacts | None = None
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -86,6 +91,7 @@ class FileReport:
     suppressed: int = 0
     sensors_checked: int = 0  # kept when ``robot`` is dropped (validate_paths)
     macro_only: bool = False  # a xacro that only defines macros/properties: nothing to check
+    launch_note: str | None = None  # "bridges from launch/sim.launch.py": the launch files read
 
     @property
     def display(self) -> str:
@@ -173,8 +179,56 @@ def find_missing_files(
     return missing, findings
 
 
-def load_bridges(robot: Robot, options: Options) -> Bridge:
-    """The ros_gz_bridge entries that apply: --bridge files, else the package's config/."""
+def _load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
+    """What the robot's launch files say (``--launch`` files, else those the reader finds
+    beside the robot), or None when nothing was read.
+
+    The reader (sensorkit.loading.launch, issue 24) is imported lazily: without it the
+    rules run as they did before launch files were read.
+    """
+    if options.launch_facts is not None:
+        return options.launch_facts
+    try:
+        # (the ignore: until the reader is merged, mypy does not see the module)
+        from sensorkit.loading import launch as reader  # type: ignore[attr-defined,unused-ignore]
+    except ImportError:
+        return None
+    from sensorkit.loading.packages import own_package
+
+    # Where to look: the robot's package and its siblings (the workspace folder holding it).
+    pkg = own_package(robot.document.path)
+    roots = [pkg.parent] if pkg is not None else [robot.document.path.resolve().parent]
+    paths: list[Path]
+    if options.launch:
+        paths = [Path(p) for p in options.launch]
+    else:
+        paths = reader.find_launch_files(robot.document.path, roots)
+    if not paths:
+        return None
+    facts: LaunchFacts = reader.read_launch(paths, roots=roots, package_paths=options.package_paths)
+    return None if facts.empty else facts
+
+
+def launch_note(facts: LaunchFacts | None, bridge: Bridge | None) -> str | None:
+    """What the text header says of the launch files read: ``bridges from
+    config/bridge.yaml, launch/sim.launch.py`` (every bridge file, when a launch file adds
+    to them) and ``launch files read: ...`` for the others; None when none was read."""
+    if facts is None or facts.empty:
+        return None
+    parts: list[str] = []
+    bridging = list(dict.fromkeys(t.file for t in facts.bridges))
+    if bridging:
+        files = bridge.files if bridge is not None else bridging
+        parts.append("bridges from " + ", ".join(files))
+    rest = [f for f in facts.files if f not in bridging]
+    if rest:
+        parts.append("launch files read: " + ", ".join(rest))
+    return "; ".join(parts)
+
+
+def load_bridges(robot: Robot, options: Options, launch: LaunchFacts | None = None) -> Bridge:
+    """The ros_gz_bridge entries that apply: --bridge files, else the package's config/,
+    and the bridges the launch files start (``launch``)."""
     from sensorkit.loading.bridge import BridgeError, find_bridge_files, read_bridge
     from sensorkit.loading.packages import own_package
 
@@ -190,6 +244,11 @@ def load_bridges(robot: Robot, options: Options) -> Bridge:
         except BridgeError as exc:
             raise UsageError(f"--bridge {exc}") from None
     out.topics.extend(options.bridge_pending)
+    if launch is not None and launch.bridges:
+        for f in dict.fromkeys(t.file for t in launch.bridges):
+            if f not in out.files:
+                out.files.append(f)
+        out.topics.extend(launch.bridges)
     return out
 
 
@@ -227,18 +286,21 @@ def make_context(
     else:
         target, reason = options.target, f"chosen with {options.target_origin}"
     conv = conversion if conversion is not None else convert(robot)
+    launch = _load_launch(robot, options)
     known: Bridge | None = None
     if is_gz(target):
-        known = load_bridges(robot, options) if bridge is True else bridge or None
+        known = load_bridges(robot, options, launch) if bridge is True else bridge or None
     ctx = Context(
         robot=robot,
         target=target,
         conversion=conv,
         auto=options.target == "auto",
         bridge=known,
+        launch=launch,
     )
+    model = launch.spawn_name() if launch is not None else None
     for s in robot.sensors:
-        ctx.frames[id(s)] = sensor_frames(robot, s, target, conv)
+        ctx.frames[id(s)] = sensor_frames(robot, s, target, conv, model=model)
     return ctx, reason
 
 
@@ -288,6 +350,7 @@ def check_robot(
         findings=run.findings(),
         internal_errors=run.internal_errors,
         macro_only=robot.macros_only,
+        launch_note=launch_note(run.ctx.launch, run.ctx.bridge),
     )
 
 

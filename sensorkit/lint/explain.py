@@ -71,6 +71,21 @@ EXAMPLES: dict[str, Example] = {
         good="<lens><projection>\n  <p_fx>554.383</p_fx><p_fy>554.383</p_fy>"
         "<p_cx>320</p_cx><p_cy>240</p_cy>\n  <tx>-55.4</tx>\n</projection></lens>",
     ),
+    "SK615": Example(
+        why=(
+            "ros_gz_bridge subscribes to the gz topic with the entry's gz type, and gz-transport "
+            "runs a subscriber only for messages of its own type: a gpu_lidar publishes "
+            "gz.msgs.LaserScan on its topic, so an entry that bridges it as an Image carries "
+            "nothing and the ROS topic stays silent."
+        ),
+        bad="# a gpu_lidar with <topic>scan</topic>\n"
+        "- gz_topic_name: scan\n  ros_topic_name: scan\n"
+        "  ros_type_name: sensor_msgs/msg/Image\n  gz_type_name: gz.msgs.Image\n"
+        "  direction: GZ_TO_ROS",
+        good="- gz_topic_name: scan\n  ros_topic_name: scan\n"
+        "  ros_type_name: sensor_msgs/msg/LaserScan\n  gz_type_name: gz.msgs.LaserScan\n"
+        "  direction: GZ_TO_ROS",
+    ),
     "SK301": Example(
         why=(
             "Gazebo drops a link without mass that a moving joint holds, and everything "

@@ -48,7 +48,8 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
             continue  # -q: only files with findings; a macro-only file: counted below
         head = fr.display
         if fr.target:
-            head += f" (target {fr.target}; {fr.target_reason})"
+            head += f" (target {fr.target}; {fr.target_reason}"
+            head += f"; {fr.launch_note})" if fr.launch_note else ")"
         lines.append(bold(head))
         groups: dict[str | None, list[Finding]] = defaultdict(list)
         for f in fr.findings:

@@ -28,6 +28,10 @@ class BridgeTopic:
     direction: str
     file: str
     line: int | None
+    # gz_type_name (ign_type_name on Fortress), as written; None: not given (ros_gz_bridge
+    # derives it from ros_type_name) (gazebosim/ros_gz@humble:ros_gz_bridge/src/
+    # bridge_config.cpp:63-72 reads ign_type_name when gz_type_name is absent)
+    gz_type: str | None = None
 
     @property
     def to_ros(self) -> bool:
@@ -78,6 +82,7 @@ def read_bridge(path: Path, display: str | None = None) -> list[BridgeTopic]:
                 direction=fields.get("direction", "BIDIRECTIONAL"),
                 file=name,
                 line=item.start_mark.line + 1,
+                gz_type=fields.get("gz_type_name") or fields.get("ign_type_name"),
             )
         )
     return out

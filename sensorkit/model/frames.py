@@ -210,8 +210,13 @@ def render_pose(robot: Robot, sensor: Sensor) -> Mat | None:
     return pose_matrix(compose(P, sensor.pose.pose()))
 
 
-def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -> SensorFrames:
-    """Compute render pose and published frame of ``sensor`` for ``target``."""
+def sensor_frames(
+    robot: Robot, sensor: Sensor, target: str, conv: Conversion, *, model: str | None = None
+) -> SensorFrames:
+    """Compute render pose and published frame of ``sensor`` for ``target``.
+
+    ``model``: the name the robot is spawned under, when a launch file says (the MODEL of
+    a gz default frame); else the URDF's robot name stands for it."""
     link = sensor.reference if sensor.reference in robot.link_map else None
     T = render_pose(robot, sensor)
     if is_gz(target):
@@ -224,7 +229,7 @@ def sensor_frames(robot: Robot, sensor: Sensor, target: str, conv: Conversion) -
         is_default = published is None
         if is_default:
             where = conv.survivor(link) if link else sensor.reference
-            published = f"{robot.name}::{where}::{sensor.name}"
+            published = f"{model or robot.name}::{where}::{sensor.name}"
         out = SensorFrames(sensor, link, T, published, how, is_default, None)
         cam = sensor.camera
         if cam is not None and cam.optical_frame_id and target in GZ_OPTICAL_FRAME_ID:

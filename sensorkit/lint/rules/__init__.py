@@ -32,7 +32,7 @@ RULE_ORDER = (
     "SK101", "SK102", "SK103", "SK104", "SK105",  # input
     "SK301", "SK302", "SK303", "SK304",  # mass
     "SK601", "SK602", "SK603", "SK604", "SK605", "SK606",  # plugins, ros1, topics, ...
-    "SK607", "SK612", "SK608", "SK609", "SK610", "SK611", "SK614",  # ... bridge, gz_frames
+    "SK607", "SK612", "SK615", "SK608", "SK609", "SK610", "SK611", "SK614",  # ... bridge, gz_frames
     "SK401", "SK402", "SK403", "SK404", "SK405", "SK406", "SK407", "SK408", "SK409",  # sensors
     "SK613",  # sensors
     "SK412",  # focal

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from lxml import etree
 
     from sensorkit.loading.bridge import BridgeTopic
+    from sensorkit.loading.launch_facts import LaunchFacts
     from sensorkit.model.frames import SensorFrames
     from sensorkit.model.robot import Robot
     from sensorkit.model.sdf import Conversion
@@ -101,7 +102,8 @@ class Context:
     frames: dict[int, SensorFrames] = field(default_factory=dict)
     missing_files: list[MissingFile] = field(default_factory=list)
     auto: bool = False  # the target was picked by --target auto
-    bridge: Bridge | None = None  # gz targets: what the bridge carries to ROS
+    bridge: Bridge | None = None  # gz targets: what the bridge carries to ROS (launch's too)
+    launch: LaunchFacts | None = None  # what the robot's launch files say (issue 24)
 
     def frames_of(self, sensor: Sensor) -> SensorFrames:
         return self.frames[id(sensor)]

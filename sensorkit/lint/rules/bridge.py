@@ -1,4 +1,4 @@
-"""SK607, SK612: what reaches ROS.
+"""SK607, SK612, SK615: what reaches ROS.
 
 A sensor that publishes nothing to ROS (no plugin on Classic and no model-level plugin
 that reads it, see sensorkit.model.owners; on Gazebo Sim, no ros_gz_bridge entry for any
@@ -55,11 +55,26 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
         images, info = split
         if any(is_bridged(t, scoped, bridged) for t in images):
             return None
-        # Info, not a warning: projects often bridge the image with ros_gz_image's
-        # image_bridge from a launch file, which sensorkit does not read (MOGI-ROS/
+        # Info, not a warning, when the launch files are not known: projects often bridge the
+        # image with ros_gz_image's image_bridge from a launch file (MOGI-ROS/
         # Week-9-10-Simple-arm@425c335:bme_ros2_simple_arm/launch/spawn_robot.launch.py:133-138
         # bridges /gripper_camera/image and /table_camera/image so, beside a gz_bridge.yaml
-        # that carries only their camera_info).
+        # that carries only their camera_info). When the launch files read start a bridge,
+        # fully read, and none of them carries the image either, it is a warning (issue 23).
+        launch = ctx.launch
+        known = launch is not None and bool(launch.bridges) and not launch.bridge_unknown
+        if known and launch is not None:
+            return ctx.finding(
+                "SK607",
+                Severity.WARNING,
+                f"camera {s.name!r}: {files} bridges its camera_info ({info}) but not its image "
+                f"({', '.join(images)}), and no bridge the launch files start "
+                f"({', '.join(launch.files)}) carries it: ROS gets the calibration of a camera "
+                "it never sees",
+                s.source,
+                sensor=s.name,
+                fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic} (sensor_msgs/msg/Image)",
+            )
         return ctx.finding(
             "SK607",
             Severity.INFO,
@@ -69,6 +84,17 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
             s.source,
             sensor=s.name,
             fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic} (sensor_msgs/msg/Image)",
+        )
+    if ctx.launch is not None and ctx.launch.bridge_unknown:
+        # A bridge the launch starts could not be read: it may carry this sensor.
+        return ctx.finding(
+            "SK607",
+            Severity.INFO,
+            f"sensor {s.name!r} publishes on gz topic {shown}, which no bridge entry sensorkit "
+            f"read names; a bridge in {', '.join(ctx.launch.files)} could not be read, so "
+            "sensorkit cannot tell whether it reaches ROS",
+            s.source,
+            sensor=s.name,
         )
     return ctx.finding(
         "SK607",
@@ -197,3 +223,69 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
         )
 
 
+
+
+def _published_types(ctx: Context) -> dict[str, tuple[set[str], list[str]]]:
+    """gz topic -> (gz message types sensors publish on it, those sensors' names), for the
+    sensors with a <topic> whose types sensorkit knows."""
+    from sensorkit.knowledge.gazebo_sim import GZ_SENSOR_TOPIC_MSGS
+
+    out: dict[str, tuple[set[str], list[str]]] = {}
+    for s in ctx.robot.sensors:
+        msgs = GZ_SENSOR_TOPIC_MSGS.get(s.type)
+        if msgs is None or not s.topic or gz_never_created(ctx.target, s.type):
+            continue
+        topics = gz_topics(s)
+        if len(topics) != len(msgs):
+            continue
+        for topic, msg in zip(topics, msgs, strict=True):
+            types, names = out.setdefault(topic, (set(), []))
+            types.add(msg)
+            names.append(s.name)
+    return out
+
+
+@rule(
+    "SK615",
+    "error",
+    "a ros_gz_bridge entry (YAML or launch) whose message types do not match what the sensor "
+    "publishes on that gz topic (gz.msgs.Image for a gpu_lidar's scan): gz-transport hands the "
+    "bridge nothing, and ROS never sees the data",
+)
+def bridge_type_mismatch(ctx: Context) -> Iterator[Finding]:
+    bridge = ctx.bridge
+    if bridge is None or not bridge.topics or not is_gz(ctx.target):
+        return
+    from sensorkit.base.findings import SourceRef
+    from sensorkit.knowledge.gazebo_sim import GZ_TO_ROS_TYPES, gz_msg_name, ros_msg_name
+
+    published = _published_types(ctx)
+    for t in bridge.topics:
+        if not t.to_ros:
+            continue
+        found = published.get(norm_topic(t.gz))
+        if found is None:
+            continue
+        types, names = found
+        wrong: list[str] = []
+        if t.gz_type and gz_msg_name(t.gz_type) not in types:
+            wrong.append(f"gz type {t.gz_type}")
+        ros_ok = set().union(*(GZ_TO_ROS_TYPES.get(m, frozenset()) for m in types))
+        if t.ros_type and ros_ok and ros_msg_name(t.ros_type) not in ros_ok:
+            wrong.append(f"ROS type {t.ros_type}")
+        if not wrong:
+            continue
+        want = sorted(types)
+        ros_want = sorted(ros_ok)
+        yield ctx.finding(
+            "SK615",
+            Severity.ERROR,
+            f"bridge entry for gz topic {t.gz!r} gives {' and '.join(wrong)}, but "
+            f"{', '.join(repr(n) for n in names)} publish{'es' if len(names) == 1 else ''} "
+            f"gz.msgs.{'/'.join(want)} there: ros_gz_bridge subscribes with the wrong type "
+            "and gz-transport hands it nothing, so ROS never sees the data",
+            SourceRef(t.file, t.line),
+            sensor=names[0],
+            fix=f"bridge it as {ros_want[0].replace('/', '/msg/', 1) if ros_want else '?'} "
+            f"(gz.msgs.{want[0]})",
+        )

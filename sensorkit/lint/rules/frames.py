@@ -15,6 +15,7 @@ from sensorkit.knowledge.gazebo_sim import (
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text
+from sensorkit.lint.rules.tf_frames import gz_default_in_tf, in_tf, prefix_finding
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.parse import child
@@ -104,12 +105,12 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
         if gz and gz_never_created(ctx.target, s.type):
             continue  # never created (SK613): it stamps nothing
         if gz and fr.is_default and fr.image_frame is None and _gz_stamps_scoped_name(s):
-            if poses:
+            if poses or gz_default_in_tf(ctx, s, fr):
                 continue
             yield _gz_default_frame(ctx, s, fr)
             continue
         for frame, how in ((fr.published, fr.how), (fr.image_frame, fr.image_how)):
-            if frame is None or (fr.is_default and how == fr.how) or _exists(robot, frame):
+            if frame is None or (fr.is_default and how == fr.how) or in_tf(ctx, frame):
                 continue
             if fr.spec is not None and fr.spec.world_frame_ok and frame.strip("/") in WORLD_FRAMES:
                 continue
@@ -131,7 +132,7 @@ def frame_exists(ctx: Context) -> Iterator[Finding]:
             if not given:
                 continue
             frame = known.stamped_frame(spec, given)  # ROS 1 tf::resolve drops a leading "/"
-            if _exists(robot, frame):
+            if in_tf(ctx, frame):
                 continue
             if spec.world_frame_ok and frame.strip("/") in WORLD_FRAMES:
                 continue
@@ -189,14 +190,25 @@ def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:
     # and ros2 a4d00a9).
     ros_frame = (fr.published or "").replace("::", "/")
     want = (optical_frame_at(ctx.robot, fr.T_world_render) if s.is_camera else fr.link) or fr.link
+    launch = ctx.launch
+    spawned = launch.spawn_name() if launch is not None else None
+    model = (
+        f"as {', '.join(launch.files)} spawns it"
+        if spawned is not None and launch is not None
+        else "shown as the URDF's robot name"
+    )
+    unless = (
+        "no static transform of the launch files read adds it, so TF cannot place the data"
+        if launch is not None and not launch.empty
+        else "unless a launch file adds a static transform for it, TF cannot place the data"
+    )
     return ctx.finding(
         "SK501",
         Severity.WARNING,
         f"sensor {s.name!r} has no frame tag: Gazebo Sim stamps its data {fr.published!r} "
-        "(MODEL::LINK::SENSOR, MODEL being the name the robot is spawned under, shown as the "
-        f"URDF's robot name), which ros_gz_bridge hands to ROS as {ros_frame!r}, a frame "
-        "robot_state_publisher never publishes: unless a launch file adds a static transform "
-        "for it, TF cannot place the data",
+        f"(MODEL::LINK::SENSOR, MODEL being the name the robot is spawned under, {model}), "
+        f"which ros_gz_bridge hands to ROS as {ros_frame!r}, a frame "
+        f"robot_state_publisher never publishes: {unless}",
         s.source,
         sensor=s.name,
         frame=fr.published,
@@ -214,6 +226,9 @@ def _missing_frame(
 ) -> Finding:
     from sensorkit.base.suggest import closest
 
+    prefixed = prefix_finding(ctx, frame, what, how, where, sensor)
+    if prefixed is not None:
+        return prefixed
     close = closest(frame, ctx.robot.link_map)
     return ctx.finding(
         "SK501",
