@@ -196,7 +196,7 @@ def load_bridge(
     Raises:
         UsageError: a file that is not a ros_gz_bridge configuration.
     """
-    from sensorkit.lint.engine import Options, _load_launch, load_bridges
+    from sensorkit.lint.engine import Options, load_bridges, load_launch
 
     options = Options(
         target=target,
@@ -204,7 +204,7 @@ def load_bridge(
         launch=tuple(launch),
         package_paths=tuple(package_paths),
     )
-    facts = _load_launch(robot, options)
+    facts = load_launch(robot, options)
     found = load_bridges(robot, options, facts)
     config = BridgeConfig(list(found.files), list(found.topics))
     if facts is not None:

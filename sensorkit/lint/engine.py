@@ -179,20 +179,16 @@ def find_missing_files(
     return missing, findings
 
 
-def _load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
+def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
     """What the robot's launch files say (``--launch`` files, else those the reader finds
     beside the robot), or None when nothing was read.
 
-    The reader (sensorkit.loading.launch, issue 24) is imported lazily: without it the
-    rules run as they did before launch files were read.
+    The reader (sensorkit.loading.launch) is imported here, not at module level: a run
+    with no launch file to read does not pay for it.
     """
     if options.launch_facts is not None:
         return options.launch_facts
-    try:
-        # (the ignore: until the reader is merged, mypy does not see the module)
-        from sensorkit.loading import launch as reader  # type: ignore[attr-defined,unused-ignore]
-    except ImportError:
-        return None
+    from sensorkit.loading import launch as reader
     from sensorkit.loading.packages import own_package
 
     # Where to look: the robot's package and its siblings (the workspace folder holding it).
@@ -205,7 +201,13 @@ def _load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
         paths = reader.find_launch_files(robot.document.path, roots)
     if not paths:
         return None
-    facts: LaunchFacts = reader.read_launch(paths, roots=roots, package_paths=options.package_paths)
+    # --package-path NAME=DIR names a package's folder for FindPackageShare and $(find-pkg-share).
+    named = {
+        name: Path(folder).expanduser().resolve()
+        for name, sep, folder in (p.partition("=") for p in options.package_paths)
+        if sep and name and "/" not in name
+    }
+    facts = reader.read_launch(paths, roots=roots, package_paths=named)
     return None if facts.empty else facts
 
 
@@ -286,7 +288,7 @@ def make_context(
     else:
         target, reason = options.target, f"chosen with {options.target_origin}"
     conv = conversion if conversion is not None else convert(robot)
-    launch = _load_launch(robot, options)
+    launch = load_launch(robot, options)
     known: Bridge | None = None
     if is_gz(target):
         known = load_bridges(robot, options, launch) if bridge is True else bridge or None
