@@ -29,7 +29,7 @@ from sensorkit.lint.rules.base import RULES, Context, MissingFile, RuleInfo, put
 RULE_ORDER = (
     "SK501", "SK502", "SK503", "SK504", "SK505", "SK506", "SK507",  # frames
     "SK508", "SK509",  # frame_joints
-    "SK101", "SK102", "SK103", "SK104", "SK105",  # input
+    "SK101", "SK102", "SK103", "SK104", "SK105", "SK106",  # input
     "SK301", "SK302", "SK303", "SK304",  # mass
     "SK601", "SK602", "SK603", "SK604", "SK605", "SK606",  # plugins, ros1, topics, ...
     "SK607", "SK612", "SK615", "SK608", "SK609", "SK610", "SK611", "SK614",  # ... bridge, gz_frames

@@ -5,7 +5,7 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterator
 
-from sensorkit.base.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.lint.rules.base import Context, declare, rule
 from sensorkit.model.parse import local
 from sensorkit.model.urdf import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN
@@ -92,4 +92,23 @@ def unknown_elements(ctx: Context) -> Iterator[Finding]:
             el,
             link=stray.link,
             fix=f'write {close[0]}="..."' if close else f"<{ptag}> takes " + ", ".join(allowed),
+        )
+
+
+@rule(
+    "SK106",
+    "info",
+    "a launch file sensorkit could not read (it does not parse, is too large, includes itself, "
+    "or names what cannot be resolved): what it starts is unknown, so no finding rests on it",
+)
+def unreadable_launch(ctx: Context) -> Iterator[Finding]:
+    if ctx.launch is None:
+        return
+    for problem in ctx.launch.problems:
+        yield ctx.finding(
+            "SK106",
+            Severity.INFO,
+            f"{problem.file}: could not read: {problem.message}",
+            SourceRef(problem.file, problem.line),
+            fix="pass the launch files to read with --launch, or fix this one",
         )
