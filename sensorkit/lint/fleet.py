@@ -15,7 +15,9 @@ findings (plain data) and sends them back; a worker that dies (a crash, the kern
 killer) costs only the file it was validating, which becomes that file's error: a new
 worker takes its place and the file queued behind. Workers run in their own process
 group, so xacro's forked children (``loading.xacro_expand``) die with them when sensorkit
-stops early (Ctrl-C); they ignore SIGINT, which the parent handles.
+stops early (Ctrl-C); they ignore SIGINT, which the parent handles. A worker dies with
+sensorkit even when sensorkit is killed outright (SIGKILL: ``base.confine.die_with_parent``),
+and xacro's children die with the worker the same way.
 """
 
 from __future__ import annotations
@@ -111,8 +113,16 @@ def cpu_count() -> int:
         return os.cpu_count() or 1
 
 
-def _worker(conn: Connection, options: Options) -> None:  # pragma: no cover (a child)
-    """Validate what the parent sends, one file at a time, until it sends None."""
+def _worker(
+    conn: Connection, options: Options, parent: int | None = None
+) -> None:  # pragma: no cover (a child)
+    """Validate what the parent sends, one file at a time, until it sends None.
+
+    It dies with ``parent`` (the sensorkit process), and xacro's children with it."""
+    if parent is not None:
+        from sensorkit.base.confine import die_with_parent
+
+        die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     with contextlib.suppress(OSError):  # stopping the group stops xacro's children too
         os.setpgid(0, 0)
@@ -147,7 +157,7 @@ def _start(ctx: Any, options: Options) -> tuple[BaseProcess, Connection]:
     import gc
 
     parent_end, child_end = ctx.Pipe()
-    proc = ctx.Process(target=_worker, args=(child_end, options), daemon=False)
+    proc = ctx.Process(target=_worker, args=(child_end, options, os.getpid()), daemon=False)
     # A caller that froze objects itself keeps exactly its freeze: freezing more now
     # could not be undone for its objects alone, so its workers go without.
     ours = not gc.get_freeze_count()
@@ -192,8 +202,10 @@ def _preload(paths: Sequence[Path]) -> None:
     Only that: everything imported here is imported before any worker starts, one module
     after the other, so it lengthens every run by its import time. Validating imports no
     numpy (a test checks it), so neither does this."""
+    from sensorkit.base.confine import preload
     from sensorkit.loading.xacro_expand import warm
 
+    preload()  # each worker sets its parent-death signal with it
     if any(not p.name.endswith(".urdf") for p in paths):  # .xacro, or anything else
         warm()
 

@@ -14,7 +14,6 @@ expanded robot still says which file and line it was written in.
 
 from __future__ import annotations
 
-import contextlib
 import io
 import os
 import re
@@ -25,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.untrusted import Confinement, Untrusted
@@ -34,7 +34,12 @@ forbid_entities = marks.forbid_entities
 
 MAX_INCLUDE_DEPTH = 64
 DEFAULT_TIMEOUT = 60.0
-MEMORY_LIMIT = 6 * 1024**3
+# Address space the expansion child may add to what it inherits (RLIMIT_AS): a
+# property-doubling bomb stops at it with a MemoryError, an SK102 error.
+MEMORY_LIMIT = 1024**3
+# The child's answer is read up to this many bytes: the input limit (64 MiB,
+# loading.document.MAX_FILE_BYTES) and 1 MiB for the rest of the outcome.
+MAX_ANSWER_BYTES = 65 * 1024**2
 
 
 class PackageMissing(Exception):
@@ -357,8 +362,15 @@ def expand(
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
 ) -> ExpandOutcome:
-    """Expand ``path`` isolated from this process where possible (see the module doc)."""
+    """Expand ``path`` isolated from this process where possible (see the module doc).
+
+    Under ``untrusted`` the in-process mode is refused (a UsageError): it would run the
+    expansion with this process's whole environment and files.
+    """
     if not hasattr(os, "fork") or os.environ.get("SENSORKIT_XACRO_INPROCESS"):
+        if untrusted is not None:
+            why = "SENSORKIT_XACRO_INPROCESS is set" if hasattr(os, "fork") else "no fork here"
+            raise UsageError(f"--untrusted needs xacro expanded in a forked process ({why})")
         return expand_in_process(path, args, resolver, untrusted, overlay)
     import multiprocessing as mp
     import pickle
@@ -367,7 +379,9 @@ def expand(
     ctx = mp.get_context("fork")
     recv, send = ctx.Pipe(duplex=False)
     proc = ctx.Process(
-        target=_child, args=(path, args, resolver, send, untrusted, overlay), daemon=True
+        target=_child,
+        args=(path, args, resolver, send, untrusted, overlay, os.getpid(), timeout),
+        daemon=True,
     )
     proc.start()
     send.close()
@@ -375,8 +389,10 @@ def expand(
     try:
         if recv.poll(timeout):
             try:
-                outcome = pickle.loads(recv.recv_bytes())
-            except (EOFError, OSError, pickle.UnpicklingError):
+                outcome = pickle.loads(recv.recv_bytes(MAX_ANSWER_BYTES))
+            except OSError as exc:  # "bad message length": over the cap, not read
+                outcome = None if "length" not in str(exc) else _too_large()
+            except (EOFError, pickle.UnpicklingError):
                 outcome = None
             if outcome is None:
                 proc.join(5)
@@ -413,8 +429,9 @@ def warm() -> None:
     import xacro
     import xacro.substitution_args  # noqa: F401
 
-    with contextlib.suppress(ImportError):  # not on every platform: _child does without
-        import resource  # noqa: F401
+    from sensorkit.base import confine
+
+    confine.preload()  # resource and ctypes, which _confine uses
 
 
 def _child(
@@ -424,21 +441,13 @@ def _child(
     send: Any,
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
+    parent: int | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
 ) -> None:
+    """The expansion child: confined (see ``_confine``), it expands and sends the outcome."""
     import pickle
 
-    if untrusted is not None:  # nothing but the allowed names stays in this process
-        from sensorkit.loading.untrusted import keep_only_environment
-
-        resolver.freeze_environment()  # installed packages stay findable
-        keep_only_environment(untrusted.env)
-
-    try:
-        import resource
-
-        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
-    except (ImportError, ValueError, OSError):
-        pass
+    _confine(path, resolver, untrusted, parent, timeout)
     try:
         outcome = expand_in_process(path, args, resolver, untrusted, overlay)
     except BaseException as exc:
@@ -452,3 +461,64 @@ def _child(
     finally:
         send.close()
         os._exit(0)
+
+
+def _confine(
+    path: Path,
+    resolver: PackageResolver,
+    untrusted: Untrusted | None,
+    parent: int | None,
+    timeout: float,
+) -> None:
+    """Confine the expansion child before it reads anything.
+
+    Always: it dies with its parent, stops on its own after ``timeout`` s of CPU (the
+    parent stops waiting then too), grows by at most MEMORY_LIMIT and writes no file.
+    Untrusted: its environment holds only the ``--env`` names (the package path
+    variables are read first), the block it started with is wiped, and where the kernel
+    has Landlock it may only read below the workspace, the package paths and the code it
+    runs (see ``_readable``).
+    """
+    from sensorkit.base import confine
+
+    if parent is not None:
+        confine.die_with_parent(parent)
+    confine.limit_resources(memory_growth=MEMORY_LIMIT, cpu_seconds=timeout, file_size=0)
+    if untrusted is None:
+        return
+    from sensorkit.loading.untrusted import keep_only_environment
+
+    resolver.freeze_environment()  # installed packages stay findable
+    keep_only_environment(untrusted.env)
+    confine.wipe_initial_environment()
+    confine.restrict_reads(_readable(path, resolver))
+
+
+def _readable(path: Path, resolver: PackageResolver) -> list[str]:
+    """What an untrusted child may read: the confinement's folders, every package path,
+    and the folders of the code the expansion imports on first use (stdlib, xacro, yaml,
+    sensorkit)."""
+    import yaml
+
+    import sensorkit
+    from sensorkit.loading.untrusted import confinement_for
+
+    roots = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs).roots
+    env = resolver.frozen_env or {}
+    if resolver.use_environment:
+        roots += [
+            os.path.join(p, "share")
+            for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep)
+            if p
+        ]
+        roots += [p for p in env.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+    code = [os, yaml, sensorkit, sys.modules["xacro"]]
+    roots += [os.path.dirname(m.__file__ or "") for m in code]
+    return [r for r in roots if r]
+
+
+def _too_large() -> ExpandOutcome:
+    return ExpandOutcome(
+        error_kind="memory",
+        message=f"xacro's output is larger than {MAX_ANSWER_BYTES // 1024**2} MiB: not read",
+    )

@@ -129,7 +129,11 @@ def _fork(run: Session, group: list[Job]) -> tuple[int, int] | None:
 
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
+    from sensorkit.base import confine
+
+    confine.preload()
     read, write = os.pipe()
+    parent = os.getpid()
     try:
         pid = os.fork()
     except OSError:
@@ -139,6 +143,7 @@ def _fork(run: Session, group: list[Job]) -> tuple[int, int] | None:
     if pid == 0:  # the child: render, send the results, leave without cleanup
         code = 0
         try:
+            confine.die_with_parent(parent)  # a killed preview leaves nothing running
             os.close(read)
             run.world.quiet.forget_sink()
             payload = pickle.dumps([run_job(run, job, None) for job in group])
