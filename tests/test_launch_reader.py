@@ -13,6 +13,8 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
+import pytest
+
 from sensorkit.loading.launch import find_launch_files, read_launch
 from sensorkit.loading.launch.extract import parse_bridge_arg
 from sensorkit.loading.launch_facts import LaunchFacts
@@ -61,7 +63,8 @@ PY_BRIDGE = """
 """
 
 
-def test_python_bridge_arguments_directions_and_remaps(tmp_path: Path) -> None:
+def test_python_bridge_arguments_directions_and_remaps(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     # parameter_bridge.cpp@humble:87-89,101-102,110/123/126: '[' gz->ROS, ']' ROS->gz, '@' both;
     # a /srv/ type is a service, not a topic (:132).
     facts = read(ws(tmp_path, {"bot_gazebo/launch/sim.launch.py": PY_BRIDGE}), "bot_gazebo/launch/sim.launch.py")
@@ -123,7 +126,8 @@ def test_unresolvable_bridge_argument_is_unknown_not_guessed(tmp_path: Path) -> 
     assert facts.static_transforms == [] and facts.static_transform_unknown
 
 
-def test_config_file_and_frame_prefix_python(tmp_path: Path) -> None:
+def test_config_file_and_frame_prefix_python(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     # ros_gz_bridge.cpp@humble:34,48-54 config_file; diff_drive.launch.py:75-79 os.path.join form
     text = """
         import os
@@ -199,7 +203,8 @@ def test_spawn_name_unresolved_is_none(tmp_path: Path) -> None:
     assert [s.name for s in facts.spawns] == [None] and facts.spawn_name() is None
 
 
-def test_include_followed_with_launch_arguments(tmp_path: Path) -> None:
+def test_include_followed_with_launch_arguments(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     """Modelled on turtlebot4_simulator's ros_gz_bringup including a spawn file with arguments."""
     top = """
         from launch.actions import IncludeLaunchDescription
