@@ -375,3 +375,33 @@ def test_find_launch_files(tmp_path: Path) -> None:
     found = [p.relative_to(tmp).as_posix() for p in find_launch_files(tmp / "bot_description/urdf/bot.urdf", [tmp])]
     assert found == ["bot_description/launch/display.launch.py", "bot_bringup/launch/robot_launch.py",
                      "bot_gazebo/launch/sim.launch.xml"]
+
+
+def test_find_package_share_find_is_the_share_folder(tmp_path: Path) -> None:
+    # Modelled on blackcoffeerobotics/bcr_arm@93f4f61:bcr_arm_gazebo/launch/
+    # bringup.gazebo.launch.py:37-41 (``FindPackageShare(package=p).find(p)``) and :141-144
+    # (an include of os.path.join(that, 'launch', ...)); find() returns the share folder of
+    # its own argument (ros2/launch_ros@humble:launch_ros/launch_ros/substitutions/
+    # find_package.py:110-112).
+    top = """
+        import os
+        from launch_ros.substitutions import FindPackageShare
+        def generate_launch_description():
+            pkg_sim = FindPackageShare(package='bot_gazebo').find('bot_gazebo')
+            spawn = IncludeLaunchDescription(PythonLaunchDescriptionSource([
+                os.path.join(pkg_sim, 'launch', 'spawn.launch.py')]))
+            return LaunchDescription([spawn])
+    """
+    spawn = """
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            return LaunchDescription([Node(package='ros_gz_sim', executable='create',
+                                           arguments=['-name', 'arm', '-topic', 'robot_description'])])
+    """
+    tmp = ws(tmp_path, {"bot_bringup/launch/top.launch.py": top, "bot_gazebo/launch/spawn.launch.py": spawn})
+    facts = read(tmp, "bot_bringup/launch/top.launch.py")
+    assert facts.spawn_name() == "arm" and not facts.problems
+    # Near miss: find() of a package not in the workspace is outside: nothing read, no guess.
+    (tmp / "bot_bringup/launch/top.launch.py").write_text(textwrap.dedent(top).replace(".find('bot_gazebo')", ".find('other')"))
+    facts = read(tmp, "bot_bringup/launch/top.launch.py")
+    assert facts.spawn_name() is None

@@ -198,6 +198,12 @@ class Evaluator:
         if any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in node.keywords):
             return UNKNOWN
         first = args[0] if args else None
+        if (isinstance(node.func, ast.Attribute) and node.func.attr == "find" and len(args) == 1
+                and isinstance(node.func.value, ast.Call) and call_name(node.func.value.func) == "FindPackageShare"):
+            # FindPackageShare(...).find(name) is the share folder of name, its own argument
+            # (ros2/launch_ros@humble:launch_ros/launch_ros/substitutions/find_package.py:110-112).
+            pkg = self.text(self.eval(first, scope))
+            return self.share(pkg) if pkg and "\x00" not in pkg else UNKNOWN
         if name == "LaunchConfiguration":
             var = self.text(self.eval(first or kw.get("variable_name"), scope))
             default = kw.get("default")
