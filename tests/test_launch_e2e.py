@@ -233,3 +233,15 @@ def test_a_bridge_yaml_given_and_started_by_the_launch_is_read_once(tmp_path: Pa
     # Near miss: the launch file alone still brings the YAML's entries.
     alone = validate_file(robot, Options(target="harmonic", launch=(str(launch),)))
     assert len([f for f in _of(alone, "SK612") if "/camera/depth_image" in f.message]) == 1
+
+
+def test_empty_launch_facts_read_none_and_look_for_none(tmp_path: Path) -> None:
+    """Options(launch_facts=LaunchFacts()): no launch file is read, the sibling's neither
+    (how the labelled corpus runs an entry with no ``launch:``)."""
+    from sensorkit.loading.launch_facts import LaunchFacts
+
+    robot = _workspace(tmp_path, "py", scan="/scann")
+    report = validate_file(robot, Options(target="harmonic", launch_facts=LaunchFacts()))
+    assert report.launch_note is None and not [f for f in _of(report, "SK612") if "/scann" in f.message]
+    # Near miss: left to itself, validate finds the sibling's launch file and its bridge.
+    assert [f for f in _of(_validate(robot), "SK612") if "/scann" in f.message]

@@ -186,8 +186,8 @@ def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
     The reader (sensorkit.loading.launch) is imported here, not at module level: a run
     with no launch file to read does not pay for it.
     """
-    if options.launch_facts is not None:
-        return options.launch_facts
+    if options.launch_facts is not None:  # given (an empty one: none read, none looked for)
+        return None if options.launch_facts.empty else options.launch_facts
     from sensorkit.loading import launch as reader
     from sensorkit.loading.packages import own_package
 
