@@ -405,3 +405,40 @@ def test_find_package_share_find_is_the_share_folder(tmp_path: Path) -> None:
     (tmp / "bot_bringup/launch/top.launch.py").write_text(textwrap.dedent(top).replace(".find('bot_gazebo')", ".find('other')"))
     facts = read(tmp, "bot_bringup/launch/top.launch.py")
     assert facts.spawn_name() is None
+
+
+def test_get_namespaced_name_and_perform_substitution(tmp_path: Path) -> None:
+    # Modelled on turtlebot/turtlebot4_simulator@a238c94:turtlebot4_ignition_bringup/launch/
+    # turtlebot4_spawn.launch.py:106,112,145-148,205-212: robot_name =
+    # GetNamespacedName(namespace, 'turtlebot4') (create3_sim@6a8bc44:irobot_create_common/
+    # irobot_create_common_bringup/irobot_create_common_bringup/namespace.py:29-32: name, or
+    # namespace/name) names the spawned model and the lidar's static transform; and on
+    # husarion/rosbot_xl_ros@2356b5f:rosbot_xl_gazebo/launch/spawn.launch.py:33-34, an
+    # OpaqueFunction reads a configuration with context.perform_substitution
+    # (ros2/launch@humble:launch/launch/launch_context.py:238-240).
+    text = """
+        from irobot_create_common_bringup.namespace import GetNamespacedName
+        def bridge(context, *args, **kwargs):
+            model = context.perform_substitution(LaunchConfiguration('model'))
+            return [Node(package='ros_gz_bridge', executable='parameter_bridge',
+                         arguments=['/' + model + '/scan@sensor_msgs/msg/LaserScan[gz.msgs.LaserScan'])]
+        def generate_launch_description():
+            namespace = LaunchConfiguration('namespace')
+            robot_name = GetNamespacedName(namespace, 'bot')
+            return LaunchDescription([
+                DeclareLaunchArgument('namespace', default_value=''),
+                DeclareLaunchArgument('model', default_value='lidar'),
+                Node(package='ros_gz_sim', executable='create', arguments=['-name', robot_name]),
+                Node(package='tf2_ros', executable='static_transform_publisher',
+                     arguments=['0', '0', '0', '0', '0', '0.0', 'rplidar_link', [robot_name, '/rplidar_link/rplidar']]),
+                OpaqueFunction(function=bridge)])
+    """
+    tmp = ws(tmp_path, {"bot_gazebo/launch/spawn.launch.py": text})
+    facts = read(tmp, "bot_gazebo/launch/spawn.launch.py")
+    assert facts.spawn_name() == "bot"
+    assert [(t.parent, t.child) for t in facts.static_transforms] == [("rplidar_link", "bot/rplidar_link/rplidar")]
+    assert [b.gz for b in facts.bridges] == ["/lidar/scan"] and not facts.bridge_unknown
+    # Near miss: under a namespace the name is namespace/name (namespace.py:32).
+    (tmp / "bot_gazebo/launch/spawn.launch.py").write_text(
+        textwrap.dedent(text).replace("'namespace', default_value=''", "'namespace', default_value='r1'"))
+    assert read(tmp, "bot_gazebo/launch/spawn.launch.py").spawn_name() == "r1/bot"
