@@ -18,7 +18,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from labelled import labels, live, robots, run, skeleton
+from labelled import live, robots, run, skeleton, table
 
 
 def main() -> int:
@@ -37,7 +37,7 @@ def main() -> int:
             crashes += 1
             print(f"ERROR {robot.id}: {out.error}", file=sys.stderr)
             continue
-        known = live(labels(robot.corpus).get(robot.key, {}))
+        known = live(table(robot))
         todo = skeleton(out, known)
         if ns.skeleton and todo:
             print(f"- robot: {robot.key}\n  findings:\n{todo}")

@@ -14,6 +14,15 @@ every mesh reference is missing by construction.
 A robot still to be fetched is listed in tests/realworld/wanted.yaml and marked
 ``pending: true`` in robots.yaml: until its files are in the corpus it is skipped.
 
+An entry may name the robot's launch files (``launch:``, paths like ``bridge:``; XML and
+YAML ones only: Python launch files are code and are not copied into the corpus). It is
+run with them (``--launch``), and an entry without ``launch:`` is run with none, so that a
+launch file landing beside a robot does not change its plain entry. The entry with launch
+files is keyed by its file, args and ``launch:PATH`` items; its labels are the plain
+entry's (same file and args) with its own block on top: a finding the launch files add is
+labelled there, and one they remove is repeated there with ``gone:`` saying why. An entry
+whose launch files have not landed is ``pending: true`` like a robot still to be fetched.
+
 A true label also says its ``impact``: ``defect`` when what the finding names changes what
 the robot does (a sensor that publishes nothing, in the wrong frame, with a wrong
 calibration), ``minor`` when it is true but harmless. An error is a promise that the
@@ -74,6 +83,7 @@ class Robot:
     # in its ROS 2 port in the corpus and its ROS 1 original in the real-world set).
     packages: dict[str, str] = field(default_factory=dict)
     pending: bool = False
+    launch: list[str] = field(default_factory=list)
 
     @property
     def path(self) -> Path:
@@ -82,10 +92,15 @@ class Robot:
         return (self.corpus.root / self.file).resolve()
 
     @property
+    def plain_key(self) -> str:
+        """The file, then its xacro args: the entry run with no launch file."""
+        return " ".join([self.file, *(f"{k}:={v}" for k, v in sorted(self.args.items()))])
+
+    @property
     def key(self) -> str:
         """How labels.yaml names this robot: the file, then its xacro args (one file may be
-        listed twice with different args)."""
-        return " ".join([self.file, *(f"{k}:={v}" for k, v in sorted(self.args.items()))])
+        listed twice with different args), then its launch files."""
+        return " ".join([self.plain_key, *(f"launch:{p}" for p in self.launch)])
 
     @property
     def id(self) -> str:
@@ -93,7 +108,7 @@ class Robot:
 
     @property
     def present(self) -> bool:
-        return self.path.is_file()
+        return self.path.is_file() and all((self.corpus.root / p).is_file() for p in self.launch)
 
 
 @dataclass
@@ -122,6 +137,7 @@ def robots() -> list[Robot]:
                     bridge=list(entry.get("bridge") or []),
                     packages={k: str(v) for k, v in (entry.get("packages") or {}).items()},
                     pending=bool(entry.get("pending", False)),
+                    launch=list(entry.get("launch") or []),
                 )
             )
     return out
@@ -144,6 +160,7 @@ def _rel(file: str | None) -> str:
 
 def run(robot: Robot) -> Outcome:
     from sensorkit.lint.engine import Options, validate_file
+    from sensorkit.loading.launch_facts import LaunchFacts
 
     options = Options(
         target=robot.target,
@@ -154,6 +171,9 @@ def run(robot: Robot) -> Outcome:
         ),
         ignore=IGNORED,
         bridges=tuple(str(robot.corpus.root / b) for b in robot.bridge),
+        launch=tuple(str(robot.corpus.root / p) for p in robot.launch),
+        # No launch: named: none read (not the ones validate would find beside the robot).
+        launch_facts=None if robot.launch else LaunchFacts(),
     )
     report = validate_file(robot.path, options)
     keys: Counter[Key] = Counter()
@@ -176,6 +196,14 @@ def labels(corpus: Corpus) -> dict[str, dict[Key, dict[str, Any]]]:
         table = out.setdefault(entry["robot"], {})
         for lab in entry.get("findings") or []:
             table[(lab["rule"], lab["file"], lab.get("line"))] = lab
+    return out
+
+
+def table(robot: Robot) -> dict[Key, dict[str, Any]]:
+    """The labels of one entry: with launch files, the plain entry's with its own on top."""
+    every = labels(robot.corpus)
+    out = dict(every.get(robot.plain_key, {})) if robot.launch else {}
+    out.update(every.get(robot.key, {}))
     return out
 
 

@@ -151,3 +151,97 @@ def test_a_launch_file_that_does_not_parse_is_one_info_and_no_guess(tmp_path: Pa
     assert not [f for f in _of(report, "SK607") if f.severity.label != "info"]
     text = " ".join(f.message for f in report.findings)
     assert "broken.launch.py" in text and "could not read" in text
+
+
+# Modelled on MOGI-ROS/Week-5-6-Gazebo-sensors@55e23ba:bme_gazebo_sensors/launch/
+# spawn_robot.launch.py:115-116, whose parameter_bridge arguments carry
+# /camera/depth_image and /camera/points for a robot (urdf/mogi_bot.gazebo:48, a plain
+# "camera") that publishes neither: the SK612 finding is on the launch file's line.
+PY_STRAY = """\
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([Node(
+        package='ros_gz_bridge',
+        executable='parameter_bridge',
+        arguments=[
+            '/scan@sensor_msgs/msg/LaserScan[gz.msgs.LaserScan',
+            '/front_camera/image_raw@sensor_msgs/msg/Image[gz.msgs.Image',
+            '/camera/depth_image@sensor_msgs/msg/Image@gz.msgs.Image',
+        ],
+    )])
+"""
+
+
+def test_a_finding_on_a_launch_file_names_it_as_the_robot_file_is_named(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    robot = _workspace(tmp_path, "py")
+    launch = tmp_path / "src" / "rover_gazebo" / "launch" / "sim.launch.py"
+    launch.write_text(PY_STRAY)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)  # not the workspace's src/: a path relative to it would not open
+    report = _validate(robot)
+    stray = [f for f in _of(report, "SK612") if "/camera/depth_image" in f.message]
+    assert len(stray) == 1 and stray[0].line == 12, report.findings
+    assert stray[0].file is not None and (elsewhere / stray[0].file).resolve() == launch.resolve()
+    own = [f for f in report.findings if f.file and f.file.endswith("rover.urdf")]
+    assert own and all((elsewhere / f.file).resolve() == robot.resolve() for f in own)  # as the robot's own
+
+
+# Modelled on MOGI-ROS/Week-9-10-Simple-arm@425c335: tests/realworld/robots.yaml passes
+# bme_ros2_simple_arm/config/gz_bridge.yaml as --bridge, and
+# bme_ros2_simple_arm/launch/spawn_robot.launch.py:69-73,118-129 starts a parameter_bridge
+# with that same file as its config_file: one bridge, each of its entries counted once.
+BRIDGE_YAML = """\
+- ros_topic_name: /camera/depth_image
+  gz_topic_name: /camera/depth_image
+  ros_type_name: sensor_msgs/msg/Image
+  gz_type_name: gz.msgs.Image
+  direction: GZ_TO_ROS
+"""
+PY_CONFIG = """\
+from launch import LaunchDescription
+from launch.substitutions import PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    config = PathJoinSubstitution([FindPackageShare('rover_description'), 'config', 'gz_bridge.yaml'])
+    return LaunchDescription([Node(
+        package='ros_gz_bridge',
+        executable='parameter_bridge',
+        parameters=[{'config_file': config}],
+    )])
+"""
+
+
+def test_a_bridge_yaml_given_and_started_by_the_launch_is_read_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    robot = _workspace(tmp_path, "py")
+    yaml_file = tmp_path / "src" / "rover_description" / "config" / "gz_bridge.yaml"
+    yaml_file.parent.mkdir()
+    yaml_file.write_text(BRIDGE_YAML)
+    launch = tmp_path / "src" / "rover_gazebo" / "launch" / "sim.launch.py"
+    launch.write_text(PY_CONFIG)
+    report = validate_file(robot, Options(target="harmonic", bridges=(str(yaml_file),), launch=(str(launch),)))
+    assert report.error is None and not report.internal_errors
+    stray = [f for f in _of(report, "SK612") if "/camera/depth_image" in f.message]
+    assert len(stray) == 1, stray  # not once as --bridge and again as the launch's config_file
+    # Near miss: the launch file alone still brings the YAML's entries.
+    alone = validate_file(robot, Options(target="harmonic", launch=(str(launch),)))
+    assert len([f for f in _of(alone, "SK612") if "/camera/depth_image" in f.message]) == 1
+
+
+def test_empty_launch_facts_read_none_and_look_for_none(tmp_path: Path) -> None:
+    """Options(launch_facts=LaunchFacts()): no launch file is read, the sibling's neither
+    (how the labelled corpus runs an entry with no ``launch:``)."""
+    from sensorkit.loading.launch_facts import LaunchFacts
+
+    robot = _workspace(tmp_path, "py", scan="/scann")
+    report = validate_file(robot, Options(target="harmonic", launch_facts=LaunchFacts()))
+    assert report.launch_note is None and not [f for f in _of(report, "SK612") if "/scann" in f.message]
+    # Near miss: left to itself, validate finds the sibling's launch file and its bridge.
+    assert [f for f in _of(_validate(robot), "SK612") if "/scann" in f.message]

@@ -13,6 +13,8 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
+import pytest
+
 from sensorkit.loading.launch import find_launch_files, read_launch
 from sensorkit.loading.launch.extract import parse_bridge_arg
 from sensorkit.loading.launch_facts import LaunchFacts
@@ -61,7 +63,8 @@ PY_BRIDGE = """
 """
 
 
-def test_python_bridge_arguments_directions_and_remaps(tmp_path: Path) -> None:
+def test_python_bridge_arguments_directions_and_remaps(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     # parameter_bridge.cpp@humble:87-89,101-102,110/123/126: '[' gz->ROS, ']' ROS->gz, '@' both;
     # a /srv/ type is a service, not a topic (:132).
     facts = read(ws(tmp_path, {"bot_gazebo/launch/sim.launch.py": PY_BRIDGE}), "bot_gazebo/launch/sim.launch.py")
@@ -123,7 +126,8 @@ def test_unresolvable_bridge_argument_is_unknown_not_guessed(tmp_path: Path) -> 
     assert facts.static_transforms == [] and facts.static_transform_unknown
 
 
-def test_config_file_and_frame_prefix_python(tmp_path: Path) -> None:
+def test_config_file_and_frame_prefix_python(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     # ros_gz_bridge.cpp@humble:34,48-54 config_file; diff_drive.launch.py:75-79 os.path.join form
     text = """
         import os
@@ -199,7 +203,8 @@ def test_spawn_name_unresolved_is_none(tmp_path: Path) -> None:
     assert [s.name for s in facts.spawns] == [None] and facts.spawn_name() is None
 
 
-def test_include_followed_with_launch_arguments(tmp_path: Path) -> None:
+def test_include_followed_with_launch_arguments(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)  # files are shown relative to the working folder
     """Modelled on turtlebot4_simulator's ros_gz_bringup including a spawn file with arguments."""
     top = """
         from launch.actions import IncludeLaunchDescription
@@ -370,3 +375,70 @@ def test_find_launch_files(tmp_path: Path) -> None:
     found = [p.relative_to(tmp).as_posix() for p in find_launch_files(tmp / "bot_description/urdf/bot.urdf", [tmp])]
     assert found == ["bot_description/launch/display.launch.py", "bot_bringup/launch/robot_launch.py",
                      "bot_gazebo/launch/sim.launch.xml"]
+
+
+def test_find_package_share_find_is_the_share_folder(tmp_path: Path) -> None:
+    # Modelled on blackcoffeerobotics/bcr_arm@93f4f61:bcr_arm_gazebo/launch/
+    # bringup.gazebo.launch.py:37-41 (``FindPackageShare(package=p).find(p)``) and :141-144
+    # (an include of os.path.join(that, 'launch', ...)); find() returns the share folder of
+    # its own argument (ros2/launch_ros@humble:launch_ros/launch_ros/substitutions/
+    # find_package.py:110-112).
+    top = """
+        import os
+        from launch_ros.substitutions import FindPackageShare
+        def generate_launch_description():
+            pkg_sim = FindPackageShare(package='bot_gazebo').find('bot_gazebo')
+            spawn = IncludeLaunchDescription(PythonLaunchDescriptionSource([
+                os.path.join(pkg_sim, 'launch', 'spawn.launch.py')]))
+            return LaunchDescription([spawn])
+    """
+    spawn = """
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            return LaunchDescription([Node(package='ros_gz_sim', executable='create',
+                                           arguments=['-name', 'arm', '-topic', 'robot_description'])])
+    """
+    tmp = ws(tmp_path, {"bot_bringup/launch/top.launch.py": top, "bot_gazebo/launch/spawn.launch.py": spawn})
+    facts = read(tmp, "bot_bringup/launch/top.launch.py")
+    assert facts.spawn_name() == "arm" and not facts.problems
+    # Near miss: find() of a package not in the workspace is outside: nothing read, no guess.
+    (tmp / "bot_bringup/launch/top.launch.py").write_text(textwrap.dedent(top).replace(".find('bot_gazebo')", ".find('other')"))
+    facts = read(tmp, "bot_bringup/launch/top.launch.py")
+    assert facts.spawn_name() is None
+
+
+def test_get_namespaced_name_and_perform_substitution(tmp_path: Path) -> None:
+    # Modelled on turtlebot/turtlebot4_simulator@a238c94:turtlebot4_ignition_bringup/launch/
+    # turtlebot4_spawn.launch.py:106,112,145-148,205-212: robot_name =
+    # GetNamespacedName(namespace, 'turtlebot4') (create3_sim@6a8bc44:irobot_create_common/
+    # irobot_create_common_bringup/irobot_create_common_bringup/namespace.py:29-32: name, or
+    # namespace/name) names the spawned model and the lidar's static transform; and on
+    # husarion/rosbot_xl_ros@2356b5f:rosbot_xl_gazebo/launch/spawn.launch.py:33-34, an
+    # OpaqueFunction reads a configuration with context.perform_substitution
+    # (ros2/launch@humble:launch/launch/launch_context.py:238-240).
+    text = """
+        from irobot_create_common_bringup.namespace import GetNamespacedName
+        def bridge(context, *args, **kwargs):
+            model = context.perform_substitution(LaunchConfiguration('model'))
+            return [Node(package='ros_gz_bridge', executable='parameter_bridge',
+                         arguments=['/' + model + '/scan@sensor_msgs/msg/LaserScan[gz.msgs.LaserScan'])]
+        def generate_launch_description():
+            namespace = LaunchConfiguration('namespace')
+            robot_name = GetNamespacedName(namespace, 'bot')
+            return LaunchDescription([
+                DeclareLaunchArgument('namespace', default_value=''),
+                DeclareLaunchArgument('model', default_value='lidar'),
+                Node(package='ros_gz_sim', executable='create', arguments=['-name', robot_name]),
+                Node(package='tf2_ros', executable='static_transform_publisher',
+                     arguments=['0', '0', '0', '0', '0', '0.0', 'rplidar_link', [robot_name, '/rplidar_link/rplidar']]),
+                OpaqueFunction(function=bridge)])
+    """
+    tmp = ws(tmp_path, {"bot_gazebo/launch/spawn.launch.py": text})
+    facts = read(tmp, "bot_gazebo/launch/spawn.launch.py")
+    assert facts.spawn_name() == "bot"
+    assert [(t.parent, t.child) for t in facts.static_transforms] == [("rplidar_link", "bot/rplidar_link/rplidar")]
+    assert [b.gz for b in facts.bridges] == ["/lidar/scan"] and not facts.bridge_unknown
+    # Near miss: under a namespace the name is namespace/name (namespace.py:32).
+    (tmp / "bot_gazebo/launch/spawn.launch.py").write_text(
+        textwrap.dedent(text).replace("'namespace', default_value=''", "'namespace', default_value='r1'"))
+    assert read(tmp, "bot_gazebo/launch/spawn.launch.py").spawn_name() == "r1/bot"

@@ -12,7 +12,7 @@ import functools
 import pytest
 import yaml
 from conftest import needs_corpus
-from labelled import CORPORA, IMPACTS, Outcome, labels, live, robots, run, skeleton
+from labelled import CORPORA, IMPACTS, Outcome, live, robots, run, skeleton, table
 
 pytestmark = needs_corpus
 
@@ -46,10 +46,10 @@ def test_every_finding_is_labelled(robot_id: str) -> None:
     out = outcome(robot_id)
     assert out.error is None, out.error
     robot = out.robot
-    table = labels(robot.corpus).get(robot.key, {})
-    known = live(table)
+    labelled = table(robot)
+    known = live(labelled)
     missing = [k for k in out.keys if k not in known]
-    assert not missing, f"unlabelled findings on {robot.key}:\n" + skeleton(out, table)
+    assert not missing, f"unlabelled findings on {robot.key}:\n" + skeleton(out, labelled)
     stale = [k for k in known if k not in out.keys]
     assert not stale, f"labels with no finding any more on {robot.key} (mark them gone: WHY): {stale}"
     for key, lab in known.items():
@@ -57,7 +57,7 @@ def test_every_finding_is_labelled(robot_id: str) -> None:
         assert len(str(lab.get("why", ""))) >= 15, f"say why {key} is {lab.get('verdict')}"
         if lab["verdict"] is True:
             assert lab.get("impact") in IMPACTS, f"say whether {key} is a defect or minor: {lab}"
-    for key, lab in table.items():
+    for key, lab in labelled.items():
         if "gone" in lab:
             assert len(str(lab["gone"])) >= 15, f"say why {key} went"
             assert key not in out.keys, f"{key} is marked gone but is reported again: {lab['gone']}"
@@ -69,7 +69,7 @@ def test_no_error_is_minor(robot_id: str) -> None:
     it changes nothing (minor) breaks that promise, whatever the rule."""
     _ready(robot_id)
     out = outcome(robot_id)
-    known = live(labels(out.robot.corpus).get(out.robot.key, {}))
+    known = live(table(out.robot))
     minor = [
         (key, out.messages[key][:120])
         for key in out.keys
@@ -84,7 +84,7 @@ def test_precision_is_at_least_95_percent() -> None:
         if robot.id in WAITING:
             continue
         out = outcome(robot.id)
-        known = live(labels(robot.corpus).get(robot.key, {}))
+        known = live(table(robot))
         for key, count in out.keys.items():
             lab = known.get(key)
             if lab is None:
@@ -111,10 +111,20 @@ def test_pending_robots_are_wanted() -> None:
     wanted = yaml.safe_load((CORPORA[1].lists / "wanted.yaml").read_text()) or []
     for w in wanted:
         assert {"repo", "commit", "paths", "licence", "why"} <= set(w), w
-    wanted_paths = {p for w in wanted for p in w["paths"]}
+    # paths are relative to the repository root; the corpus folder is named owner__name
+    wanted_paths = {f"{w['repo'].replace('/', '__')}/{p}" for w in wanted for p in w["paths"]}
     for r in ROBOTS:
         if r.pending:
-            assert any(r.file == p or r.file.startswith(p.rstrip("/") + "/") for p in wanted_paths), r.id
+            for f in (r.file, *r.launch):
+                if not (r.corpus.root / f).is_file():
+                    assert any(f == p or f.startswith(p.rstrip("/") + "/") for p in wanted_paths), (r.id, f)
+
+
+def test_launch_entries_name_xml_or_yaml_launch_files() -> None:
+    """Python launch files are code: the corpus holds XML and YAML launch files only."""
+    for r in ROBOTS:
+        for f in r.launch:
+            assert f.endswith((".launch", ".launch.xml", ".launch.yaml", ".xml", ".yaml")), (r.id, f)
 
 
 def test_the_project_holds_no_fetched_robot() -> None:

@@ -186,8 +186,8 @@ def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
     The reader (sensorkit.loading.launch) is imported here, not at module level: a run
     with no launch file to read does not pay for it.
     """
-    if options.launch_facts is not None:
-        return options.launch_facts
+    if options.launch_facts is not None:  # given (an empty one: none read, none looked for)
+        return None if options.launch_facts.empty else options.launch_facts
     from sensorkit.loading import launch as reader
     from sensorkit.loading.packages import own_package
 
@@ -247,10 +247,15 @@ def load_bridges(robot: Robot, options: Options, launch: LaunchFacts | None = No
             raise UsageError(f"--bridge {exc}") from None
     out.topics.extend(options.bridge_pending)
     if launch is not None and launch.bridges:
+        # A YAML given as --bridge (or found in config/) that a launch file also starts as
+        # a bridge's config_file is one bridge: its entries are counted once (MOGI-ROS/
+        # Week-9-10-Simple-arm@425c335:bme_ros2_simple_arm/launch/spawn_robot.launch.py:118-129
+        # starts config/gz_bridge.yaml, the file robots.yaml passes as --bridge).
+        given = set(out.files)
         for f in dict.fromkeys(t.file for t in launch.bridges):
             if f not in out.files:
                 out.files.append(f)
-        out.topics.extend(launch.bridges)
+        out.topics.extend(t for t in launch.bridges if t.file not in given)
     return out
 
 

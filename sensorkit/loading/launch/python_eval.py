@@ -198,6 +198,24 @@ class Evaluator:
         if any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in node.keywords):
             return UNKNOWN
         first = args[0] if args else None
+        if (isinstance(node.func, ast.Attribute) and node.func.attr == "find" and len(args) == 1
+                and isinstance(node.func.value, ast.Call) and call_name(node.func.value.func) == "FindPackageShare"):
+            # FindPackageShare(...).find(name) is the share folder of name, its own argument
+            # (ros2/launch_ros@humble:launch_ros/launch_ros/substitutions/find_package.py:110-112).
+            pkg = self.text(self.eval(first, scope))
+            return self.share(pkg) if pkg and "\x00" not in pkg else UNKNOWN
+        if isinstance(node.func, ast.Attribute) and node.func.attr == "perform_substitution" and len(args) == 1:
+            # context.perform_substitution(s) is s performed (ros2/launch@humble:launch/launch/
+            # launch_context.py:238-240), as in an OpaqueFunction's body.
+            return self.eval(first, scope)
+        if name == "GetNamespacedName" and len(args) == 2:
+            # create3_sim's substitution, used by create3 and turtlebot4 simulations: name, or
+            # namespace/name (iRobotEducation/create3_sim@6a8bc44:irobot_create_common/
+            # irobot_create_common_bringup/irobot_create_common_bringup/namespace.py:29-32).
+            ns, base = (self.text(self.eval(a, scope)) for a in args)
+            if ns is None or base is None:
+                return UNKNOWN
+            return base if ns == "" else ns + "/" + base
         if name == "LaunchConfiguration":
             var = self.text(self.eval(first or kw.get("variable_name"), scope))
             default = kw.get("default")

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sensorkit.loading.document import display_path
 from sensorkit.loading.launch_facts import LaunchFacts, LaunchProblem
 
 MAX_LAUNCH_BYTES = 1 << 20
@@ -85,13 +86,11 @@ class Reading:
         return str(folder) if folder is not None else outside(package)
 
     def display(self, path: Path) -> str:
-        """``path`` relative to the workspace root holding it, else as given."""
-        for root in self.roots:
-            try:
-                return str(path.resolve().relative_to(root.resolve()))
-            except (ValueError, OSError, RuntimeError):
-                continue
-        return str(path)
+        """``path`` as every other file of a report is shown (sensorkit.loading.document.
+        display_path: relative to the working folder, else absolute), so that a finding on a
+        launch file or the bridge YAML it names opens from where sensorkit was run, and a
+        file read both as --bridge and as a launch file's config_file is one file."""
+        return display_path(path)
 
     def inside(self, path: Path) -> bool:
         """Whether ``path`` lies inside one of the workspace roots (real paths)."""
