@@ -183,7 +183,8 @@ def test_config_package_path_outside_the_checkout_is_refused(tmp_path: Path) -> 
         "[list(g) for g in [(g := (g.gi_frame.f_back.f_back.f_globals['open']('/etc/passwd').read() for _ in [1]))]]",
         "[c for c in [1]][0].__class__",  # nested code escapes xacro's top-level __ check
         "'{0.__globals__}'.format(xacro.load_yaml)",  # format strings walk attributes
-        "fmt.format(x)",  # a format string xacro cannot see
+        # "fmt.format(x)", a format string only known when evaluated: checked then
+        # (tests/test_untrusted_eval.py)
         "__import__('os')",
     ],
 )

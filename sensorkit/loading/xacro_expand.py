@@ -220,7 +220,7 @@ def _narrow(
     saved_python: dict[str, Any],
 ) -> None:
     """Patch xacro for an untrusted expansion (``expand_in_process`` restores it all)."""
-    from sensorkit.loading.untrusted import HIDDEN_PYTHON_NAMES, UnsafeExpression, check_expression
+    from sensorkit.loading.untrusted import HIDDEN_PYTHON_NAMES, UnsafeExpression, XacroEvaluator
 
     def env(name: str) -> str:
         if name not in untrusted.env:
@@ -241,19 +241,19 @@ def _narrow(
             raise xacro.XacroException(confine.refuse(str(file)))
         return open(file, *a, **kw)
 
+    evaluator = XacroEvaluator(xacro, sa)  # by allow-list, never Python's eval
+
     def safe_eval(expr: str, symbols: Any, local: Any = None) -> Any:
         try:
-            check_expression(expr)
+            return evaluator.expression(expr, symbols, local)
         except UnsafeExpression as exc:
             raise xacro.XacroException(str(exc)) from None
-        return saved_x["safe_eval"](expr, symbols, local)
 
     def eval_sub(s: str, context: Any) -> Any:
         try:
-            check_expression(s, builtins_reachable=True)
+            return evaluator.substitution(s, context)
         except UnsafeExpression as exc:
             raise sa.SubstitutionException(str(exc)) from None
-        return saved_sa["_eval"](s, context)
 
     sa._eval_env = env
     sa._eval_optenv = optenv
