@@ -333,7 +333,9 @@ def run_rules(robot: Robot, options: Options, resolver: PackageResolver | None =
     run = RuleRun(ctx, reason, None, set(), [], {}, [])
     if options.wants("SK104") or options.wants("SK103"):
         run.resolver = resolver or PackageResolver.from_options(
-            list(options.package_paths), near=robot.document.path
+            list(options.package_paths),
+            near=robot.document.path,
+            untrusted=options.untrusted is not None,
         )
         ctx.missing_files, run.package_findings = find_missing_files(
             robot, run.resolver, seen_packages=run.seen_packages

@@ -10,6 +10,12 @@ Order (first hit wins):
 
 Scans are lazy (nothing is read until a package is asked for) and bounded, so a stray
 ``--package-path /`` cannot hang sensorkit.
+
+A package name is a name (:func:`valid_package_name`): ``$(find /abs)``,
+``$(find ../x)`` and ``package://../x`` name no package and resolve to nothing, whatever
+``AMENT_PREFIX_PATH`` holds. Under ``--untrusted`` a resolver is *confined*
+(:meth:`PackageResolver.confine_to`): :meth:`PackageResolver.allows` says whether a path
+lies in the workspace, the ``--package-path`` folders or a package it found (real paths).
 """
 
 from __future__ import annotations
@@ -24,6 +30,27 @@ _SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _NAME_RE = rb"<name>\s*([^<\s]+)\s*</name>"  # compiled on first use
 MAX_SCAN_DIRS = 5000
 MAX_SCAN_DEPTH = 5
+
+
+def valid_package_name(name: str) -> bool:
+    """Whether ``name`` can be a package name at all.
+
+    REP 144 asks for lowercase letters, digits and underscores, starting with a letter
+    (ros-infrastructure/rep@11ca24a:rep-0144.rst:51 "only consist of lowercase alphanumerics
+    and _ separators and start with an alphabetic character"), but real packages also use
+    dashes and capitals, so only what cannot be a name is refused: the empty name, ``.``
+    and ``..``, any path separator, NUL, and an absolute path.
+    """
+    return (
+        bool(name)
+        and name not in (".", "..")
+        and not any(c in name for c in ("/", "\\", "\x00"))
+        and not os.path.isabs(name)
+    )
+
+
+def _real(path: str | os.PathLike[str]) -> str:
+    return os.path.realpath(path)
 
 
 def package_name(package_xml: Path) -> str | None:
@@ -113,42 +140,79 @@ class PackageResolver:
     use_environment: bool = True
     workspace_of: Path | None = None
     frozen_env: dict[str, str] | None = None
+    confined: list[str] | None = None  # --untrusted: the real folders paths must lie in
     _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
     _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
 
     @classmethod
     def from_options(
-        cls, package_paths: Sequence[str] = (), *, near: Path | None = None
+        cls, package_paths: Sequence[str] = (), *, near: Path | None = None, untrusted: bool = False
     ) -> PackageResolver:
         """Build a resolver from ``--package-path`` values (``NAME=DIR`` or ``DIR``).
 
         With no ``--package-path`` at all, the workspace around ``near`` is searched too.
+        With ``untrusted`` and ``near``, the resolver is confined (:meth:`confine_to`).
+        A ``NAME=DIR`` whose NAME cannot be a package name is a UsageError.
         """
         explicit: dict[str, Path] = {}
         scan: list[Path] = []
         for item in package_paths:
             name, sep, folder = item.partition("=")
             if sep and name and "/" not in name:
+                if not valid_package_name(name):
+                    from sensorkit.base.errors import UsageError
+
+                    shown = repr(name[:80])
+                    raise UsageError(f"--package-path {shown}=DIR: {shown} is not a package name")
                 explicit[name] = Path(folder).expanduser().resolve()
             else:
                 scan.append(Path(item).expanduser().resolve())
-        return cls(
+        resolver = cls(
             explicit=explicit,
             scan_dirs=scan,
             workspace_of=None if package_paths or near is None else near.resolve(),
         )
+        if untrusted and near is not None:
+            resolver.confine_to(near)
+        return resolver
+
+    def confine_to(self, near: Path) -> None:
+        """Confine to the workspace around ``near`` (as ``$(find)`` searches it), the
+        ``--package-path`` folders, and from now on each package found (``--untrusted``;
+        the same folders an untrusted xacro expansion may read)."""
+        self.confined = []
+        own = own_package(near)
+        for folder in [own if own is not None else near.resolve().parent, *workspace_roots(near)]:
+            self._allow(folder)
+        for folder in [*self.explicit.values(), *self.scan_dirs]:
+            self._allow(folder)
+
+    def _allow(self, folder: Path) -> None:
+        if self.confined is not None and _real(folder) not in self.confined:
+            self.confined.append(_real(folder))
+
+    def allows(self, path: Path) -> bool:
+        """Whether ``path`` may be opened or named: always when not confined, else only
+        inside an allowed folder (real paths: symlinks and ``..`` resolved)."""
+        if self.confined is None:
+            return True
+        real = _real(path)
+        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in self.confined)
 
     def for_file(self, path: Path) -> PackageResolver:
         """The same resolver, searching the workspace around ``path`` when allowed."""
         if self.explicit or self.scan_dirs:
             return self
-        return PackageResolver(
+        other = PackageResolver(
             explicit=dict(self.explicit),
             scan_dirs=list(self.scan_dirs),
             use_environment=self.use_environment,
             workspace_of=path.resolve(),
             frozen_env=self.frozen_env,
         )
+        if self.confined is not None:
+            other.confine_to(path)
+        return other
 
     def _scan(self, root: Path, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, Path]:
         if root not in self._scanned:
@@ -180,11 +244,14 @@ class PackageResolver:
         return places
 
     def find(self, name: str) -> Path | None:
-        """The folder of package ``name``, or None."""
+        """The folder of package ``name``, or None (also for what cannot be a package name:
+        ``..``, an absolute path). A confined resolver allows the folder found from now on."""
         if name in self._cache:
             return self._cache[name]
-        result = self._find(name)
+        result = self._find(name) if valid_package_name(name) else None
         self._cache[name] = result
+        if result is not None:
+            self._allow(result)
         return result
 
     def _find(self, name: str) -> Path | None:

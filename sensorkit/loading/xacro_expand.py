@@ -103,6 +103,9 @@ def _loc_parser(
         if len(stack) > MAX_INCLUDE_DEPTH:
             raise xacro.XacroException(f"includes nested deeper than {MAX_INCLUDE_DEPTH}")
         if confine is not None and not confine.allows(full):
+            # ``full`` is the include's own (expanded) filename: glob results outside were
+            # dropped by _confined_includes, so this names what the user wrote, never a
+            # file found outside, and is said whether or not anything is there.
             if xacro.filestack:
                 xacro.filestack.pop()
             raise xacro.XacroException(confine.refuse(full))
@@ -123,6 +126,43 @@ def _loc_parser(
         return doc
 
     return parse
+
+
+def _glob_escapes(spec: str, confine: Confinement) -> bool:
+    """Whether the glob ``spec`` could list a folder outside ``confine``: its literal
+    leading folder is outside, or a ``..`` follows a wildcard."""
+    parts = spec.split(os.sep)
+    first = next(i for i, part in enumerate(parts) if re.search(r"[*[?]", part))
+    prefix = os.sep.join(parts[:first]) or os.sep
+    return not confine.allows(prefix) or ".." in parts[first:]
+
+
+def _confined_includes(confine: Confinement) -> Any:
+    """xacro's ``get_include_files`` under --untrusted.
+
+    xacro globs a filename holding ``*``, ``[`` or ``?`` and includes every match
+    (xacro 2.1.1 from PyPI, xacro/__init__.py:470-491 get_include_files). Here a pattern
+    that could list a folder outside the confinement is refused naming the pattern as
+    written, before anything is listed; matches outside (through a symlink) are left out
+    silently, so nothing tells whether anything exists outside.
+    """
+    import glob
+
+    import xacro
+
+    def include_files(filename_spec: str, symbols: Any) -> Any:
+        spec = xacro.abs_filename_spec(xacro.eval_text(filename_spec, symbols))
+        if re.search(r"[*[?]+", spec):  # xacro's own test for a glob
+            if _glob_escapes(spec, confine):
+                raise xacro.XacroException(confine.refuse(filename_spec.strip()))
+            names = [n for n in sorted(glob.glob(spec)) if confine.allows(n)]
+        else:
+            names = [spec]
+        for name in names:
+            xacro.all_includes.append(name)
+            yield name
+
+    return include_files
 
 
 def _reset_xacro() -> None:
@@ -156,7 +196,7 @@ def expand_in_process(
     out = ExpandOutcome(files=files)
     saved_sa = {k: getattr(sa, k) for k in ("_eval_find", "_eval_env", "_eval_optenv", "_eval")}
     saved_dict = {k: sa._eval_dict.get(k) for k in ("find", "env", "optenv")}
-    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval")}
+    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval", "get_include_files")}
     saved_python: dict[str, Any] = {}
     orig_stderr = sys.stderr
     confine = None
@@ -166,6 +206,9 @@ def expand_in_process(
         confine = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs)
 
     def find(pkg: str) -> str:
+        # resolver.find finds nothing for what cannot be a package name (an absolute
+        # path, ``..``: packages.valid_package_name), so only a package's own folder,
+        # found by name, ever joins the folders an untrusted expansion may read.
         hit = resolver.find(pkg)
         if hit is None:
             raise PackageMissing(pkg, resolver.searched())
@@ -175,6 +218,8 @@ def expand_in_process(
 
     _reset_xacro()
     xacro.parse = _loc_parser(files, saved_x["parse"], confine, overlay)
+    if confine is not None:
+        xacro.get_include_files = _confined_includes(confine)
     sa._eval_find = find
     sa._eval_dict["find"] = find
     if untrusted is not None and confine is not None:

@@ -178,7 +178,9 @@ def _ready(request: _Request) -> _Ready:
     robot_shapes = _robot_shapes(robot, poses)
     reach = _reach(robot_shapes, poses)
     admission.check_reach(robot, reach)
-    resolver = PackageResolver.from_options(list(request.package_paths), near=request.path)
+    resolver = PackageResolver.from_options(
+        list(request.package_paths), near=request.path, untrusted=request.untrusted is not None
+    )
     prepared = prepare_urdf(robot, resolver)
     notes = list(prepared.notes) + _parts_note(robot, len(prepared.parts))
     admission.check_tree(robot)
@@ -364,7 +366,9 @@ def _furnish(world: World, request: _Request, ready: _Ready) -> None:
         world.add_ground(ground_half, world_scene, ground)
         scene_urdf = prepare_urdf(
             ready.scene_robot,
-            PackageResolver.from_options(list(request.package_paths), near=scene),
+            PackageResolver.from_options(
+                list(request.package_paths), near=scene, untrusted=request.untrusted is not None
+            ),
             what="scene",
         )
         ready.notes += scene_urdf.notes
