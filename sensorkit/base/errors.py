@@ -7,9 +7,15 @@ one line on stderr and exit status 2. Set ``SENSORKIT_DEBUG=1`` to see the trace
 
 from __future__ import annotations
 
+from sensorkit.base.quote import shorten
+
 
 class SensorkitError(Exception):
     """Base class of every error sensorkit raises on purpose."""
+
+    def __str__(self) -> str:
+        # One line that quotes at most ~200 characters of any input (issue 25).
+        return shorten(super().__str__())
 
 
 class UsageError(SensorkitError):

@@ -6,6 +6,8 @@ import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from sensorkit.base.quote import shorten
+
 
 class Severity(enum.IntEnum):
     """Ordered so that ``severity >= fail_on`` reads naturally."""
@@ -68,6 +70,15 @@ class Finding:
     frame: str | None = None
     fix: str | None = None
     column: int | None = None
+
+    def __post_init__(self) -> None:
+        # What a finding quotes of the input stays short in every format (issue 25): a
+        # name of millions of characters is clipped here, once, for all of them. ``link``,
+        # ``sensor``... stay whole: they are keys (the loader caps names, MAX_NAME_CHARS).
+        for key in ("message", "fix"):
+            value = getattr(self, key)
+            if isinstance(value, str) and len(value) > 200:
+                object.__setattr__(self, key, shorten(value))
 
     @property
     def file(self) -> str | None:

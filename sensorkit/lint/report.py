@@ -8,6 +8,7 @@ from typing import Any
 
 from sensorkit import __version__
 from sensorkit.base.findings import Finding, Severity
+from sensorkit.base.quote import clip, shorten
 from sensorkit.lint.engine import Report
 from sensorkit.lint.rules import RULES
 
@@ -56,7 +57,7 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
             groups[f.sensor].append(f)
         order = [k for k in groups if k is not None] + ([None] if None in groups else [])
         for key in order:
-            lines.append(f"  {'sensor ' + key if key else 'robot'}:")
+            lines.append(f"  {'sensor ' + clip(key) if key else 'robot'}:")
             for f in groups[key]:
                 lines.append(f"    {_loc(f)}: {f.rule} {sev(f.severity)}: {f.message}")
                 if f.fix:
@@ -64,7 +65,7 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
         if not fr.findings:
             lines.append(f"  ok: no findings ({fr.sensor_count} sensors checked)")
         for err in fr.internal_errors:
-            lines.append(f"  internal error: {err}")
+            lines.append(f"  internal error: {shorten(err)}")
     if quiet:
         return "".join(f"{line}\n" for line in lines)
     s = report.summary()

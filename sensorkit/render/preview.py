@@ -201,6 +201,12 @@ def _ready(request: _Request) -> _Ready:
     )
 
 
+# Seconds one xacro expansion may take in a preview: its own, not validate's 60 s, so a
+# runaway expression (${9**9**9}) ends the whole preview within 20 s (issue 25). PR2, the
+# largest robot of the corpus, expands in under 1 s.
+EXPANSION_TIMEOUT = 10.0
+
+
 def _load(
     path: Path,
     args: Mapping[str, str],
@@ -212,7 +218,11 @@ def _load(
     from sensorkit.model import load_robot
 
     loaded = load_robot(
-        path, args=dict(args), package_paths=tuple(package_paths), untrusted=untrusted
+        path,
+        args=dict(args),
+        package_paths=tuple(package_paths),
+        untrusted=untrusted,
+        timeout=EXPANSION_TIMEOUT,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None

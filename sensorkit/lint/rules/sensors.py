@@ -58,6 +58,8 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
     # (9ee2d4f):src/parser_urdf.cc:2084-2095, called per created link at :2851), so a block
     # naming no link is inserted nowhere and its sensor never exists.
     robot = ctx.robot
+    # once, not per block: 33,000 blocks each holding a sensor took minutes (issue 25)
+    sensor_blocks = {id(s.block) for s in robot.sensors if s.block is not None}
     for block in robot.gazebo:
         ref = block.reference
         if ref is None or ref in robot.link_map or ref in robot.joint_map:
@@ -65,7 +67,7 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
         from sensorkit.base.suggest import closest
 
         close = closest(ref, [*robot.link_map, *robot.joint_map])
-        has_sensor = any(s.block is block.element for s in robot.sensors)
+        has_sensor = id(block.element) in sensor_blocks
         # A sensor or plugin in the block is lost; material, friction or colour settings
         # only apply to nothing (shared files often style every variant's links).
         carries = has_sensor or any(local(el) == "plugin" for el in block.element)
@@ -204,8 +206,10 @@ def _unknown_format(ctx: Context, s: Sensor, cam: CameraSpec) -> Finding:
         severity, msg = Severity.ERROR, f"{msg}: {GZ_UNKNOWN_FORMAT}"
     elif cam.format in CLASSIC_EXTRA_IMAGE_FORMATS:
         severity = Severity.ERROR
-        msg += (": Gazebo Classic renders it in its own layout, but gazebo_ros does not know it "
-                "and labels the image bgr8, 3 bytes a pixel: the image is garbled")
+        msg += (
+            ": Gazebo Classic renders it in its own layout, but gazebo_ros does not know it "
+            "and labels the image bgr8, 3 bytes a pixel: the image is garbled"
+        )
     else:
         severity, msg = Severity.WARNING, f"{msg}: {CLASSIC_UNKNOWN_FORMAT}"
     return ctx.finding(
@@ -231,7 +235,11 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
         return
     size = frame_bytes(cam.width, cam.height, cam.format, s.is_depth)
     size_f = _as_float(size)
-    rate = f" ({size_f * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)" if s.update_rate else ""
+    rate = (
+        f" ({size_f * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)"
+        if s.update_rate
+        else ""
+    )
     msg = (
         f"sensor {s.name!r}: {cam.width}x{cam.height} = {_as_float(pixels) / 1e6:.3g} MP per frame "
         f"is beyond any real camera (4K is 8.3 MP): {size_f / 1e6:.3g} MB per image{rate}"
@@ -417,7 +425,9 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     return lo, hi
 
 
-def _backwards_sweep(ctx: Context, s: Sensor, spec: LidarSpec, label: str, lo: float, hi: float) -> Finding:
+def _backwards_sweep(
+    ctx: Context, s: Sensor, spec: LidarSpec, label: str, lo: float, hi: float
+) -> Finding:
     """Gazebo Classic's CPU ray casts beam i at min + i * (max - min) / (samples - 1)
     (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/physics/MultiRayShape.cc:75-93):
     min above max sweeps the same arc backwards, published with a negative angle_increment.
@@ -492,7 +502,11 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
         rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
         if rays > PLAUSIBLE_LIDAR_RAYS:
             rays_f = _as_float(rays)
-            per_s = f", {rays_f * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz" if s.update_rate else ""
+            per_s = (
+                f", {rays_f * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz"
+                if s.update_rate
+                else ""
+            )
             yield ctx.finding(
                 "SK406",
                 Severity.WARNING,
@@ -523,13 +537,21 @@ def _range_min_zero(ctx: Context, s: Sensor, spec: LidarSpec) -> Iterator[Findin
 
     fix = "use a small positive min, e.g. <min>0.05</min>"
     if is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES:
-        msg = ("range min 0 becomes the GPU ray camera's near clip, and Ogre throws "
-               "'Near clip distance must be greater than zero': the lidar never renders")
-        yield ctx.finding("SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix)
+        msg = (
+            "range min 0 becomes the GPU ray camera's near clip, and Ogre throws "
+            "'Near clip distance must be greater than zero': the lidar never renders"
+        )
+        yield ctx.finding(
+            "SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix
+        )
     elif not is_gz(ctx.target) and s.type in CLASSIC_LIDAR_NEAR_CLIP_TYPES:
-        msg = ("range min 0 becomes the GPU laser's near clip; sensorkit has not verified "
-               "that Gazebo Classic (gazebo11) accepts a near clip of 0")
-        yield ctx.finding("SK406", Severity.INFO, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix)
+        msg = (
+            "range min 0 becomes the GPU laser's near clip; sensorkit has not verified "
+            "that Gazebo Classic (gazebo11) accepts a near clip of 0"
+        )
+        yield ctx.finding(
+            "SK406", Severity.INFO, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix
+        )
 
 
 @rule("SK407", "warning", "update_rate present and > 0 for cameras and lidars")
