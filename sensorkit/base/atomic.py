@@ -9,9 +9,11 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import re
 import shutil
 import stat
 import tempfile
+import threading
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
@@ -21,7 +23,10 @@ __all__ = [
     "check_editable",
     "check_replaceable",
     "editing",
+    "medium_failed",
     "staged_folder",
+    "sweep",
+    "tidy_beside",
     "write_bytes",
     "write_text",
 ]
@@ -29,6 +34,57 @@ __all__ = [
 # Errors of the medium, not of the request: disk full, quota, file too large, I/O.
 _WRITE_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS}
 LOCK_WAIT_S = 60.0  # how long a second writer waits for the first before giving up
+
+# Every temporary file and staging folder carries its writer's pid ("sk<pid>-"), so any
+# later writer can tell one a killed run left (its pid is gone) from a live writer's.
+_TEMP_SUFFIX = ".sensorkit-tmp"
+_OWNED = re.compile(r"\.sk(\d+)-[^.]*\.sensorkit-tmp\Z")
+_swept: set[str] = set()  # folders this process has swept already (write_bytes)
+_held = threading.local()  # folders whose editing lock this thread holds (re-entrant)
+
+
+def _alive(pid: int) -> bool:
+    """Whether process ``pid`` exists (one of another user's counts: it may be a writer)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return True
+    return True
+
+
+def sweep(folder: str | os.PathLike[str], *, locked: bool = False) -> None:
+    """Remove the ``.*.sensorkit-tmp`` files a killed writer left in ``folder``.
+
+    A temporary file whose writer's pid (in its name) is gone is removed. One without a
+    pid (an older sensorkit's) is removed only by a caller holding the folder lock of
+    :func:`editing` (``locked``): then no locking writer is live there. A live writer's
+    file is never touched.
+    """
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return
+    for name in names:
+        if not (name.startswith(".") and name.endswith(_TEMP_SUFFIX)):
+            continue
+        owned = _OWNED.search(name)
+        if (owned is None and locked) or (owned is not None and not _alive(int(owned.group(1)))):
+            with contextlib.suppress(OSError):
+                os.unlink(os.path.join(folder, name))
+
+
+def medium_failed(
+    exc: OSError, what: Path, unchanged: str = "it is unchanged"
+) -> WriteFailed | None:
+    """A one-line WriteFailed naming the user's ``what`` for a full disk, quota, file too
+    large, read-only file system or I/O error (never the temporary name); else None."""
+    if exc.errno not in _WRITE_ERRNOS:
+        return None
+    return WriteFailed(f"{what}: could not be written ({os.strerror(exc.errno or 0)}); {unchanged}")
 
 
 def _umask() -> int:
@@ -43,16 +99,22 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
     ``mode=None`` keeps an existing file's permission bits (a new file gets 0o666 less the
     umask). A symlink is followed, so the link itself survives. ``fsync`` makes the data
     and the rename durable (the default for users' files; generated outputs may skip it).
-    The temporary file is removed if anything fails. The folder must exist.
+    The temporary file is removed if anything fails. The folder must exist. The first
+    write of a process into a folder removes the temporary files killed writers left there
+    (:func:`sweep`).
     """
     real = Path(os.path.realpath(path))
+    if str(real.parent) not in _swept:
+        sweep(real.parent)
+        _swept.add(str(real.parent))
     if mode is None:
         try:
             mode = real.stat().st_mode
         except FileNotFoundError:
             mode = 0o666 & ~_umask()
     try:
-        fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".sensorkit-tmp")
+        prefix = f".{real.name}.sk{os.getpid()}-"
+        fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=prefix, suffix=_TEMP_SUFFIX)
     except OSError as exc:  # a read-only or full folder: say so of the user's file
         why = os.strerror(exc.errno or 0)
         msg = f"{path}: cannot write in its folder {real.parent} ({why}); nothing was written"
@@ -69,10 +131,9 @@ def write_bytes(path: Path, data: bytes, *, mode: int | None = None, fsync: bool
     except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
-        if isinstance(exc, OSError) and exc.errno in _WRITE_ERRNOS:
-            why = os.strerror(exc.errno or 0)
-            msg = f"{path}: could not be written ({why}); it is unchanged"
-            raise WriteFailed(msg) from None  # name the user's file, never the temporary one
+        failed = medium_failed(exc, path) if isinstance(exc, OSError) else None
+        if failed is not None:
+            raise failed from None  # name the user's file, never the temporary one
         raise
     if fsync:
         with contextlib.suppress(OSError):  # make the rename itself durable where possible
@@ -135,35 +196,43 @@ def editing(*paths: Path, wait_s: float = LOCK_WAIT_S) -> Iterator[None]:
     Two sensorkit writers on one file take turns: the second waits (at most ``wait_s``),
     then reads what the first wrote, so no update is lost. The lock is ``flock`` on the
     folder itself, which has a stable inode (the file's is replaced by every write) and
-    leaves nothing behind. Stale ``*.sensorkit-tmp`` files a killed run left there are
-    removed once the lock is held.
+    leaves nothing behind. Folders are locked in sorted order (no two writers wait on each
+    other), and a folder this thread already holds is not locked again (a nested
+    ``editing`` of it is a no-op). Stale ``*.sensorkit-tmp`` files a killed run left there
+    are removed once the lock is held (:func:`sweep`).
     """
-    import fcntl
-    import time
-
-    folders = sorted({os.path.realpath(Path(p).parent) for p in paths})
+    held: set[str] = _held.__dict__.setdefault("folders", set())
+    folders = sorted({os.path.realpath(Path(p).parent) for p in paths} - held)
     fds: list[int] = []
     try:
         for folder in folders:
-            fd = os.open(folder, os.O_RDONLY)
-            fds.append(fd)
-            deadline = time.monotonic() + wait_s
-            while True:
-                try:
-                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                    break
-                except BlockingIOError:
-                    if time.monotonic() > deadline:
-                        msg = f"{folder}: another sensorkit is still writing there after {wait_s:g} s; try again"
-                        raise UsageError(msg) from None
-                    time.sleep(0.02)
-            for stale in Path(folder).glob(".*.sensorkit-tmp"):
-                with contextlib.suppress(OSError):
-                    stale.unlink()
+            fds.append(_lock(folder, wait_s))
+            held.add(folder)
+            sweep(folder, locked=True)
         yield
     finally:
-        for fd in fds:
+        for folder, fd in zip(folders, fds, strict=False):
+            held.discard(folder)
             os.close(fd)  # closing releases the flock
+
+
+def _lock(folder: str, wait_s: float) -> int:
+    """An open descriptor of ``folder`` holding its exclusive flock."""
+    import fcntl
+    import time
+
+    fd = os.open(folder, os.O_RDONLY)
+    deadline = time.monotonic() + wait_s
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return fd
+        except BlockingIOError:
+            if time.monotonic() > deadline:
+                os.close(fd)
+                msg = f"{folder}: another sensorkit is still writing there after {wait_s:g} s; try again"
+                raise UsageError(msg) from None
+            time.sleep(0.02)
 
 
 def write_text(
@@ -205,9 +274,11 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
     """Yield an empty folder beside ``out`` to fill; on success it replaces ``out`` whole.
 
     On an exception (or with ``publish=False``) the staging folder is deleted and ``out``
-    is untouched. Folders get the usual 0o777 less the umask. The folder lock of
-    :func:`editing` is held on ``out``'s parent throughout; once it is held, what a killed
-    writer of ``out`` left beside it is tidied (see :func:`_tidy`).
+    is untouched; a full disk or I/O error names ``out`` in one line (WriteFailed). Folders
+    get the usual 0o777 less the umask. The folder lock of :func:`editing` is held on
+    ``out``'s parent throughout (a caller may hold it already, to read its inputs under
+    it); once it is held, what a killed writer of ``out`` left beside it is tidied (see
+    :func:`tidy_beside`).
 
     A symlink ``out`` stays a symlink: its target folder is the one replaced (renaming
     the link itself would swap the link for a folder and leave the target stale).
@@ -216,16 +287,27 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
         out = Path(os.path.realpath(out))
     out.parent.mkdir(parents=True, exist_ok=True)
     with editing(out):  # two writers of one folder take turns (new, export, render preview)
-        _tidy(out)
-        yield from _staged(out, publish)
+        tidy_beside(out)
+        try:
+            yield from _staged(out, publish)
+        except OSError as exc:
+            failed = medium_failed(exc, out, "nothing was written there")
+            if failed is None:
+                raise
+            raise failed from None
 
 
-def _tidy(out: Path) -> None:
-    """Under the lock, every ``.NAME.new-*`` / ``.NAME.old-*`` beside ``out`` belongs to a
-    writer that was killed (a live one would hold the lock). A staging folder is deleted;
-    a previous ``out`` moved aside but not yet replaced (killed between the two renames of
-    :func:`_replace_folder`) is put back, else deleted."""
+def tidy_beside(out: Path) -> None:
+    """Under the lock of :func:`editing` on ``out``'s parent, every ``.NAME.new-*`` /
+    ``.NAME.old-*`` beside ``out`` belongs to a writer that was killed (a live one would
+    hold the lock). A staging folder is deleted; a previous ``out`` moved aside but not
+    yet replaced (killed between the two renames of :func:`_replace_folder`) is put back,
+    else deleted."""
     import glob
+
+    if os.path.realpath(out.parent) not in _held.__dict__.get("folders", ()):
+        msg = f"{out.parent}: tidied without its lock"
+        raise RuntimeError(msg)
 
     prefix = f".{glob.escape(out.name)}"
     for old in sorted(out.parent.glob(f"{prefix}.old-*")):
@@ -241,7 +323,7 @@ def _tidy(out: Path) -> None:
 
 
 def _staged(out: Path, publish: bool) -> Iterator[Path]:
-    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
+    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-{os.getpid()}-", dir=out.parent))
     try:
         yield temp
         umask = _umask()
@@ -262,7 +344,7 @@ def _replace_folder(temp: Path, out: Path) -> None:
         out.rmdir()  # POSIX would replace an empty folder, Windows would not
         os.replace(temp, out)
         return
-    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-{os.getpid()}-", dir=out.parent))
     old.rmdir()
     os.replace(out, old)
     try:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import dataclasses
+import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -21,7 +22,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.base.atomic import check_editable, editing, write_bytes
+from sensorkit.base.atomic import check_editable, editing, tidy_beside, write_bytes
 from sensorkit.base.errors import EditRefused, InputError, UsageError, WriteFailed
 from sensorkit.edit.check import (
     Verdict,
@@ -34,7 +35,7 @@ from sensorkit.edit.check import (
 from sensorkit.edit.fragment import Fragment, expand_fragment
 from sensorkit.edit.kinds import KINDS, MacroInfo, SensorKind
 from sensorkit.edit.layout import Layout, read_layout
-from sensorkit.edit.macrocall import MacroChoice, call_attributes, choose_macro
+from sensorkit.edit.macrocall import SENSORS_DIR, MacroChoice, call_attributes, choose_macro
 from sensorkit.edit.package import (
     SPEC_WHY,
     NewSensor,
@@ -529,14 +530,24 @@ def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
     """Plan an add and, unless ``dry_run``, publish it. Raises EditRefused on refusal.
 
     A real add holds the folder lock from reading the file to the last rename, so two adds
-    on one file take turns and both land (``sensorkit.base.atomic.editing``).
+    on one file take turns and both land (``sensorkit.base.atomic.editing``). It locks
+    every folder it may write (the ``sensors/`` folder of macro copies included) and so
+    removes what a killed writer left there first, and beside a package, what a killed
+    ``sensorkit new`` of it left.
     """
     if dry_run:
         return plan_add(req)
     target = req.target
     check_editable(target)
+    macros = target.parent / SENSORS_DIR
     # The folders of the robot's package too (bridge, README, robot YAML beside it).
-    with editing(req.path, target, *lock_paths(req.path)):
+    locks = [req.path, target, *lock_paths(req.path)]
+    if macros.is_dir():
+        locks.append(macros / "x")  # editing locks a path's folder: here sensors/ itself
+    with editing(*locks):
+        pkg = find_package(req.path)
+        if pkg is not None:
+            tidy_beside(Path(os.path.realpath(pkg)))
         result = plan_add(req)
         apply_add(result)
     return result

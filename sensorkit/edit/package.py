@@ -94,12 +94,12 @@ def find_package(path: Path) -> Path | None:
 def lock_paths(path: Path) -> list[Path]:
     """Paths whose folders an add into ``path``'s package locks (``atomic.editing`` locks
     each path's folder): the folders ``new`` writes, ``config/*`` (bridge files), and the
-    package's own folder's parent (a robot YAML beside the package; ``new -o PACKAGE``
-    takes the same lock)."""
+    package's own folder's parent, as written and resolved (a robot YAML beside the
+    package; ``new -o PACKAGE`` takes the same lock before it reads that YAML)."""
     pkg = find_package(path)
     if pkg is None:
         return []
-    out = [pkg]
+    out = [pkg, Path(os.path.realpath(pkg))]
     folders = [pkg / rel for rel in PACKAGE_DIRS]
     if (pkg / "config").is_dir():
         folders += sorted(p for p in (pkg / "config").iterdir() if p.is_dir())

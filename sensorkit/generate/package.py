@@ -8,6 +8,7 @@ one out in a single rename.
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -16,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from sensorkit.base.atomic import check_replaceable, staged_folder
+from sensorkit.base.atomic import check_replaceable, editing, staged_folder, tidy_beside
 from sensorkit.base.errors import InputError
 from sensorkit.describe.bridge import BridgeEntry, bridge_entries
 from sensorkit.describe.intrinsics import InvalidValue
@@ -186,11 +187,22 @@ def new_package(
         InputError: the YAML is unreadable or wrong (``FILE:LINE:COLUMN: ...``), or the
             result does not expand.
         UsageError: ``out`` is not empty and ``force`` is not given, or is not a folder.
+        WriteFailed: a full disk or I/O error, naming ``out``.
         OSError: the file system refused.
+
+    The robot YAML is read under the lock an add-* into the package takes (the folder
+    lock of ``out``'s parent, where the YAML of a package ``new`` made lies, and of the
+    YAML's own folder), so an add and ``new --force`` take turns and neither loses the
+    other's sensor; a killed writer's staging folders beside ``out`` go first, even when
+    this run is then refused.
     """
-    spec = load_spec(spec_path, defaults)
-    check_replaceable(out, force=force, inputs=[spec_path], flag="-o")
-    with staged_folder(out, publish=not dry_run) as temp:
-        entries = build_package(spec, temp, yaml_name=spec_path.name)
-        files = _listing(temp)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    real = Path(os.path.realpath(out))
+    with editing(out, real, spec_path):
+        tidy_beside(real)
+        spec = load_spec(spec_path, defaults)
+        check_replaceable(out, force=force, inputs=[spec_path], flag="-o")
+        with staged_folder(out, publish=not dry_run) as temp:
+            entries = build_package(spec, temp, yaml_name=spec_path.name)
+            files = _listing(temp)
     return GeneratedPackage(spec, out, files, entries, dry_run)
