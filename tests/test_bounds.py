@@ -180,3 +180,19 @@ def test_render_refuses_a_huge_link_name_in_one_short_line(tmp_path: Path) -> No
     assert len(errors) == 1 and "a name longer than" in errors[0], run.err[:500]
     assert_short(run.err)
     assert run.seconds < 20 and run.rss < GB, (run.seconds, run.rss / GB)
+
+
+def test_shorten_leaves_sensorkit_s_own_apostrophes_alone() -> None:
+    """Two apostrophes of a message's own words ("'front_camera': ... ros_gz_image's") are
+    no quoted piece: a 309-character SK607 message came back cut in its middle."""
+    from sensorkit.base.quote import shorten
+
+    msg = (
+        "camera 'wide': ../../pytest-of-root/pytest-260/popen-gw0/test_gz_wideanglecamera_ignore0/"
+        "bridge.yaml bridges its camera_info (/wide/camera_info) but not its image (/wide/image); "
+        "unless the launch starts the image some other way (ros_gz_image's image_bridge), ROS gets "
+        "the calibration of a camera it never sees"
+    )
+    assert shorten(msg) == msg
+    quoted = "link '" + "x y " * 1000 + "' is bad"  # a quoted input with spaces is still clipped
+    assert len(shorten(quoted)) < 300 and shorten(quoted).endswith("' is bad")

@@ -22,8 +22,13 @@ _TAIL = 40
 
 # A quoted piece ('...' or "...") or a run without spaces, longer than QUOTE_LIMIT. A run
 # is only tried from its start (the look-behind), so the search is linear in the message.
+# A quote opens only where no word character precedes it and closes only where none
+# follows: the apostrophe of sensorkit's own prose ("ros_gz_image's image_bridge") is
+# neither, so two of them never pair up around a stretch of the message's own words.
 _Q = QUOTE_LIMIT
-_LONG = re.compile(rf"'[^'\n]{{{_Q},}}'|\"[^\"\n]{{{_Q},}}\"|(?<!\S)\S{{{_Q + 1},}}")
+_LONG = re.compile(
+    rf"(?<!\w)'[^'\n]{{{_Q},}}'(?!\w)|(?<!\w)\"[^\"\n]{{{_Q},}}\"(?!\w)|(?<!\S)\S{{{_Q + 1},}}"
+)
 
 
 def clip(text: str, limit: int = QUOTE_LIMIT) -> str:

@@ -19,6 +19,8 @@ The one hard limit is the message size on Gazebo Sim:
 
 from __future__ import annotations
 
+import math
+
 PLAUSIBLE_CAMERA_PIXELS = 4096 * 4096
 PLAUSIBLE_LIDAR_RAYS = 1_000_000
 PROTOBUF_MAX_BYTES = 2**31 - 1
@@ -49,3 +51,8 @@ def frame_bytes(width: int, height: int, fmt: str | None, depth: bool) -> int:
 # ResourceManager::addImpl), uncaught around sensor->Init() (SensorManager.cc:320) and
 # sensors::run_once() (gazebo/Server.cc:651,696).
 CLASSIC_TEXTURE_NAMED_TYPES = frozenset({"camera", "depth"})
+
+
+def as_float(n: int) -> float:
+    """``float(n)``, infinite for an int too large for a float (``float`` raises there)."""
+    return float(n) if n < 2**1000 else math.inf

@@ -14,6 +14,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     frames,
     gz_frames,
     input,
+    lidar,
     mass,
     noise,
     placement,

@@ -10,13 +10,13 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.limits import (
     CLASSIC_TEXTURE_NAMED_TYPES,
     PLAUSIBLE_CAMERA_PIXELS,
-    PLAUSIBLE_LIDAR_RAYS,
     PROTOBUF_MAX_BYTES,
+    as_float,
     frame_bytes,
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.parse import local
-from sensorkit.model.sensors import CameraSpec, LidarSpec, Sensor
+from sensorkit.model.sensors import CameraSpec, Sensor
 from sensorkit.model.targets import is_gz
 
 # sdformat's <image><format> values and the gz-rendering spellings it also accepts.
@@ -222,11 +222,6 @@ def _unknown_format(ctx: Context, s: Sensor, cam: CameraSpec) -> Finding:
     )
 
 
-def _as_float(n: int) -> float:
-    """``float(n)``, infinite for an int too large for a float (``float`` raises there)."""
-    return float(n) if n < 2**1000 else math.inf
-
-
 def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Finding]:
     """A warning for a frame beyond any real camera (``knowledge.limits``)."""
     assert cam.width is not None and cam.height is not None
@@ -234,14 +229,14 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
     if pixels <= PLAUSIBLE_CAMERA_PIXELS:
         return
     size = frame_bytes(cam.width, cam.height, cam.format, s.is_depth)
-    size_f = _as_float(size)
+    size_f = as_float(size)
     rate = (
         f" ({size_f * s.update_rate / 1e9:.3g} GB/s at {s.update_rate:g} Hz)"
         if s.update_rate
         else ""
     )
     msg = (
-        f"sensor {s.name!r}: {cam.width}x{cam.height} = {_as_float(pixels) / 1e6:.3g} MP per frame "
+        f"sensor {s.name!r}: {cam.width}x{cam.height} = {as_float(pixels) / 1e6:.3g} MP per frame "
         f"is beyond any real camera (4K is 8.3 MP): {size_f / 1e6:.3g} MB per image{rate}"
     )
     if size > PROTOBUF_MAX_BYTES and is_gz(ctx.target):
@@ -423,135 +418,6 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
         lo = lo if lo is not None else cam.depth_near
         hi = hi if hi is not None else cam.depth_far
     return lo, hi
-
-
-def _backwards_sweep(
-    ctx: Context, s: Sensor, spec: LidarSpec, label: str, lo: float, hi: float
-) -> Finding:
-    """Gazebo Classic's CPU ray casts beam i at min + i * (max - min) / (samples - 1)
-    (elysia-best/gazebo-classic@upstream/11.10.2+dfsg:gazebo/physics/MultiRayShape.cc:75-93):
-    min above max sweeps the same arc backwards, published with a negative angle_increment.
-    It works: a warning."""
-    return ctx.finding(
-        "SK406",
-        Severity.WARNING,
-        f"lidar {s.name!r}: {label} min_angle {lo:g} is above max_angle {hi:g}: Gazebo "
-        "Classic sweeps the same arc backwards, so scans carry a negative angle_increment",
-        spec.source,
-        sensor=s.name,
-        fix="swap them",
-    )
-
-
-@rule(
-    "SK406",
-    "error",
-    "lidar: samples >= 1, min_angle < max_angle (a warning for a Gazebo Classic CPU ray, which sweeps "
-    "backwards), 0 <= range min < max (min 0 is an error only on a "
-    "Gazebo Sim gpu_lidar); vertical block sane; "
-    "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
-)
-def lidar_block(ctx: Context) -> Iterator[Finding]:
-    for s in ctx.robot.sensors:
-        spec = s.lidar
-        if s.kind != "lidar" or spec is None:
-            continue
-
-        def err(msg: str, fix: str, s: Sensor = s, spec: LidarSpec = spec) -> Finding:
-            return ctx.finding(
-                "SK406",
-                Severity.ERROR,
-                f"lidar {s.name!r}: {msg}",
-                spec.source,
-                sensor=s.name,
-                fix=fix,
-            )
-
-        for p in spec.problems:
-            yield err(p, "write numbers (angles in radians, ranges in metres)")
-        for label, samples, lo, hi, res in (
-            ("horizontal", spec.samples, spec.min_angle, spec.max_angle, spec.resolution),
-            ("vertical", spec.v_samples, spec.v_min_angle, spec.v_max_angle, spec.v_resolution),
-        ):
-            if label == "vertical" and not spec.has_vertical:
-                continue
-            if samples is not None and samples < 1:
-                yield err(f"{label} samples {samples} < 1", "use at least 1 sample")
-            if lo is not None and hi is not None and (lo > hi or (lo == hi and (samples or 1) > 1)):
-                if lo > hi and s.type == "ray" and not is_gz(ctx.target):
-                    yield _backwards_sweep(ctx, s, spec, label, lo, hi)
-                else:
-                    yield err(
-                        f"{label} min_angle {lo:g} must be below max_angle {hi:g}",
-                        "swap them or widen the range",
-                    )
-            if samples is not None and samples >= 1 and res is not None:
-                beams = samples * res
-                if res <= 0:
-                    yield err(f"{label} resolution {res:g} must be > 0", "use 1")
-                elif math.isfinite(beams) and abs(beams - round(beams)) > 1e-6:
-                    yield ctx.finding(
-                        "SK406",
-                        Severity.WARNING,
-                        f"lidar {s.name!r}: {label} samples {samples} x resolution {res:g} = {beams:g} is not a whole beam count "
-                        f"(Gazebo publishes {math.floor(beams)})",
-                        spec.source,
-                        sensor=s.name,
-                        fix="pick samples and resolution whose product is whole",
-                    )
-        rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
-        if rays > PLAUSIBLE_LIDAR_RAYS:
-            rays_f = _as_float(rays)
-            per_s = (
-                f", {rays_f * s.update_rate:.3g} rays/s at {s.update_rate:g} Hz"
-                if s.update_rate
-                else ""
-            )
-            yield ctx.finding(
-                "SK406",
-                Severity.WARNING,
-                f"lidar {s.name!r}: {rays:,} rays per scan{per_s} is beyond any real lidar "
-                "(an Ouster OS2-128 casts 262,144)",
-                spec.source,
-                sensor=s.name,
-                fix="check samples for a typo (render preview refuses it unless --max-rays allows)",
-            )
-        rmin, rmax = spec.range_min, spec.range_max
-        if rmin is not None and rmax is not None and not 0 <= rmin < rmax:
-            yield err(
-                f"range min {rmin:g} / max {rmax:g} must satisfy 0 <= min < max",
-                "e.g. <min>0.12</min><max>12</max>",
-            )
-        elif rmin == 0:
-            yield from _range_min_zero(ctx, s, spec)
-
-
-def _range_min_zero(ctx: Context, s: Sensor, spec: LidarSpec) -> Iterator[Finding]:
-    """Range min 0 is the SDF default and legal, except as a GPU lidar's near clip.
-
-    Sources beside GZ_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_sim.py: ogre-next throws on a
-    near clip <= 0) and CLASSIC_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_ros.py: unverified).
-    """
-    from sensorkit.knowledge.gazebo_ros import CLASSIC_LIDAR_NEAR_CLIP_TYPES
-    from sensorkit.knowledge.gazebo_sim import GZ_LIDAR_NEAR_CLIP_TYPES
-
-    fix = "use a small positive min, e.g. <min>0.05</min>"
-    if is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES:
-        msg = (
-            "range min 0 becomes the GPU ray camera's near clip, and Ogre throws "
-            "'Near clip distance must be greater than zero': the lidar never renders"
-        )
-        yield ctx.finding(
-            "SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix
-        )
-    elif not is_gz(ctx.target) and s.type in CLASSIC_LIDAR_NEAR_CLIP_TYPES:
-        msg = (
-            "range min 0 becomes the GPU laser's near clip; sensorkit has not verified "
-            "that Gazebo Classic (gazebo11) accepts a near clip of 0"
-        )
-        yield ctx.finding(
-            "SK406", Severity.INFO, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix
-        )
 
 
 @rule("SK407", "warning", "update_rate present and > 0 for cameras and lidars")
