@@ -32,7 +32,7 @@ def _backwards_sweep(
 
 @rule(
     "SK406",
-    "error",
+    "error/warning/info",
     "lidar: samples >= 1, min_angle < max_angle (a warning for a Gazebo Classic CPU ray, which sweeps "
     "backwards), 0 <= range min < max (min 0 is an error only on a "
     "Gazebo Sim gpu_lidar); vertical block sane; "
