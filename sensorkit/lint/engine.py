@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import gc
 import os
-import traceback
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -318,6 +317,8 @@ def run_rule(ctx: Context, info: RuleInfo, errors: list[str]) -> list[Finding]:
     try:
         return list(info.func(ctx))
     except Exception as exc:  # a bug of ours must not hide the other findings
+        import traceback
+
         detail = (
             "".join(traceback.format_exception(exc))
             if os.environ.get("SENSORKIT_DEBUG")

@@ -18,16 +18,17 @@ import io
 import os
 import re
 import sys
-import traceback
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.loading.untrusted import Confinement, Untrusted
+
+if TYPE_CHECKING:  # untrusted.py (and its evaluator) load only for --untrusted
+    from sensorkit.loading.untrusted import Confinement, Untrusted
 
 LOC_ATTR = marks.LOC_ATTR  # defined in marks (plain URDFs never import this module)
 forbid_entities = marks.forbid_entities
@@ -81,6 +82,9 @@ def _loc_parser(
 
     import xacro
 
+    Attr = xml.dom.minidom.Attr
+    set_attribute_node = xml.dom.minidom._set_attribute_node  # type: ignore[attr-defined]
+
     class _LineBuilder(expatbuilder.ExpatBuilderNS):
         file_index = 0
 
@@ -90,7 +94,14 @@ def _loc_parser(
             tag = node.tagName
             if not tag.startswith("xacro:") or tag in ("xacro:macro", "xacro:include"):
                 line = getattr(self, "_parser").CurrentLineNumber  # noqa: B009 (private in typeshed)
-                node.setAttribute(LOC_ATTR, f"{self.file_index}:{line}")
+                # What node.setAttribute(LOC_ATTR, ...) does for a name the element does
+                # not have yet, without its lookups and checks: a third of the stamping
+                # cost, and the same Attr in the same place (the expansion's output is
+                # byte-identical on the corpus).
+                attr = Attr(LOC_ATTR)
+                attr.value = f"{self.file_index}:{line}"
+                attr.ownerDocument = self.document
+                set_attribute_node(node, attr)
 
     def parse(inp: Any, filename: str | None = None) -> Any:
         if inp is not None or filename is None:
@@ -165,6 +176,24 @@ def _confined_includes(confine: Confinement) -> Any:
     return include_files
 
 
+def _plain_text_fast(eval_text: Any) -> Any:
+    """xacro's ``eval_text`` returning text with no ``$`` as it is, without lexing it.
+
+    xacro evaluates every attribute and text node with ``eval_text`` (xacro/__init__.py,
+    ``eval_all``), which runs its lexer even on text with nothing to substitute. The lexer's
+    TEXT token is ``[^$]+``, so such a text lexes to one token and comes back unchanged
+    (an empty one joins to ``''``): answering that at once is the same result. On the
+    corpus the expanded XML is byte-identical and expansion takes 15-26 % less CPU.
+    """
+
+    def fast(text: Any, symbols: Any) -> Any:
+        if type(text) is str and "$" not in text:
+            return text
+        return eval_text(text, symbols)
+
+    return fast
+
+
 def _reset_xacro() -> None:
     import xacro
 
@@ -196,7 +225,7 @@ def expand_in_process(
     out = ExpandOutcome(files=files)
     saved_sa = {k: getattr(sa, k) for k in ("_eval_find", "_eval_env", "_eval_optenv", "_eval")}
     saved_dict = {k: sa._eval_dict.get(k) for k in ("find", "env", "optenv")}
-    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval", "get_include_files")}
+    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval", "get_include_files", "eval_text")}
     saved_python: dict[str, Any] = {}
     orig_stderr = sys.stderr
     confine = None
@@ -218,6 +247,7 @@ def expand_in_process(
 
     _reset_xacro()
     xacro.parse = _loc_parser(files, saved_x["parse"], confine, overlay)
+    xacro.eval_text = _plain_text_fast(saved_x["eval_text"])
     if confine is not None:
         xacro.get_include_files = _confined_includes(confine)
     sa._eval_find = find
@@ -345,6 +375,8 @@ def _classify(exc: BaseException, out: ExpandOutcome) -> None:
         return
     text = _tidy(str(exc) or repr(exc))
     if os.environ.get("SENSORKIT_DEBUG"):
+        import traceback
+
         text += "\n" + "".join(traceback.format_exception(exc))
     out.error_kind = "xacro"
     out.message = text.strip()
