@@ -642,3 +642,37 @@ def test_sk604_is_not_reported_under_ros1(check) -> None:
     r = robot(extra=f'<gazebo reference="base_link">{two}</gazebo>')
     assert "SK604" in rules_of(check(r, target="classic"))
     assert "SK604" not in rules_of(check(r, target="ros1"))
+
+
+def test_closest_is_the_n_best_by_score_however_it_prunes() -> None:
+    """``closest`` spells out a candidate only while it could still place (SK401 on PR2
+    took 55-70 ms): its answer must stay the ``n`` best by ``score`` among the qualified,
+    ties by name, as ranking every candidate gives."""
+    import difflib
+    import random
+
+    from sensorkit.base.suggest import GENERIC, score, words
+
+    def qualifies(name: str, c: str) -> bool:
+        if (set(words(name)) & set(words(c))) - GENERIC:
+            return True
+        return difflib.SequenceMatcher(None, name.lower(), c.lower()).ratio() >= 0.7
+
+    rnd = random.Random(7)
+    vocab = ["link", "frame", "optical", "base", "r", "l", "gripper", "camera", "front",
+             "laser", "imu", "wheel", "palm", "tilt", "head", "cam1", "Cam", "depth"]  # fmt: skip
+
+    def name() -> str:
+        parts = [rnd.choice(vocab) for _ in range(rnd.randint(1, 4))]
+        if rnd.random() < 0.3:
+            parts[0] += rnd.choice("abcxyz")
+        return rnd.choice("_-/").join(parts)
+
+    for _ in range(1500):
+        pool = [name() for _ in range(rnd.randint(0, 50))]
+        q, n = name(), rnd.choice([1, 1, 2, 5])
+        ranked = sorted(
+            ((score(q, c), c) for c in dict.fromkeys(pool) if c != q and qualifies(q, c)),
+            key=lambda t: (-t[0], t[1]),
+        )
+        assert closest(q, pool, n) == [c for _, c in ranked[:n]], (q, pool, n)
