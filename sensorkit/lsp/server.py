@@ -1,0 +1,239 @@
+"""The pygls server: LSP messages in, :class:`~sensorkit.lsp.documents.Documents` events
+and publications out. The only module of sensorkit that imports pygls.
+
+A handler that fails logs the error with ``window/logMessage`` and answers nothing; the
+server goes on. Everything sensorkit needs (the engine, the rules, the knowledge tables)
+is imported once, at start, and stays loaded.
+"""
+
+from __future__ import annotations
+
+import os
+import traceback
+from collections.abc import Callable
+from functools import wraps
+from pathlib import Path
+from typing import Any, TypeVar
+
+from lsprotocol import types as lsp
+from pygls import uris
+from pygls.lsp.server import LanguageServer
+
+from sensorkit import __version__
+from sensorkit.base.errors import UsageError
+from sensorkit.lint.engine import Options
+from sensorkit.lsp.convert import diagnostic, text_edit, to_text
+from sensorkit.lsp.documents import Documents, Publish, is_robot_file
+from sensorkit.lsp.fixes import QuickFix, has_safe_fix, plan
+from sensorkit.lsp.hover import hover_text, sensors_at
+from sensorkit.lsp.settings import Overrides, settings_for
+
+__all__ = ["SensorkitServer", "serve"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+class SensorkitServer(LanguageServer):
+    """A LanguageServer holding the open robots and the client's overrides."""
+
+    def __init__(self) -> None:
+        super().__init__(
+            "sensorkit", __version__, text_document_sync_kind=lsp.TextDocumentSyncKind.Full
+        )
+        self.overrides = Overrides()
+        self.docs = Documents(self.options_for)
+
+    def options_for(self, path: Path) -> Options:
+        return settings_for(path, self.overrides).options
+
+    def log(self, message: str, kind: lsp.MessageType = lsp.MessageType.Error) -> None:
+        self.window_log_message(lsp.LogMessageParams(type=kind, message=message))
+
+    # ------------------------------------------------------------------ text
+
+    def lines(self, path: str) -> list[str]:
+        """The file's lines as the editor has them (its buffer, else the disk)."""
+        doc = self.docs.open.get(path)
+        if doc is not None:
+            text = doc.text
+        else:
+            try:
+                text = to_text(Path(path).read_bytes())
+            except OSError:
+                return []
+        return [line.rstrip("\r") for line in text.split("\n")]
+
+    def units(self, line: str, index: int) -> int:
+        """A code-point index on ``line`` in the client's position units."""
+        return int(self.workspace.position_codec.client_num_units(line[:index]))
+
+    def send(self, publications: list[Publish]) -> None:
+        for pub in publications:
+            lines = self.lines(pub.path)
+            self.text_document_publish_diagnostics(
+                lsp.PublishDiagnosticsParams(
+                    uri=uris.from_fs_path(pub.path) or pub.path,
+                    version=pub.version,
+                    diagnostics=[diagnostic(f, lines, self.units) for f in pub.findings],
+                )
+            )
+        for a in self.docs.analyses.values():
+            if a.report is not None:
+                for err in a.report.internal_errors:
+                    self.log(f"sensorkit: internal error: {err}")
+                a.report.internal_errors.clear()
+
+    def edit(self, fix: QuickFix) -> lsp.WorkspaceEdit:
+        changes: dict[str, list[lsp.TextEdit]] = {}
+        for path, (old, new) in fix.changes.items():
+            e = text_edit(old, new, self.units)
+            if e is not None:
+                changes[uris.from_fs_path(path) or path] = [e]
+        return lsp.WorkspaceEdit(changes=changes)
+
+
+def path_of(uri: str) -> str | None:
+    """The absolute path of a ``file:`` URI (None for another scheme)."""
+    path = uris.to_fs_path(uri)
+    return os.path.abspath(path) if path else None
+
+
+def guarded(func: F) -> F:
+    """A handler whose failure is logged to the client, never the end of the server."""
+
+    @wraps(func)
+    def wrapper(server: SensorkitServer, params: Any) -> Any:
+        try:
+            return func(server, params)
+        except Exception as exc:
+            detail = traceback.format_exc() if os.environ.get("SENSORKIT_DEBUG") else repr(exc)
+            server.log(f"sensorkit: {func.__name__} failed: {detail}")
+            return None
+
+    return wrapper  # type: ignore[return-value]
+
+
+SERVER = SensorkitServer()
+
+
+@SERVER.feature(lsp.INITIALIZE)
+@guarded
+def initialize(server: SensorkitServer, params: lsp.InitializeParams) -> None:
+    try:
+        server.overrides = Overrides.parse(params.initialization_options)
+    except UsageError as exc:
+        server.log(f"sensorkit: {exc}")
+
+
+@SERVER.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
+@guarded
+def did_open(server: SensorkitServer, params: lsp.DidOpenTextDocumentParams) -> None:
+    doc = params.text_document
+    path = path_of(doc.uri)
+    if path is not None and is_robot_file(path):
+        server.send(server.docs.opened(path, doc.text, doc.version))
+
+
+@SERVER.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
+@guarded
+def did_change(server: SensorkitServer, params: lsp.DidChangeTextDocumentParams) -> None:
+    path = path_of(params.text_document.uri)
+    if path is None or not is_robot_file(path):
+        return
+    text = server.workspace.get_text_document(params.text_document.uri).source
+    server.send(server.docs.changed(path, text, params.text_document.version))
+
+
+@SERVER.feature(lsp.TEXT_DOCUMENT_DID_SAVE, lsp.SaveOptions(include_text=True))
+@guarded
+def did_save(server: SensorkitServer, params: lsp.DidSaveTextDocumentParams) -> None:
+    path = path_of(params.text_document.uri)
+    if path is not None and is_robot_file(path):
+        server.send(server.docs.saved(path, params.text))
+
+
+@SERVER.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
+@guarded
+def did_close(server: SensorkitServer, params: lsp.DidCloseTextDocumentParams) -> None:
+    path = path_of(params.text_document.uri)
+    if path is not None and is_robot_file(path):
+        server.send(server.docs.closed(path))
+
+
+@SERVER.feature(lsp.TEXT_DOCUMENT_HOVER)
+@guarded
+def hover(server: SensorkitServer, params: lsp.HoverParams) -> lsp.Hover | None:
+    path = path_of(params.text_document.uri)
+    if path is None:
+        return None
+    line = params.position.line + 1
+    for analysis in server.docs.analyses_of(path):
+        found = sensors_at(analysis, path, line)
+        if found:
+            text = hover_text(analysis, found)
+            if text:
+                return lsp.Hover(
+                    contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text)
+                )
+    return None
+
+
+@SERVER.feature(
+    lsp.TEXT_DOCUMENT_CODE_ACTION,
+    lsp.CodeActionOptions(
+        code_action_kinds=[lsp.CodeActionKind.QuickFix, lsp.CodeActionKind.SourceFixAll]
+    ),
+)
+@guarded
+def code_action(server: SensorkitServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction]:
+    path = path_of(params.text_document.uri)
+    if path is None:
+        return []
+    overlay = server.docs.overlay()
+    only = params.context.only
+    out: list[lsp.CodeAction] = []
+    wanted = [d for d in params.context.diagnostics if d.source == "sensorkit"]
+    if only is None or any(k.startswith(lsp.CodeActionKind.QuickFix) for k in only):
+        for d in wanted:
+            if not isinstance(d.code, str) or not has_safe_fix(d.code):
+                continue
+            for analysis in server.docs.analyses_of(path):
+                finding = next(
+                    (
+                        f
+                        for f in analysis.by_file.get(path, ())
+                        if f.rule == d.code and (f.line or 1) - 1 == d.range.start.line
+                    ),
+                    None,
+                )
+                if finding is None:
+                    continue
+                fix = plan(analysis.top, analysis.options, overlay, finding)
+                if fix is not None:
+                    out.append(
+                        lsp.CodeAction(
+                            title=fix.title,
+                            kind=lsp.CodeActionKind.QuickFix,
+                            diagnostics=[d],
+                            edit=server.edit(fix),
+                            is_preferred=True,
+                        )
+                    )
+                    break
+    if only is not None and any(k.startswith(lsp.CodeActionKind.SourceFixAll) for k in only):
+        for analysis in server.docs.analyses_of(path)[:1]:
+            fix = plan(analysis.top, analysis.options, overlay, None)
+            if fix is not None:
+                out.append(
+                    lsp.CodeAction(
+                        title=fix.title,
+                        kind=f"{lsp.CodeActionKind.SourceFixAll}.sensorkit",
+                        edit=server.edit(fix),
+                    )
+                )
+    return out
+
+
+def serve() -> None:
+    """Speak LSP on stdin/stdout until the client says exit."""
+    SERVER.start_io()
