@@ -198,3 +198,19 @@ def test_the_plain_cli_does_not_import_pygls(tmp_path: Path) -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
     )
     assert run.returncode == 0, run.stderr
+
+
+def test_a_burst_of_edits_ends_with_the_diagnostics_of_the_last(ws: Path, client: Client) -> None:
+    path = ws / "rover.urdf"
+    bad, good = robot(optical=APPROX), robot(optical=OPTICAL)
+    path.write_text(bad)
+    client.open(path)
+    assert only(client.diagnostics(path, 1), "SK505")
+    for version in range(2, 9):  # sent at once, ending with the fixed text
+        client.change(path, good if version % 2 == 0 else bad, version)
+    assert only(client.diagnostics(path, 8), "SK505") == []
+    client.seen.clear()
+    client.request("shutdown", None)  # whatever was published before the answer is in seen
+    assert not [m for m in client.seen if m.get("method") == "textDocument/publishDiagnostics"]
+    client.notify("exit")
+    assert client.proc.wait(30) == 0

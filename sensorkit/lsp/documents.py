@@ -70,7 +70,20 @@ class Documents:
         return self.validate(self._readers(path), also={path})
 
     def changed(self, path: str, text: str, version: int | None) -> list[Publish]:
-        return self.opened(path, text, version)
+        self.edited(path, text, version)
+        return self.refresh(path)
+
+    def edited(self, path: str, text: str, version: int | None) -> None:
+        """Take the new text of ``path``; validate later (:meth:`refresh`)."""
+        self.open[path] = _Open(text, version)
+
+    def refresh(self, path: str) -> list[Publish]:
+        """Validate what reads ``path`` (its new text taken with :meth:`edited`)."""
+        return self.validate(self._readers(path), also={path})
+
+    def version(self, path: str) -> int | None:
+        doc = self.open.get(path)
+        return doc.version if doc is not None else None
 
     def saved(self, path: str, text: str | None = None) -> list[Publish]:
         doc = self.open.get(path)

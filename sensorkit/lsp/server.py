@@ -8,7 +8,9 @@ is imported once, at start, and stays loaded.
 
 from __future__ import annotations
 
+import asyncio
 import os
+import sys
 import traceback
 from collections.abc import Callable
 from functools import wraps
@@ -106,11 +108,16 @@ def guarded(func: F) -> F:
         try:
             return func(server, params)
         except Exception as exc:
-            detail = traceback.format_exc() if os.environ.get("SENSORKIT_DEBUG") else repr(exc)
-            server.log(f"sensorkit: {func.__name__} failed: {detail}")
+            failed(server, func.__name__, exc)
             return None
 
     return wrapper  # type: ignore[return-value]
+
+
+def failed(server: SensorkitServer, name: str, exc: Exception) -> None:
+    """Log a handler's failure to the client (the traceback with SENSORKIT_DEBUG)."""
+    detail = traceback.format_exc() if os.environ.get("SENSORKIT_DEBUG") else repr(exc)
+    server.log(f"sensorkit: {name} failed: {detail}")
 
 
 SERVER = SensorkitServer()
@@ -134,14 +141,26 @@ def did_open(server: SensorkitServer, params: lsp.DidOpenTextDocumentParams) -> 
         server.send(server.docs.opened(path, doc.text, doc.version))
 
 
+# Edits closer together than this are validated once, for the last: while one robot is
+# validated, the keystrokes that arrive meanwhile are read in this window and only the
+# newest text is checked, so diagnostics catch up with typing instead of trailing it.
+SETTLE_S = 0.01
+
+
 @SERVER.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
-@guarded
-def did_change(server: SensorkitServer, params: lsp.DidChangeTextDocumentParams) -> None:
-    path = path_of(params.text_document.uri)
-    if path is None or not is_robot_file(path):
-        return
-    text = server.workspace.get_text_document(params.text_document.uri).source
-    server.send(server.docs.changed(path, text, params.text_document.version))
+async def did_change(server: SensorkitServer, params: lsp.DidChangeTextDocumentParams) -> None:
+    try:
+        path = path_of(params.text_document.uri)
+        if path is None or not is_robot_file(path):
+            return
+        version = params.text_document.version
+        text = server.workspace.get_text_document(params.text_document.uri).source
+        server.docs.edited(path, text, version)
+        await asyncio.sleep(SETTLE_S)
+        if server.docs.version(path) == version:  # else a newer edit validates
+            server.send(server.docs.refresh(path))
+    except Exception as exc:  # an async handler: guarded by hand
+        failed(server, "did_change", exc)
 
 
 @SERVER.feature(lsp.TEXT_DOCUMENT_DID_SAVE, lsp.SaveOptions(include_text=True))
@@ -235,5 +254,20 @@ def code_action(server: SensorkitServer, params: lsp.CodeActionParams) -> list[l
 
 
 def serve() -> None:
-    """Speak LSP on stdin/stdout until the client says exit."""
-    SERVER.start_io()
+    """Speak LSP on stdin/stdout until the client says exit.
+
+    The protocol gets its own copies of file descriptors 0 and 1; the process's stdin
+    becomes /dev/null and its stdout goes to stderr. So nothing printed by a library (or
+    by an expansion child) reaches the protocol stream, and a forked xacro child never
+    meets the lock of a ``sys.stdin`` that pygls' reader thread is blocked in: the child
+    closes ``sys.stdin`` first thing (multiprocessing does), which would wait on that
+    lock forever.
+    """
+    proto_in = os.fdopen(os.dup(0), "rb")
+    proto_out = os.fdopen(os.dup(1), "wb")
+    null = os.open(os.devnull, os.O_RDONLY)
+    os.dup2(null, 0)
+    os.close(null)
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    SERVER.start_io(proto_in, proto_out)
