@@ -214,3 +214,48 @@ def test_a_burst_of_edits_ends_with_the_diagnostics_of_the_last(ws: Path, client
     assert not [m for m in client.seen if m.get("method") == "textDocument/publishDiagnostics"]
     client.notify("exit")
     assert client.proc.wait(30) == 0
+
+
+# --------------------------------------------------------------------------- positions
+
+
+def utf16(line: str, index: int) -> int:
+    return len(line[:index].encode("utf-16-le")) // 2
+
+
+def test_a_finding_spans_its_start_tag_or_the_line() -> None:
+    from sensorkit.lsp.convert import element_span
+
+    line = '    <origin xyz="0 0 0" rpy="a>b"/>  <!-- x -->'
+    s, e = element_span(line)
+    assert line[s:e] == '<origin xyz="0 0 0" rpy="a>b"/>'
+    line = '  <sensor name="cam"\n'.rstrip("\n")
+    s, e = element_span(line)
+    assert line[s:e] == '<sensor name="cam"'
+    s, e = element_span("  </gazebo>  ")
+    assert (s, e) == (2, 11)
+    line = '<link name="a"/><link name="b"/>'
+    assert element_span(line, column=17) == (16, len(line))
+    assert element_span("   ") == (0, 0)
+
+
+@pytest.mark.parametrize("eol", ["\n", "\r\n"])
+def test_an_edit_counts_utf16_units_and_keeps_line_ends(eol: str) -> None:
+    from sensorkit.lsp.convert import text_edit
+
+    old = eol.join(['<robot name="😀">', '  <origin rpy="-1.57 0 -1.57"/> <!-- 😀 é -->', ""])
+    new = old.replace("-1.57 0 -1.57", OPTICAL)
+    e = text_edit(old, new, utf16)
+    assert e is not None
+    edit = {
+        "range": {
+            "start": {"line": e.range.start.line, "character": e.range.start.character},
+            "end": {"line": e.range.end.line, "character": e.range.end.character},
+        },
+        "newText": e.new_text,
+    }
+    assert apply_edits(old, [edit]) == new
+    assert text_edit(old, old, utf16) is None
+    emoji = eol.join(['<a n="😀"/>', ""])
+    e = text_edit(emoji, emoji.replace('"/>', '" m="1"/>'), utf16)
+    assert e is not None and e.range.start.character == len('<a n="😀"') + 1  # 😀 is 2 units

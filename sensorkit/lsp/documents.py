@@ -107,9 +107,11 @@ class Documents:
     def _readers(self, path: str) -> list[str]:
         """The robots to validate after ``path`` changed: itself, if open, and every open
         robot that read it."""
-        tops = [path] if path in self.open and is_robot_file(path) else []
-        tops += [t for t, a in self.analyses.items() if path in a.sources and t != path]
-        return tops
+        others = [t for t, a in self.analyses.items() if path in a.sources and t != path]
+        own = self.analyses.get(path)
+        if others and own is not None and own.report is not None and own.report.macro_only:
+            return others  # an include of macros: the robots that use them say what they do
+        return ([path] if path in self.open and is_robot_file(path) else []) + others
 
     def validate(self, tops: list[str], also: set[str] | None = None) -> list[Publish]:
         """Validate ``tops`` again; the publications of every file whose diagnostics
