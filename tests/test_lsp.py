@@ -89,6 +89,17 @@ def test_diagnostics_follow_the_unsaved_buffer_and_a_quick_fix_clears_them(
     fixed = apply_edits(bad, changes[uri(path)])
     assert f'rpy="{OPTICAL}"' in fixed
     assert path.read_text() == bad  # the server never writes
+    fix_all = client.request(
+        "textDocument/codeAction",
+        {
+            "textDocument": {"uri": uri(path)},
+            "range": d["range"],
+            "context": {"diagnostics": [], "only": ["source.fixAll"]},
+        },
+    )
+    (every,) = fix_all
+    assert every["kind"] == "source.fixAll.sensorkit"
+    assert apply_edits(bad, every["edit"]["changes"][uri(path)]) == fixed
     client.change(path, fixed, 4)
     assert only(client.diagnostics(path, 4), "SK505") == []
 
@@ -259,3 +270,18 @@ def test_an_edit_counts_utf16_units_and_keeps_line_ends(eol: str) -> None:
     emoji = eol.join(['<a n="😀"/>', ""])
     e = text_edit(emoji, emoji.replace('"/>', '" m="1"/>'), utf16)
     assert e is not None and e.range.start.character == len('<a n="😀"') + 1  # 😀 is 2 units
+
+
+def test_bad_initialization_options_are_logged_and_the_server_goes_on(ws: Path) -> None:
+    c = Client(cwd=ws)
+    try:
+        c.initialize(ws, {"target": 5, "args": {"gazebo": "ignition"}})
+        said = c.wait(lambda m: m.get("method") == "window/logMessage", 30)
+        assert "initializationOptions.target must be a string" in said["params"]["message"]
+        path = ws / "rover.urdf"
+        path.write_text(robot(optical=APPROX))
+        c.open(path)
+        assert only(c.diagnostics(path, 1), "SK505")
+        assert c.close() == 0
+    finally:
+        c.kill()

@@ -2,8 +2,8 @@
 
 Every open ``.urdf``/``.xacro`` document is a top-level file validated on its own; the
 files it reads (its includes) are remembered, so an edit of an include validates again
-every open robot that reads it. The open buffers are the overlay of every validation: an
-unsaved include is seen by the robot that includes it.
+every open robot that reads it. Every open buffer (a YAML too) is in the overlay of every
+validation: an unsaved include is seen by the robot that includes it.
 
 A file's diagnostics are the findings that land in it from every open robot (an include
 read by two robots: both robots' findings, each once). After each validation every file
@@ -67,7 +67,7 @@ class Documents:
 
     def opened(self, path: str, text: str, version: int | None) -> list[Publish]:
         self.open[path] = _Open(text, version)
-        return self.validate(self._readers(path), also={path})
+        return self.validate(self._readers(path), also=_own(path))
 
     def changed(self, path: str, text: str, version: int | None) -> list[Publish]:
         self.edited(path, text, version)
@@ -79,7 +79,7 @@ class Documents:
 
     def refresh(self, path: str) -> list[Publish]:
         """Validate what reads ``path`` (its new text taken with :meth:`edited`)."""
-        return self.validate(self._readers(path), also={path})
+        return self.validate(self._readers(path), also=_own(path))
 
     def version(self, path: str) -> int | None:
         doc = self.open.get(path)
@@ -89,14 +89,14 @@ class Documents:
         doc = self.open.get(path)
         if doc is not None and text is not None:
             doc.text = text
-        return self.validate(self._readers(path), also={path})
+        return self.validate(self._readers(path), also=_own(path))
 
     def closed(self, path: str) -> list[Publish]:
         """The document is read from disk again; it is no longer a top-level robot."""
         self.open.pop(path, None)
         self.analyses.pop(path, None)
         readers = [t for t, a in self.analyses.items() if path in a.sources]
-        return self.validate(readers, also={path})
+        return self.validate(readers, also=_own(path))
 
     # ------------------------------------------------------------------ validation
 
@@ -163,6 +163,11 @@ class Documents:
         """The validations whose robot reads ``path`` (its own first)."""
         own = [self.analyses[path]] if path in self.analyses else []
         return own + [a for t, a in self.analyses.items() if t != path and path in a.sources]
+
+
+def _own(path: str) -> set[str]:
+    """A robot file is published after its own event, even with nothing to say."""
+    return {path} if is_robot_file(path) else set()
 
 
 def _error(top: str, message: str) -> Finding:

@@ -9,8 +9,9 @@ after, which the server sends as a WorkspaceEdit for the client to apply.
 from __future__ import annotations
 
 import hashlib
+import os
 from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -41,22 +42,38 @@ _CACHE: OrderedDict[tuple[object, ...], QuickFix | None] = OrderedDict()
 _CACHE_SIZE = 64
 
 
-def _key(top: Path, overlay: Mapping[str, bytes], finding: Finding | None) -> tuple[object, ...]:
+def _key(
+    top: Path, overlay: Mapping[str, bytes], finding: Finding | None, sources: Iterable[str]
+) -> tuple[object, ...]:
+    """What a plan depends on: the buffers' bytes, and the size and time of each file read
+    from the disk (one changed there, by another program, makes a new plan)."""
     digest = hashlib.blake2b(digest_size=16)
     for path in sorted(overlay):
         digest.update(path.encode("utf-8", "surrogateescape") + b"\0")
         digest.update(hashlib.blake2b(overlay[path], digest_size=16).digest())
+    disk: list[tuple[str, int, int]] = []
+    for path in sorted(set(sources) - set(overlay)):
+        try:
+            st = os.stat(path)
+        except OSError:
+            continue
+        disk.append((path, st.st_mtime_ns, st.st_size))
     what = None if finding is None else (subject(finding), finding.file, finding.line)
-    return (str(top), digest.digest(), what)
+    return (str(top), digest.digest(), tuple(disk), what)
 
 
 def plan(
-    top: Path, options: Options, overlay: Mapping[str, bytes], finding: Finding | None
+    top: Path,
+    options: Options,
+    overlay: Mapping[str, bytes],
+    finding: Finding | None,
+    sources: Iterable[str] = (),
 ) -> QuickFix | None:
     """The safe fix of ``finding`` (None: of every finding of ``top``), from the text of
-    ``overlay`` where it holds a file; None when nothing would change. The same buffers
-    and finding give the same answer from a cache (editors ask again on every cursor move)."""
-    key = _key(top, overlay, finding)
+    ``overlay`` where it holds a file; None when nothing would change. The same buffers,
+    files on disk (``sources``: the files the robot reads) and finding give the same
+    answer from a cache (editors ask again on every cursor move)."""
+    key = _key(top, overlay, finding, sources)
     if key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]

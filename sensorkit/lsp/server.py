@@ -25,7 +25,7 @@ from sensorkit import __version__
 from sensorkit.base.errors import UsageError
 from sensorkit.lint.engine import Options
 from sensorkit.lsp.convert import diagnostic, text_edit, to_text
-from sensorkit.lsp.documents import Documents, Publish, is_robot_file
+from sensorkit.lsp.documents import Documents, Publish
 from sensorkit.lsp.fixes import QuickFix, has_safe_fix, plan
 from sensorkit.lsp.hover import hover_text, sensors_at
 from sensorkit.lsp.settings import Overrides, settings_for
@@ -137,7 +137,7 @@ def initialize(server: SensorkitServer, params: lsp.InitializeParams) -> None:
 def did_open(server: SensorkitServer, params: lsp.DidOpenTextDocumentParams) -> None:
     doc = params.text_document
     path = path_of(doc.uri)
-    if path is not None and is_robot_file(path):
+    if path is not None:
         server.send(server.docs.opened(path, doc.text, doc.version))
 
 
@@ -151,7 +151,7 @@ SETTLE_S = 0.01
 async def did_change(server: SensorkitServer, params: lsp.DidChangeTextDocumentParams) -> None:
     try:
         path = path_of(params.text_document.uri)
-        if path is None or not is_robot_file(path):
+        if path is None:
             return
         version = params.text_document.version
         text = server.workspace.get_text_document(params.text_document.uri).source
@@ -167,7 +167,7 @@ async def did_change(server: SensorkitServer, params: lsp.DidChangeTextDocumentP
 @guarded
 def did_save(server: SensorkitServer, params: lsp.DidSaveTextDocumentParams) -> None:
     path = path_of(params.text_document.uri)
-    if path is not None and is_robot_file(path):
+    if path is not None:
         server.send(server.docs.saved(path, params.text))
 
 
@@ -175,7 +175,7 @@ def did_save(server: SensorkitServer, params: lsp.DidSaveTextDocumentParams) -> 
 @guarded
 def did_close(server: SensorkitServer, params: lsp.DidCloseTextDocumentParams) -> None:
     path = path_of(params.text_document.uri)
-    if path is not None and is_robot_file(path):
+    if path is not None:
         server.send(server.docs.closed(path))
 
 
@@ -208,49 +208,50 @@ def code_action(server: SensorkitServer, params: lsp.CodeActionParams) -> list[l
     path = path_of(params.text_document.uri)
     if path is None:
         return []
-    overlay = server.docs.overlay()
     only = params.context.only
     out: list[lsp.CodeAction] = []
-    wanted = [d for d in params.context.diagnostics if d.source == "sensorkit"]
     if only is None or any(k.startswith(lsp.CodeActionKind.QuickFix) for k in only):
-        for d in wanted:
-            if not isinstance(d.code, str) or not has_safe_fix(d.code):
-                continue
-            for analysis in server.docs.analyses_of(path):
-                finding = next(
-                    (
-                        f
-                        for f in analysis.by_file.get(path, ())
-                        if f.rule == d.code and (f.line or 1) - 1 == d.range.start.line
-                    ),
-                    None,
-                )
-                if finding is None:
-                    continue
-                fix = plan(analysis.top, analysis.options, overlay, finding)
-                if fix is not None:
-                    out.append(
-                        lsp.CodeAction(
-                            title=fix.title,
-                            kind=lsp.CodeActionKind.QuickFix,
-                            diagnostics=[d],
-                            edit=server.edit(fix),
-                            is_preferred=True,
-                        )
-                    )
-                    break
+        for d in params.context.diagnostics:
+            action = quick_fix(server, path, d)
+            if action is not None:
+                out.append(action)
     if only is not None and any(k.startswith(lsp.CodeActionKind.SourceFixAll) for k in only):
         for analysis in server.docs.analyses_of(path)[:1]:
-            fix = plan(analysis.top, analysis.options, overlay, None)
+            overlay = server.docs.overlay()
+            fix = plan(analysis.top, analysis.options, overlay, None, analysis.sources)
             if fix is not None:
-                out.append(
-                    lsp.CodeAction(
-                        title=fix.title,
-                        kind=f"{lsp.CodeActionKind.SourceFixAll}.sensorkit",
-                        edit=server.edit(fix),
-                    )
-                )
+                kind = f"{lsp.CodeActionKind.SourceFixAll.value}.sensorkit"
+                out.append(lsp.CodeAction(title=fix.title, kind=kind, edit=server.edit(fix)))
     return out
+
+
+def quick_fix(server: SensorkitServer, path: str, d: lsp.Diagnostic) -> lsp.CodeAction | None:
+    """The safe fix of the finding diagnostic ``d`` of ``path`` shows, if it has one: from
+    the first open robot (the file's own, else one including it) whose fixers fix it."""
+    if d.source != "sensorkit" or not isinstance(d.code, str) or not has_safe_fix(d.code):
+        return None
+    overlay = server.docs.overlay()
+    for analysis in server.docs.analyses_of(path):
+        finding = next(
+            (
+                f
+                for f in analysis.by_file.get(path, ())
+                if f.rule == d.code and (f.line or 1) - 1 == d.range.start.line
+            ),
+            None,
+        )
+        if finding is None:
+            continue
+        fix = plan(analysis.top, analysis.options, overlay, finding, analysis.sources)
+        if fix is not None:
+            return lsp.CodeAction(
+                title=fix.title,
+                kind=lsp.CodeActionKind.QuickFix,
+                diagnostics=[d],
+                edit=server.edit(fix),
+                is_preferred=True,
+            )
+    return None
 
 
 def serve() -> None:
