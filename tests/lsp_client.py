@@ -74,6 +74,10 @@ class Client:
     def notify(self, method: str, params: Any = None) -> None:
         self._write({"method": method, "params": params})
 
+    def respond(self, rid: Any, result: Any = None) -> None:
+        """Answer a request of the server's (client/registerCapability, ...)."""
+        self._write({"id": rid, "result": result})
+
     def send_request(self, method: str, params: Any = None) -> int:
         self.next_id += 1
         self._write({"id": self.next_id, "method": method, "params": params})

@@ -285,3 +285,40 @@ def test_bad_initialization_options_are_logged_and_the_server_goes_on(ws: Path) 
         assert c.close() == 0
     finally:
         c.kill()
+
+
+def test_an_include_changed_on_disk_is_read_again(ws: Path) -> None:
+    c = Client(cwd=ws)
+    try:
+        c.request(
+            "initialize",
+            {
+                "processId": None,
+                "rootUri": uri(ws),
+                "capabilities": {
+                    "workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}
+                },
+            },
+        )
+        c.notify("initialized", {})
+        asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
+        (reg,) = asked["params"]["registrations"]
+        assert reg["method"] == "workspace/didChangeWatchedFiles"
+        globs = [w["globPattern"] for w in reg["registerOptions"]["watchers"]]
+        assert "**/*.xacro" in globs and "**/sensorkit.toml" in globs
+        c.respond(asked["id"])
+
+        pkg = _package(ws / "src" / "rover_description", "rover_description")
+        cam = pkg / "urdf" / "sensors" / "camera.urdf.xacro"
+        cam.parent.mkdir(parents=True)
+        cam.write_text(CAMERA_XACRO)
+        top = pkg / "urdf" / "rover.urdf.xacro"
+        top.write_text(_top("sensors/camera.urdf.xacro"))
+        c.open(top)
+        assert only(c.diagnostics(cam), "SK505")
+        cam.write_text(CAMERA_XACRO.replace("-1.57 0 -1.57", "${-pi/2} 0 ${-pi/2}"))
+        c.notify("workspace/didChangeWatchedFiles", {"changes": [{"uri": uri(cam), "type": 2}]})
+        assert only(c.diagnostics(cam), "SK505") == []
+        assert c.close() == 0
+    finally:
+        c.kill()

@@ -29,6 +29,7 @@ from sensorkit.lsp.analysis import Analysis, analyse
 __all__ = ["ROBOT_SUFFIXES", "Documents", "Publish", "is_robot_file"]
 
 ROBOT_SUFFIXES = (".urdf", ".xacro")  # .urdf.xacro ends with .xacro
+SETTINGS_FILES = ("sensorkit.toml", "pyproject.toml")  # as sensorkit.lint.config finds them
 
 
 def is_robot_file(path: str) -> bool:
@@ -97,6 +98,15 @@ class Documents:
         self.analyses.pop(path, None)
         readers = [t for t, a in self.analyses.items() if path in a.sources]
         return self.validate(readers, also=_own(path))
+
+    def disk_changed(self, paths: set[str]) -> list[Publish]:
+        """Files changed on disk: validate again every robot that reads one that is not
+        open (an open one is read from its buffer), or every robot when a settings file
+        changed."""
+        if any(os.path.basename(p) in SETTINGS_FILES for p in paths):
+            return self.validate(list(self.analyses))
+        closed = paths - set(self.open)
+        return self.validate([t for t, a in self.analyses.items() if a.sources & closed])
 
     # ------------------------------------------------------------------ validation
 

@@ -132,6 +132,48 @@ def initialize(server: SensorkitServer, params: lsp.InitializeParams) -> None:
         server.log(f"sensorkit: {exc}")
 
 
+WATCHED = (
+    "**/*.urdf",
+    "**/*.xacro",
+    "**/*.yaml",
+    "**/*.yml",
+    "**/sensorkit.toml",
+    "**/pyproject.toml",
+)
+
+
+@SERVER.feature(lsp.INITIALIZED)
+@guarded
+def initialized(server: SensorkitServer, params: lsp.InitializedParams) -> None:
+    """Ask the client to say when a file changes on disk (a checkout, another editor), if
+    it can: the robots that read it are validated again."""
+    caps = server.client_capabilities.workspace
+    watch = caps.did_change_watched_files if caps is not None else None
+    if watch is None or not watch.dynamic_registration:
+        return
+    options = lsp.DidChangeWatchedFilesRegistrationOptions(
+        watchers=[lsp.FileSystemWatcher(glob_pattern=g) for g in WATCHED]
+    )
+    server.client_register_capability(
+        lsp.RegistrationParams(
+            registrations=[
+                lsp.Registration(
+                    id="sensorkit-watch",
+                    method=lsp.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+                    register_options=options,
+                )
+            ]
+        )
+    )
+
+
+@SERVER.feature(lsp.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+@guarded
+def files_changed(server: SensorkitServer, params: lsp.DidChangeWatchedFilesParams) -> None:
+    paths = {p for c in params.changes if (p := path_of(c.uri)) is not None}
+    server.send(server.docs.disk_changed(paths))
+
+
 @SERVER.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
 @guarded
 def did_open(server: SensorkitServer, params: lsp.DidOpenTextDocumentParams) -> None:
