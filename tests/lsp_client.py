@@ -160,6 +160,9 @@ class Client:
             },
         )
 
+    def close_document(self, path: Path) -> None:
+        self.notify("textDocument/didClose", {"textDocument": {"uri": uri(path)}})
+
     def close(self, timeout: float = 30) -> int:
         """shutdown, exit; the process's exit status."""
         self.request("shutdown", None, timeout)

@@ -144,6 +144,12 @@ def test_a_finding_in_an_include_goes_to_that_file(ws: Path, client: Client) -> 
     client.change(cam, fixed, 2)
     assert only(client.diagnostics(cam, 2), "SK505") == []
     assert cam.read_text() == CAMERA_XACRO
+
+    # back to the finding; the robot closed: the include's finding goes with it
+    client.change(cam, CAMERA_XACRO, 3)
+    assert only(client.diagnostics(cam, 3), "SK505")
+    client.close_document(top)
+    assert client.diagnostics(cam, 3) == []
     assert client.close() == 0
 
 

@@ -95,9 +95,9 @@ class Documents:
     def closed(self, path: str) -> list[Publish]:
         """The document is read from disk again; it is no longer a top-level robot."""
         self.open.pop(path, None)
-        self.analyses.pop(path, None)
+        gone = self.analyses.pop(path, None)
         readers = [t for t, a in self.analyses.items() if path in a.sources]
-        return self.validate(readers, also=_own(path))
+        return self.validate(readers, also=_own(path) | set(gone.by_file if gone else ()))
 
     def disk_changed(self, paths: set[str]) -> list[Publish]:
         """Files changed on disk: validate again every robot that reads one that is not
