@@ -44,6 +44,11 @@ class SensorkitServer(LanguageServer):
         )
         self.overrides = Overrides()
         self.docs = Documents(self.options_for)
+        self.uris: dict[str, str] = {}  # path -> the URI the client named it by
+
+    def uri(self, path: str) -> str:
+        """The URI of ``path`` as the client spells it (an open document's), else made."""
+        return self.uris.get(path) or uris.from_fs_path(path) or path
 
     def options_for(self, path: Path) -> Options:
         return settings_for(path, self.overrides).options
@@ -74,7 +79,7 @@ class SensorkitServer(LanguageServer):
             lines = self.lines(pub.path)
             self.text_document_publish_diagnostics(
                 lsp.PublishDiagnosticsParams(
-                    uri=uris.from_fs_path(pub.path) or pub.path,
+                    uri=self.uri(pub.path),
                     version=pub.version,
                     diagnostics=[diagnostic(f, lines, self.units) for f in pub.findings],
                 )
@@ -90,7 +95,7 @@ class SensorkitServer(LanguageServer):
         for path, (old, new) in fix.changes.items():
             e = text_edit(old, new, self.units)
             if e is not None:
-                changes[uris.from_fs_path(path) or path] = [e]
+                changes[self.uri(path)] = [e]
         return lsp.WorkspaceEdit(changes=changes)
 
 
@@ -180,6 +185,7 @@ def did_open(server: SensorkitServer, params: lsp.DidOpenTextDocumentParams) -> 
     doc = params.text_document
     path = path_of(doc.uri)
     if path is not None:
+        server.uris[path] = doc.uri
         server.send(server.docs.opened(path, doc.text, doc.version))
 
 
