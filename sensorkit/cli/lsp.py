@@ -13,8 +13,9 @@ def lsp() -> None:
     """Start the language server on stdin/stdout for an editor: diagnostics as you type,
     quick fixes (the safe fixes of validate --fix) and hover on a <sensor>.
 
-    Settings come from the sensorkit.toml (or pyproject.toml [tool.sensorkit]) found
-    upward from each document, under the client's initializationOptions.
+    Settings come from the sensorkit.toml (or the tool.sensorkit table of a
+    pyproject.toml) found upward from each document, under the client's
+    initializationOptions. The editor starts it; it prints nothing to a terminal.
     """
     import importlib.util
 
