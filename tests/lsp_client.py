@@ -124,13 +124,13 @@ class Client:
 
     # ------------------------------------------------------------------ protocol
 
-    def initialize(self, root: Path, options: Any = None) -> Any:
+    def initialize(self, root: Path, options: Any = None, capabilities: Any = None) -> Any:
         result = self.request(
             "initialize",
             {
                 "processId": os.getpid(),
                 "rootUri": uri(root),
-                "capabilities": {},
+                "capabilities": capabilities or {},
                 "initializationOptions": options,
             },
         )

@@ -296,17 +296,8 @@ def test_bad_initialization_options_are_logged_and_the_server_goes_on(ws: Path) 
 def test_an_include_changed_on_disk_is_read_again(ws: Path) -> None:
     c = Client(cwd=ws)
     try:
-        c.request(
-            "initialize",
-            {
-                "processId": None,
-                "rootUri": uri(ws),
-                "capabilities": {
-                    "workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}
-                },
-            },
-        )
-        c.notify("initialized", {})
+        watching = {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}}
+        c.initialize(ws, capabilities=watching)
         asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
         (reg,) = asked["params"]["registrations"]
         assert reg["method"] == "workspace/didChangeWatchedFiles"
@@ -325,6 +316,32 @@ def test_an_include_changed_on_disk_is_read_again(ws: Path) -> None:
         cam.write_text(CAMERA_XACRO.replace("-1.57 0 -1.57", "${-pi/2} 0 ${-pi/2}"))
         c.notify("workspace/didChangeWatchedFiles", {"changes": [{"uri": uri(cam), "type": 2}]})
         assert only(c.diagnostics(cam), "SK505") == []
+        assert c.close() == 0
+    finally:
+        c.kill()
+
+
+def test_a_client_that_resolves_gets_the_edit_when_it_chooses_the_fix(ws: Path) -> None:
+    c = Client(cwd=ws)
+    try:
+        lazy = {"textDocument": {"codeAction": {"resolveSupport": {"properties": ["edit"]}}}}
+        c.initialize(ws, capabilities=lazy)
+        path = ws / "rover.urdf"
+        bad = robot(optical=APPROX)
+        path.write_text(bad)
+        c.open(path)
+        (d,) = only(c.diagnostics(path, 1), "SK505")
+        ask = {"textDocument": {"uri": uri(path)}, "range": d["range"]}
+        (action,) = c.request("textDocument/codeAction", {**ask, "context": {"diagnostics": [d]}})
+        assert "edit" not in action and action["title"].endswith("(SK505)")
+        done = c.request("codeAction/resolve", action)
+        fixed = apply_edits(bad, done["edit"]["changes"][uri(path)])
+        assert f'rpy="{OPTICAL}"' in fixed
+        # a finding whose fixer has nothing safe to offer gets no action
+        other = {**d, "code": "SK101"}
+        assert (
+            c.request("textDocument/codeAction", {**ask, "context": {"diagnostics": [other]}}) == []
+        )
         assert c.close() == 0
     finally:
         c.kill()

@@ -17,11 +17,12 @@ from pathlib import Path
 
 from sensorkit.base.findings import Finding
 from sensorkit.fix import fixable
-from sensorkit.fix.apply import plan_file
-from sensorkit.fix.registry import subject
+from sensorkit.fix.apply import context_of, plan_file
+from sensorkit.fix.registry import FIXERS, FixContext, subject
 from sensorkit.lint.engine import Options
+from sensorkit.lsp.analysis import Analysis
 
-__all__ = ["QuickFix", "has_safe_fix", "plan"]
+__all__ = ["QuickFix", "has_safe_fix", "offer", "plan"]
 
 
 @dataclass(frozen=True)
@@ -110,3 +111,43 @@ def _plan(
         n = ff.fixed
         title = f"sensorkit: apply every safe fix ({n} finding{'' if n == 1 else 's'})"
     return QuickFix(title, changes, ff.fixed)
+
+
+class _Text(dict[str, bytes]):
+    """The buffers, and any other file's bytes read from the disk when a fixer asks."""
+
+    def __missing__(self, path: str) -> bytes:
+        try:
+            data = Path(path).read_bytes()
+        except OSError as exc:
+            raise KeyError(path) from exc
+        self[path] = data
+        return data
+
+    def __contains__(self, path: object) -> bool:
+        if not isinstance(path, str):
+            return False
+        try:
+            self[path]
+        except KeyError:
+            return False
+        return True
+
+
+def offer(analysis: Analysis, finding: Finding, overlay: Mapping[str, bytes]) -> str | None:
+    """The title of the safe fix the fixer of ``finding`` gives on the text as it is, or
+    None: the fixer alone, without validating the result (:func:`plan` does that when
+    the fix is applied). Cheap enough to answer every cursor move."""
+    info = FIXERS.get(finding.rule)
+    report = analysis.report
+    if info is None or report is None or report.robot is None:
+        return None
+    fx = analysis.memo.get("fix_context")
+    if not isinstance(fx, FixContext):
+        fx = FixContext(context_of(report, analysis.options), _Text(overlay))
+        analysis.memo["fix_context"] = fx
+    try:
+        fix = info.func(fx, finding)
+    except Exception:  # NotFixable, Deferred, a file that cannot be read: no offer
+        return None
+    return f"sensorkit: {fix.title} ({finding.rule})" if fix.safe and fix.edits else None

@@ -12,7 +12,7 @@ import asyncio
 import os
 import sys
 import traceback
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from functools import wraps
 from pathlib import Path
 from typing import Any, TypeVar
@@ -23,10 +23,12 @@ from pygls.lsp.server import LanguageServer
 
 from sensorkit import __version__
 from sensorkit.base.errors import UsageError
+from sensorkit.base.findings import Finding
 from sensorkit.lint.engine import Options
+from sensorkit.lsp.analysis import Analysis
 from sensorkit.lsp.convert import diagnostic, text_edit, to_text
 from sensorkit.lsp.documents import Documents, Publish
-from sensorkit.lsp.fixes import QuickFix, has_safe_fix, plan
+from sensorkit.lsp.fixes import QuickFix, has_safe_fix, offer, plan
 from sensorkit.lsp.hover import hover_text, sensors_at
 from sensorkit.lsp.settings import Overrides, settings_for
 
@@ -248,7 +250,8 @@ def hover(server: SensorkitServer, params: lsp.HoverParams) -> lsp.Hover | None:
 @SERVER.feature(
     lsp.TEXT_DOCUMENT_CODE_ACTION,
     lsp.CodeActionOptions(
-        code_action_kinds=[lsp.CodeActionKind.QuickFix, lsp.CodeActionKind.SourceFixAll]
+        code_action_kinds=[lsp.CodeActionKind.QuickFix, lsp.CodeActionKind.SourceFixAll],
+        resolve_provider=True,
     ),
 )
 @guarded
@@ -273,23 +276,47 @@ def code_action(server: SensorkitServer, params: lsp.CodeActionParams) -> list[l
     return out
 
 
+def resolves_edits(server: SensorkitServer) -> bool:
+    """The client asks for a code action's edit when it is chosen (codeAction/resolve)."""
+    doc = server.client_capabilities.text_document
+    ca = doc.code_action if doc is not None else None
+    support = ca.resolve_support if ca is not None else None
+    return support is not None and "edit" in support.properties
+
+
+def finding_at(
+    server: SensorkitServer, path: str, code: str, line: int
+) -> Iterator[tuple[Analysis, Finding]]:
+    """``(analysis, finding)`` for each open robot with a finding ``code`` at ``line``
+    (0-based) of ``path``."""
+    for analysis in server.docs.analyses_of(path):
+        for f in analysis.by_file.get(path, ()):
+            if f.rule == code and (f.line or 1) - 1 == line:
+                yield analysis, f
+                break
+
+
 def quick_fix(server: SensorkitServer, path: str, d: lsp.Diagnostic) -> lsp.CodeAction | None:
     """The safe fix of the finding diagnostic ``d`` of ``path`` shows, if it has one: from
-    the first open robot (the file's own, else one including it) whose fixers fix it."""
+    the first open robot (the file's own, else one including it) whose fixers fix it.
+
+    A client that resolves edits gets the action at once, its edit computed when chosen
+    (:func:`resolve`): the fixer alone says whether there is one. Otherwise the edit is
+    planned now, as ``validate --fix`` plans it.
+    """
     if d.source != "sensorkit" or not isinstance(d.code, str) or not has_safe_fix(d.code):
         return None
     overlay = server.docs.overlay()
-    for analysis in server.docs.analyses_of(path):
-        finding = next(
-            (
-                f
-                for f in analysis.by_file.get(path, ())
-                if f.rule == d.code and (f.line or 1) - 1 == d.range.start.line
-            ),
-            None,
-        )
-        if finding is None:
-            continue
+    lazy = resolves_edits(server)
+    for analysis, finding in finding_at(server, path, d.code, d.range.start.line):
+        if lazy:
+            title = offer(analysis, finding, overlay)
+            if title is None:
+                continue
+            data = {"uri": server.uri(path), "code": d.code, "line": d.range.start.line}
+            return lsp.CodeAction(
+                title=title, kind=lsp.CodeActionKind.QuickFix, diagnostics=[d], data=data
+            )
         fix = plan(analysis.top, analysis.options, overlay, finding, analysis.sources)
         if fix is not None:
             return lsp.CodeAction(
@@ -300,6 +327,25 @@ def quick_fix(server: SensorkitServer, path: str, d: lsp.Diagnostic) -> lsp.Code
                 is_preferred=True,
             )
     return None
+
+
+@SERVER.feature(lsp.CODE_ACTION_RESOLVE)
+@guarded
+def resolve(server: SensorkitServer, action: lsp.CodeAction) -> lsp.CodeAction:
+    """The edit of a quick fix offered by :func:`quick_fix`, planned now."""
+    data = action.data if isinstance(action.data, dict) else {}
+    path = path_of(str(data.get("uri", "")))
+    code, line = data.get("code"), data.get("line")
+    if path is None or not isinstance(code, str) or not isinstance(line, int):
+        return action
+    overlay = server.docs.overlay()
+    for analysis, finding in finding_at(server, path, code, line):
+        fix = plan(analysis.top, analysis.options, overlay, finding, analysis.sources)
+        if fix is not None:
+            action.edit = server.edit(fix)
+            return action
+    server.log(f"sensorkit: {code} at line {line + 1}: no fix any more", lsp.MessageType.Info)
+    return action
 
 
 def serve() -> None:
