@@ -88,13 +88,17 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--edits", type=int, default=30)
     ap.add_argument("--robot", type=Path, default=REALWORLD / ROBOT)
-    ap.add_argument("--arg", action="append", default=["gazebo:=ignition"])
+    ap.add_argument(
+        "--arg", action="append", help="NAME:=VALUE (default for turtlebot4: gazebo:=ignition)"
+    )
     ap.add_argument(
         "--breakdown", action="store_true", help="also time load and rules in this process"
     )
     a = ap.parse_args()
     if not a.robot.is_file():
         sys.exit(f"bench_lsp: no robot at {a.robot}")
+    if a.arg is None:
+        a.arg = ["gazebo:=ignition"] if a.robot == REALWORLD / ROBOT else []
     args = dict(item.split(":=", 1) for item in a.arg)
     options = {"args": args, "packagePaths": [str(REALWORLD)]}
     client = Client(cwd=ROOT)
