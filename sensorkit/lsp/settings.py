@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from sensorkit.base.errors import UsageError
-from sensorkit.lint.config import Config, load_config
+from sensorkit.lint.config import Config, load_config, package_folder
 from sensorkit.lint.engine import Options
 from sensorkit.loading.document import display_path
 
@@ -82,22 +82,16 @@ class Settings:
     config: Config
 
 
-def _folder(item: str) -> str:
-    """The folder of a package-path item: ``DIR``, or the DIR of ``NAME=DIR``."""
-    name, sep, folder = item.partition("=")
-    return folder if sep and name and "/" not in name else item
-
-
 def settings_for(path: Path, overrides: Overrides) -> Settings:
     """The options for validating ``path``: ``overrides`` over the settings file found
     upward from it. Raises UsageError for a bad settings file or a missing package folder."""
     cfg = load_config(path)
     for item in overrides.package_paths:
-        if not Path(_folder(item)).expanduser().is_dir():
+        if not Path(package_folder(item)).expanduser().is_dir():
             msg = f"initializationOptions.packagePaths {item}: no such folder"
             raise UsageError(msg)
     for item in cfg.package_paths:
-        if not Path(_folder(item)).is_dir():
+        if not Path(package_folder(item)).is_dir():
             msg = f"{cfg.path}: package-path {item}: no such folder"
             raise UsageError(msg)
     target = overrides.target or cfg.target or "auto"
