@@ -345,3 +345,30 @@ def test_a_client_that_resolves_gets_the_edit_when_it_chooses_the_fix(ws: Path) 
         assert c.close() == 0
     finally:
         c.kill()
+
+
+def test_hover_on_a_sensor_written_in_an_included_macro(ws: Path, client: Client) -> None:
+    whole = robot(xacro=True)
+    start, end = whole.index('  <gazebo reference="camera_link">'), whole.index("</robot>")
+    block = whole[start:end]
+    inc = ws / "urdf" / "camera.urdf.xacro"
+    inc.parent.mkdir()
+    inc.write_text(
+        '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        f'<xacro:macro name="front_camera">\n{block}</xacro:macro>\n</robot>\n'
+    )
+    top = ws / "urdf" / "rover.urdf.xacro"
+    top.write_text(
+        whole[:start]
+        + '  <xacro:include filename="camera.urdf.xacro"/>\n  <xacro:front_camera/>\n'
+        + whole[end:]
+    )
+    client.open(top)
+    client.diagnostics(top, 1)
+    line = line_of(inc.read_text(), '<sensor name="front_camera"')
+    got = client.request(
+        "textDocument/hover",
+        {"textDocument": {"uri": uri(inc)}, "position": {"line": line, "character": 6}},
+    )
+    assert got is not None and "/front_camera/image_raw" in got["contents"]["value"]
+    assert client.close() == 0
