@@ -348,6 +348,17 @@ def resolve(server: SensorkitServer, action: lsp.CodeAction) -> lsp.CodeAction:
     return action
 
 
+def warm() -> None:
+    """Import now what the first document and the first hover would: xacro (the
+    expansion children are forked from this process with it loaded) and the describe
+    layer, so no edit pays for an import."""
+    import sensorkit.describe.sensorinfo
+    import sensorkit.describe.topics  # noqa: F401
+    from sensorkit.loading.xacro_expand import warm as warm_xacro
+
+    warm_xacro()
+
+
 def serve() -> None:
     """Speak LSP on stdin/stdout until the client says exit.
 
@@ -358,6 +369,7 @@ def serve() -> None:
     closes ``sys.stdin`` first thing (multiprocessing does), which would wait on that
     lock forever.
     """
+    warm()
     proto_in = os.fdopen(os.dup(0), "rb")
     proto_out = os.fdopen(os.dup(1), "wb")
     null = os.open(os.devnull, os.O_RDONLY)
