@@ -20,7 +20,7 @@ from sensorkit.fix import fixable
 from sensorkit.fix.apply import context_of, plan_file
 from sensorkit.fix.registry import FIXERS, FixContext, subject
 from sensorkit.lint.engine import Options
-from sensorkit.lsp.analysis import Analysis
+from sensorkit.lsp.analysis import Analysis, heap_frozen
 
 __all__ = ["QuickFix", "has_safe_fix", "offer", "plan"]
 
@@ -95,7 +95,8 @@ def _plan(
         def only(f: Finding) -> bool:
             return (subject(f), f.file) == want
 
-    ff = plan_file(top, options, originals=overlay, only=only)
+    with heap_frozen():  # it loads the robot at least twice
+        ff = plan_file(top, options, originals=overlay, only=only)
     changed = ff.changed()
     if ff.error or not ff.applied or not changed:
         return None
