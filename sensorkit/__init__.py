@@ -15,7 +15,9 @@ contracts in pyproject.toml; tests/test_layers.py runs it). Bottom up:
 9. ``edit``: ``sensorkit add-*``, byte-preserving edits of a user's robot;
 10. ``fix``: ``validate --fix``, a fixer per rule;
 11. ``render``: ``render preview``, the only layer that imports pybullet and Pillow;
-12. ``cli``: the only layer that prints, exits or parses options.
+12. ``lsp``: ``sensorkit lsp``, the language server (pygls): diagnostics, fixes, hover;
+13. ``cli``: the only layer that prints, exits or parses options; with ``lsp`` the only
+    ones that speak a protocol.
 """
 
 __version__ = "0.1.0"

@@ -46,7 +46,7 @@ def _root(
 # click command of every registered function when the app runs (reading its signature's
 # type hints): for ``sensorkit validate`` the other nine cost a fifth of its start-up, and
 # for ``sensorkit render preview`` a tenth of a one-camera preview's CPU time.
-_ALONE = {"validate": "validate", "rules": "validate", "render": "render"}
+_ALONE = {"validate": "validate", "rules": "validate", "render": "render", "lsp": "lsp"}
 
 
 def _alone() -> str | None:
@@ -66,7 +66,7 @@ def _register() -> None:
     import importlib
 
     alone = _alone()
-    for name in (alone,) if alone else ("validate", "edit", "new", "render", "export", "topics"):
+    for name in (alone,) if alone else ("validate", "edit", "new", "render", "export", "topics", "lsp"):
         try:
             module = importlib.import_module(f"sensorkit.cli.{name}")
         except ModuleNotFoundError as exc:

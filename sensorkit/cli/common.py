@@ -103,12 +103,6 @@ class Settings:
             typer.echo(f"sensorkit: {said}", err=True)
 
 
-def _package_folder(item: str) -> str:
-    """The folder of a package-path item: ``DIR``, or the DIR of ``NAME=DIR``."""
-    name, sep, folder = item.partition("=")
-    return folder if sep and name and "/" not in name else item
-
-
 def settings(
     near: Path | None,
     flags: RobotFlags,
@@ -117,7 +111,7 @@ def settings(
     default_target: str = "auto",
 ) -> Settings:
     """Merge flags over the settings file found from ``near`` (``--config`` wins)."""
-    from sensorkit.lint.config import load_config
+    from sensorkit.lint.config import load_config, package_folder
 
     cfg = load_config(near, explicit=flags.config)
     trust = make_untrusted(flags.untrusted, flags.env)
@@ -127,10 +121,10 @@ def settings(
         if cfg.target:
             used.append("target")
     for item in flags.package_path or ():
-        if not Path(_package_folder(item)).expanduser().is_dir():
+        if not Path(package_folder(item)).expanduser().is_dir():
             die(f"--package-path {item}: no such folder")
     for item in cfg.package_paths:
-        if not Path(_package_folder(item)).is_dir():
+        if not Path(package_folder(item)).is_dir():
             die(f"{cfg.path}: package-path {item}: no such folder")
     paths = tuple(flags.package_path or ())
     if not paths and cfg.package_paths:

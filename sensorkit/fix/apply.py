@@ -195,19 +195,23 @@ def plan_file(
     unsafe: bool = False,
     contents: dict[str, bytes] | None = None,
     allowed: set[str] | None = None,
+    originals: Mapping[str, bytes] | None = None,
+    only: Callable[[Finding], bool] | None = None,
 ) -> FileFix:
     """Work out every fix for ``path`` in memory (see the module doc); write nothing.
 
     ``contents`` (edited text by absolute path) is read and updated in place, so several
     files fixed in one run see each other's edits. ``allowed`` limits the files that may
-    be edited (those whose folder lock is held).
+    be edited (those whose folder lock is held). ``originals`` (absolute path -> bytes)
+    is the text to start from instead of the disk's (an editor's unsaved buffers): the
+    diff's left side. ``only`` picks the findings to fix (default: every wanted one).
     """
     contents = {} if contents is None else contents
-    out = FileFix(path=path)
+    out = FileFix(path=path, originals=dict(originals or {}))
     files = _Files(contents, out.originals)
     everything = dataclasses.replace(options, select=(), ignore=())
     report = check(path, everything, files)
-    out.before = _wanted(report, options)
+    out.before = _wanted(report, options, only)
     out.after = list(out.before)
     if report.error or report.robot is None:
         out.error = report.error
@@ -216,7 +220,7 @@ def plan_file(
     notes: list[Note] = []
     refused: dict[tuple[object, ...], Note] = {}  # fixes that added an error: not tried again
     for _ in range(MAX_ROUNDS):
-        candidates, notes = _candidates(report, options, files, unsafe, scope, allowed)
+        candidates, notes = _candidates(report, options, files, unsafe, scope, allowed, only)
         notes += [_again(refused[c.signature()], c) for c in candidates if c.signature() in refused]
         candidates = [c for c in candidates if c.signature() not in refused]
         units, _waiting = _choose(candidates)
@@ -230,10 +234,10 @@ def plan_file(
         for u in accepted:
             out.applied.extend(u.fixes)
     else:
-        candidates, notes = _candidates(report, options, files, unsafe, scope, allowed)
+        candidates, notes = _candidates(report, options, files, unsafe, scope, allowed, only)
         out.more = any(c.signature() not in refused for c in candidates)
     out.notes = _final_notes(notes, report, options)
-    out.after = _wanted(report, options)
+    out.after = _wanted(report, options, only)
     left = {(f.rule, f.sensor, f.message) for f in out.after}
     out.revealed = [f for f in out.revealed if (f.rule, f.sensor, f.message) in left]
     out.internal_errors = list(report.internal_errors)
@@ -246,8 +250,12 @@ def _again(note: Note, fix: Fix) -> Note:
     return Note(fix.finding, note.kind, note.text)
 
 
-def _wanted(report: FileReport, options: Options) -> list[Finding]:
-    return [f for f in report.findings if options.wants(f.rule)]
+def _wanted(
+    report: FileReport, options: Options, only: Callable[[Finding], bool] | None = None
+) -> list[Finding]:
+    return [
+        f for f in report.findings if options.wants(f.rule) and (only is None or only(f))
+    ]
 
 
 def _candidates(
@@ -257,11 +265,12 @@ def _candidates(
     unsafe: bool,
     scope: Callable[[str], str | None],
     allowed: set[str] | None,
+    only: Callable[[Finding], bool] | None = None,
 ) -> tuple[list[Fix], list[Note]]:
     fx = FixContext(context_of(report, options), files)
     fixes: list[Fix] = []
     notes: list[Note] = []
-    for f in _wanted(report, options):
+    for f in _wanted(report, options, only):
         info = FIXERS.get(f.rule)
         if info is None:
             continue

@@ -84,6 +84,12 @@ class Config:
         return tuple(self.package_paths)
 
 
+def package_folder(item: str) -> str:
+    """The folder of a package-path item: ``DIR``, or the DIR of ``NAME=DIR``."""
+    name, sep, folder = item.partition("=")
+    return folder if sep and name and "/" not in name else item
+
+
 def find_config(start: Path) -> tuple[Path, dict[str, Any]] | None:
     """The nearest settings file at or above ``start`` and its sensorkit table."""
     for folder in [start, *start.parents]:

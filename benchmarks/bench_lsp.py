@@ -1,0 +1,146 @@
+"""Edit-to-diagnostics latency of `sensorkit lsp` on turtlebot4 (issue 26: median at most
+150 ms, goal 50 ms).
+
+Run by hand (never in the test suite): `.venv/bin/python benchmarks/bench_lsp.py`.
+
+Drives the server as tests/test_lsp.py does (JSON-RPC over its stdin/stdout): opens
+turtlebot4's standard robot (``gazebo:=ignition`` and the corpus as package path, sent
+as initializationOptions, as tests/realworld/robots.yaml reads it), then sends N
+didChange edits, each toggling a comment at the end of the buffer, and times each from
+the send to the publishDiagnostics of that version. The machine may be shared, so the
+server's CPU time per edit is measured too: utime+stime of the server and of the
+expansion children it reaped (``/proc/PID/stat`` fields 14-17), before and after.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))
+
+from lsp_client import Client  # noqa: E402
+
+REALWORLD = ROOT.parent / "shared" / "corpus" / "realworld"
+ROBOT = "turtlebot__turtlebot4/turtlebot4_description/urdf/standard/turtlebot4.urdf.xacro"
+TICK = os.sysconf("SC_CLK_TCK")
+
+
+def cpu_seconds(pid: int) -> float:
+    """utime + stime + cutime + cstime of ``pid``, in seconds."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    # fields[0] is the state (field 3); utime..cstime are fields 14..17
+    return sum(int(x) for x in fields[11:15]) / TICK
+
+
+def pct(values: list[float], q: float) -> float:
+    s = sorted(values)
+    return s[min(len(s) - 1, round(q * (len(s) - 1)))]
+
+
+def cpu_now() -> float:
+    """This process's CPU seconds and its reaped children's (the expansion children)."""
+    import resource
+
+    me, kids = (
+        resource.getrusage(resource.RUSAGE_SELF),
+        resource.getrusage(resource.RUSAGE_CHILDREN),
+    )
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def breakdown(robot: Path, args: dict[str, str], edits: int) -> None:
+    """Where an edit's CPU goes, in this process: the load (xacro expansion, in its forked
+    child, and the model) and the rules (validate_loaded: rules, suppression, sorting)."""
+    import dataclasses
+
+    from sensorkit.lint.engine import validate_loaded
+    from sensorkit.lsp.analysis import load
+    from sensorkit.lsp.settings import Overrides, settings_for
+
+    options = settings_for(robot, Overrides(args=args, package_paths=(str(REALWORLD),))).options
+    text = robot.read_text()
+    loads: list[float] = []
+    rules: list[float] = []
+    for i in range(edits + 1):
+        body = text if i % 2 else text + f"<!-- edit {i} -->\n"
+        opts = dataclasses.replace(options, overlay={str(robot): body.encode()})
+        c0 = cpu_now()
+        loaded = load(robot, opts)
+        c1 = cpu_now()
+        validate_loaded(robot, loaded, opts)
+        c2 = cpu_now()
+        if i:  # the first warms the imports
+            loads.append((c1 - c0) * 1000)
+            rules.append((c2 - c1) * 1000)
+    print(
+        f"  in-process CPU per edit: load (expansion + model) median "
+        f"{statistics.median(loads):.0f} ms, rules median {statistics.median(rules):.0f} ms"
+    )
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--edits", type=int, default=30)
+    ap.add_argument("--robot", type=Path, default=REALWORLD / ROBOT)
+    ap.add_argument(
+        "--arg", action="append", help="NAME:=VALUE (default for turtlebot4: gazebo:=ignition)"
+    )
+    ap.add_argument(
+        "--breakdown", action="store_true", help="also time load and rules in this process"
+    )
+    a = ap.parse_args()
+    if not a.robot.is_file():
+        sys.exit(f"bench_lsp: no robot at {a.robot}")
+    if a.arg is None:
+        a.arg = ["gazebo:=ignition"] if a.robot == REALWORLD / ROBOT else []
+    args = dict(item.split(":=", 1) for item in a.arg)
+    options = {"args": args, "packagePaths": [str(REALWORLD)]}
+    client = Client(cwd=ROOT)
+    try:
+        t0 = time.perf_counter()
+        client.initialize(a.robot.parent, options)
+        text = a.robot.read_text()
+        client.open(a.robot, text, version=1)
+        first = client.diagnostics(a.robot, 1, timeout=120)
+        print(
+            f"open: {time.perf_counter() - t0:.2f} s to the first diagnostics "
+            f"({len(first)} in the top file), server started cold"
+        )
+        wall: list[float] = []
+        cpu: list[float] = []
+        for i in range(a.edits):
+            version = i + 2
+            body = text if i % 2 else text + f"<!-- edit {i} -->\n"
+            before = cpu_seconds(client.proc.pid)
+            t = time.perf_counter()
+            client.change(a.robot, body, version)
+            client.diagnostics(a.robot, version, timeout=60)
+            wall.append(time.perf_counter() - t)
+            cpu.append(cpu_seconds(client.proc.pid) - before)
+        code = client.close()
+    finally:
+        client.kill()
+    ms = [w * 1000 for w in wall]
+    cms = [c * 1000 for c in cpu]
+    print(f"{a.edits} edits of {a.robot.name} (args {args}), edit -> publishDiagnostics:")
+    print(
+        f"  wall: median {statistics.median(ms):.0f} ms, p90 {pct(ms, 0.9):.0f} ms, min {min(ms):.0f} ms"
+    )
+    print(
+        f"  server CPU per edit (with its expansion children): median "
+        f"{statistics.median(cms):.0f} ms, p90 {pct(cms, 0.9):.0f} ms "
+        f"(clock tick {1000 / TICK:.0f} ms)"
+    )
+    print(f"  server exit status {code}")
+    if a.breakdown:
+        breakdown(a.robot, args, a.edits)
+
+
+if __name__ == "__main__":
+    main()
