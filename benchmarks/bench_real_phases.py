@@ -9,7 +9,8 @@ the forked xacro expansion) around its phases:
   command loads on first use (engine, rules, model, loading, xacro_expand, report);
 - xacro imports (``xacro_expand.warm``), the expansion (this process: fork, pipe, unpickle;
   children: xacro in the forked child), the rest of loading (reading, parsing, line stamps),
-  the model (``build_robot``), the rules' context (target, conversion, frames), each rule,
+  the model (``build_robot``), the rules' context (target, conversion, frames, missing
+  files: ``check_robot`` less the rules), each rule,
   suppression comments, the report's rendering;
 - the CLI's rest: typer, options, settings, output: ``main()``'s time less the phases above.
 
@@ -94,7 +95,7 @@ xe.warm = measured("xacro imports (warm)", xe.warm)
 xe.expand = measured("xacro expansion (children: the forked xacro)", xe.expand)
 model.load_description = measured("loading less expansion: read, parse, line stamps", model.load_description)
 model.build_robot = measured("model (build_robot)", model.build_robot)
-engine.check_robot = measured("rules' context: target, conversion, frames", engine.check_robot)
+engine.check_robot = measured("rules' context: target, conversion, frames, missing files", engine.check_robot)
 engine.run_rule = measured("rules", engine.run_rule, rule=True)
 engine._suppress = measured("suppression comments", engine._suppress)
 report.render = measured("report rendering", report.render)
