@@ -27,6 +27,7 @@ from typing import Any
 from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.reads import ExpandDeps, Recording, record_reads
 from sensorkit.loading.untrusted import Confinement, Untrusted
 
 LOC_ATTR = marks.LOC_ATTR  # defined in marks (plain URDFs never import this module)
@@ -68,6 +69,8 @@ class ExpandOutcome:
     macro_line: int | None = None
     package: str | None = None
     searched: list[str] = field(default_factory=list)
+    # what the expansion read (see sensorkit.loading.reads); None: not recorded
+    deps: ExpandDeps | None = None
 
 
 def _loc_parser(
@@ -217,13 +220,14 @@ def expand_in_process(
         return str(hit)
 
     _reset_xacro()
-    xacro.parse = _loc_parser(files, saved_x["parse"], confine, overlay)
     if confine is not None:
         xacro.get_include_files = _confined_includes(confine)
     sa._eval_find = find
     sa._eval_dict["find"] = find
     if untrusted is not None and confine is not None:
         _narrow(xacro, sa, untrusted, confine, saved_sa, saved_x, saved_python)
+    reads = _record_reads(xacro, sa, out, untrusted, overlay)
+    xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
     sys.stderr = io.StringIO()
     try:
         doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
@@ -234,6 +238,8 @@ def expand_in_process(
             raise
         _classify(exc, out)
     finally:
+        if reads is not None:
+            reads.restore()
         stack_files = [f for f in (xacro.filestack or []) if f]
         macros = list(xacro.macrostack or [])
         for k, v in saved_x.items():
@@ -253,6 +259,23 @@ def expand_in_process(
         out.macro_file, out.macro_line = _innermost_macro(macros, files)
     _reset_xacro()
     return out
+
+
+def _record_reads(
+    xacro: Any,
+    sa: Any,
+    out: ExpandOutcome,
+    untrusted: Untrusted | None,
+    overlay: Mapping[str, bytes] | None,
+) -> Recording | None:
+    """Record what the expansion reads into ``out.deps`` (for the expansion cache); never
+    under ``untrusted``, whose results are not cached. Call after the expansion's own
+    patches of ``sa``; ``expand_in_process`` restores the patches in its ``finally``."""
+    if untrusted is not None:
+        return None
+    reads = record_reads(xacro, sa, overlay)
+    out.deps = reads.deps
+    return reads
 
 
 def _narrow(
