@@ -30,6 +30,16 @@ def corpus_package_paths() -> tuple[str, ...]:
     return (*map(str, repos), str(REALWORLD))
 
 
+@pytest.fixture(autouse=True)
+def own_cache_home(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """Every test its own XDG_CACHE_HOME (the expansion cache, sensorkit.loading.cache),
+    beside its tmp_path, not in it: no test writes the user's cache, and none sees
+    another's entries. Subprocesses inherit it."""
+    folder = tmp_path_factory.mktemp("cache-home")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(folder))
+    return folder
+
+
 @pytest.fixture
 def check(tmp_path: Path) -> Callable[..., FileReport]:
     """Write a robot to a file and validate it."""

@@ -58,6 +58,7 @@ class RobotFlags:
     package_path: list[str] | None = None
     untrusted: bool = False
     env: list[str] | None = None
+    no_cache: bool = False
 
 
 @dataclass
@@ -70,6 +71,8 @@ class Settings:
     untrusted: Any  # sensorkit.loading.untrusted.Untrusted | None
     config: Any  # sensorkit.lint.config.Config
     used: list[str] = field(default_factory=list)
+    # the expansion cache (sensorkit.loading.cache): on disk, unless --no-cache or --untrusted
+    cache: Any = None
 
     def origin(self, key: str) -> str:
         """``--target`` or ``sensorkit.toml``: where the value of ``key`` came from."""
@@ -90,6 +93,7 @@ class Settings:
             package_paths=self.package_paths,
             untrusted=self.untrusted,
             overlay=overlay,
+            cache=self.cache,
         )
         info = describe(robot, self.target, convention=convention)
         if self.target != "auto":
@@ -134,7 +138,17 @@ def settings(
     if cfg.args:
         used.append("args")
     args.update(parse_xacro_args(flags.arg))
-    return Settings(target, paths, args, trust, cfg, used)
+    return Settings(target, paths, args, trust, cfg, used, expansion_cache(flags, trust))
+
+
+def expansion_cache(flags: RobotFlags, trust: Any) -> Any:
+    """The disk expansion cache a command reads robots through, or None with
+    ``--no-cache`` or ``--untrusted`` (an untrusted robot is never cached)."""
+    if flags.no_cache or trust is not None:
+        return None
+    from sensorkit.loading.cache import DiskCache
+
+    return DiskCache()
 
 
 def robot_flags(values: dict[str, Any]) -> RobotFlags:
@@ -162,6 +176,7 @@ def reads_robot(func: Callable[..., None]) -> Callable[..., None]:
     @wraps(func)
     def command(**values: Any) -> None:
         flags = robot_flags(values)
+        flags.no_cache = values.pop("no_cache")
         quiet, color, stdin = values.pop("quiet"), values.pop("color"), values.pop("stdin_filename")
         func(**values, reading=Reading(flags, quiet, color, stdin))
 

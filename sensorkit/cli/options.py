@@ -45,6 +45,14 @@ EnvOpt = Annotated[
         metavar="NAME",
     ),
 ]
+NoCacheOpt = Annotated[
+    bool,
+    typer.Option(
+        "--no-cache",
+        help="expand xacro again even when nothing it read has changed (the cache is in "
+        "$XDG_CACHE_HOME/sensorkit; never used with --untrusted)",
+    ),
+]
 ConfigOpt = Annotated[
     Path | None,
     typer.Option(
@@ -127,4 +135,9 @@ ROBOT_FLAGS = (
 # what to print
 PRINTING = (parameter("quiet", QuietOpt, False), parameter("color", ColorOpt, "auto"))
 # what intrinsics, export and topics end with (``common.Reading``)
-READING = (*ROBOT_FLAGS, *PRINTING, parameter("stdin_filename", StdinFilenameOpt))
+READING = (
+    *ROBOT_FLAGS,
+    parameter("no_cache", NoCacheOpt, False),
+    *PRINTING,
+    parameter("stdin_filename", StdinFilenameOpt),
+)

@@ -47,6 +47,7 @@ from sensorkit.cli.options import (
     ConfigOpt,
     EnvOpt,
     FileArg,
+    NoCacheOpt,
     PackagePathOpt,
     QuietOpt,
     UntrustedOpt,
@@ -187,6 +188,7 @@ def preview(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    no_cache: NoCacheOpt = False,
     quiet: QuietOpt = False,
     color: ColorOpt = "auto",
     fail_on: FailOnOpt = None,
@@ -202,7 +204,9 @@ def preview(
     """
     refuse_stdin(file, "render preview renders a file")
     colored = use_color(color, sys.stderr)
-    st = settings(file, RobotFlags(config, arg, package_path, untrusted, env), target=target)
+    st = settings(
+        file, RobotFlags(config, arg, package_path, untrusted, env, no_cache), target=target
+    )
     threshold = fail_on_threshold(fail_on, st.config)
     st.say_where(() if fail_on else ("fail-on", "select", "ignore"), quiet=quiet)
     joints = parse_joints(joint)
@@ -237,6 +241,7 @@ def preview(
             fail_on=threshold,
             select=tuple(st.config.select),
             ignore=tuple(st.config.ignore),
+            cache=st.cache,
         )
     _print_result(result, quiet)
     from sensorkit.cli import leave_quickly

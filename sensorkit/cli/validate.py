@@ -30,6 +30,7 @@ from sensorkit.cli.options import (
     ColorOpt,
     ConfigOpt,
     EnvOpt,
+    NoCacheOpt,
     PackagePathOpt,
     QuietOpt,
     StdinFilenameOpt,
@@ -129,6 +130,7 @@ def validate(
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
     config: ConfigOpt = None,
+    no_cache: NoCacheOpt = False,
     fix: FixOpt = False,
     diff: DiffOpt = False,
     unsafe_fixes: UnsafeFixesOpt = False,
@@ -159,7 +161,7 @@ def validate(
         if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
             raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
         files, overlay = stdin_robots(files, stdin_filename)
-        flags = RobotFlags(config, arg, package_path, untrusted, env)
+        flags = RobotFlags(config, arg, package_path, untrusted, env, no_cache)
         rules = _Rules(select, ignore, fail_on, launch)
         options = _options(
             files, flags, rules, overlay, target=target, timeout=timeout, bridge=bridge, quiet=quiet
@@ -266,6 +268,7 @@ def _options(
         untrusted=st.untrusted,
         target_origin=st.origin("target"),
         overlay=overlay,
+        cache=st.cache,
     )
 
 

@@ -37,6 +37,7 @@ from sensorkit.describe.views import CameraView, SensorInfo
 
 if TYPE_CHECKING:
     from sensorkit.describe.stereo import StereoPair
+    from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Sensor
@@ -116,8 +117,10 @@ def load(
     package_paths: Sequence[str] = (),
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
+    cache: ExpansionCache | None = None,
 ) -> Robot:
-    """Load and model a URDF/xacro file (``overlay``: absolute path -> bytes read instead).
+    """Load and model a URDF/xacro file (``overlay``: absolute path -> bytes read instead;
+    ``cache``: the expansion cache, see ``sensorkit.loading.cache``).
 
     Raises:
         InputError: the file cannot be read, expanded or parsed as a robot.
@@ -130,6 +133,7 @@ def load(
         package_paths=tuple(package_paths),
         untrusted=untrusted,
         overlay=overlay,
+        cache=cache,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None

@@ -30,6 +30,7 @@ from sensorkit.model.targets import TARGETS, detect_target, is_gz
 
 if TYPE_CHECKING:
     from sensorkit.loading.bridge import BridgeTopic
+    from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.launch_facts import LaunchFacts
     from sensorkit.loading.untrusted import Untrusted
 
@@ -57,6 +58,9 @@ class Options:
     # What the launch files say, when the caller has it already (tests, a re-check): used
     # instead of reading them.
     launch_facts: LaunchFacts | None = None
+    # Where xacro expansions are looked up and kept (sensorkit.loading.cache); None: no
+    # cache. Never used under --untrusted.
+    cache: ExpansionCache | None = None
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -375,6 +379,7 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
             timeout=options.timeout,
             untrusted=options.untrusted,
             overlay=options.overlay or None,
+            cache=options.cache,
         )
     except InputError as exc:
         return FileReport(path=path, error=str(exc))

@@ -22,7 +22,9 @@ from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
 
 if TYPE_CHECKING:
+    from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
+    from sensorkit.loading.xacro_expand import ExpandOutcome
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
 # Bounds on what a description may hold, checked before the model is built (issue 25:
@@ -298,12 +300,15 @@ def load_description(
     timeout: float = 60.0,
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
+    cache: ExpansionCache | None = None,
 ) -> LoadResult:
     """Read ``path`` (URDF or xacro) into a Document, or findings explaining why not.
 
     Raises InputError when the file cannot be read or is not a robot description.
     ``overlay`` maps absolute paths to bytes used instead of the files' own (``--fix``
-    validates an edit in memory before writing it).
+    validates an edit in memory before writing it). ``cache`` (see
+    ``sensorkit.loading.cache``) gives a xacro expansion whose every input still holds
+    instead of expanding again, and keeps a new one; it is not used under ``untrusted``.
     """
     key = os.path.abspath(path)
     data = overlay[key] if overlay and key in overlay else read_input(path)
@@ -317,11 +322,7 @@ def load_description(
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
-    from sensorkit.loading.xacro_expand import expand
-
-    outcome = expand(
-        path, dict(args or {}), resolver, timeout=timeout, untrusted=untrusted, overlay=overlay
-    )
+    outcome = _expansion(path, dict(args or {}), resolver, timeout, untrusted, overlay, cache)
     if outcome.error_kind is not None:
         return LoadResult(None, [_expansion_finding(path, outcome)])
     assert outcome.xml is not None
@@ -346,6 +347,29 @@ def load_description(
         includes=outcome.includes,
     )
     return LoadResult(doc)
+
+
+def _expansion(
+    path: Path,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    timeout: float,
+    untrusted: Untrusted | None,
+    overlay: Mapping[str, bytes] | None,
+    cache: ExpansionCache | None,
+) -> ExpandOutcome:
+    """xacro's expansion of ``path``: from ``cache`` when it holds one still true, else
+    expanded (and then kept there). Never through the cache under ``untrusted``."""
+    from sensorkit.loading.xacro_expand import expand
+
+    if cache is not None and untrusted is None:
+        hit = cache.lookup(path, args, resolver, overlay)
+        if hit is not None:
+            return hit
+    outcome = expand(path, args, resolver, timeout=timeout, untrusted=untrusted, overlay=overlay)
+    if cache is not None and untrusted is None:
+        cache.store(path, args, outcome)
+    return outcome
 
 
 def _expansion_finding(path: Path, outcome: object) -> Finding:

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.reads import ExpandDeps, Recording, record_reads
 
 if TYPE_CHECKING:  # untrusted.py (and its evaluator) load only for --untrusted
     from sensorkit.loading.untrusted import Confinement, Untrusted
@@ -69,6 +70,8 @@ class ExpandOutcome:
     macro_line: int | None = None
     package: str | None = None
     searched: list[str] = field(default_factory=list)
+    # what the expansion read (see sensorkit.loading.reads); None: not recorded
+    deps: ExpandDeps | None = None
 
 
 def _loc_parser(
@@ -246,7 +249,6 @@ def expand_in_process(
         return str(hit)
 
     _reset_xacro()
-    xacro.parse = _loc_parser(files, saved_x["parse"], confine, overlay)
     xacro.eval_text = _plain_text_fast(saved_x["eval_text"])
     if confine is not None:
         xacro.get_include_files = _confined_includes(confine)
@@ -254,6 +256,8 @@ def expand_in_process(
     sa._eval_dict["find"] = find
     if untrusted is not None and confine is not None:
         _narrow(xacro, sa, untrusted, confine, saved_sa, saved_x, saved_python)
+    reads = _record_reads(xacro, sa, out, untrusted, overlay)
+    xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
     sys.stderr = io.StringIO()
     try:
         doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
@@ -264,6 +268,8 @@ def expand_in_process(
             raise
         _classify(exc, out)
     finally:
+        if reads is not None:
+            reads.restore()
         stack_files = [f for f in (xacro.filestack or []) if f]
         macros = list(xacro.macrostack or [])
         for k, v in saved_x.items():
@@ -283,6 +289,23 @@ def expand_in_process(
         out.macro_file, out.macro_line = _innermost_macro(macros, files)
     _reset_xacro()
     return out
+
+
+def _record_reads(
+    xacro: Any,
+    sa: Any,
+    out: ExpandOutcome,
+    untrusted: Untrusted | None,
+    overlay: Mapping[str, bytes] | None,
+) -> Recording | None:
+    """Record what the expansion reads into ``out.deps`` (for the expansion cache); never
+    under ``untrusted``, whose results are not cached. Call after the expansion's own
+    patches of ``sa``; ``expand_in_process`` restores the patches in its ``finally``."""
+    if untrusted is not None:
+        return None
+    reads = record_reads(xacro, sa, overlay)
+    out.deps = reads.deps
+    return reads
 
 
 def _narrow(

@@ -13,6 +13,7 @@ from sensorkit.model.robot import Robot
 from sensorkit.model.urdf import build_robot
 
 if TYPE_CHECKING:
+    from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
 
 
@@ -32,14 +33,22 @@ def load_robot(
     timeout: float = 60.0,
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
+    cache: ExpansionCache | None = None,
 ) -> Loaded:
     """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
 
     ``overlay`` maps absolute paths to bytes read instead of those files (stdin, ``--fix``).
+    ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
     """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     result = load_description(
-        path, args=args, resolver=resolver, timeout=timeout, untrusted=untrusted, overlay=overlay
+        path,
+        args=args,
+        resolver=resolver,
+        timeout=timeout,
+        untrusted=untrusted,
+        overlay=overlay,
+        cache=cache,
     )
     if result.document is None:
         return Loaded(None, result.findings)

@@ -35,6 +35,7 @@ from sensorkit.render.result import PreviewResult, SensorPreview
 from sensorkit.render.session import Progress, say
 
 if TYPE_CHECKING:
+    from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model import Loaded
     from sensorkit.model.robot import Robot
@@ -67,6 +68,7 @@ def render_preview(
     fail_on: Severity | None = Severity.ERROR,
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
+    cache: ExpansionCache | None = None,
 ) -> PreviewResult:
     """Render every camera and cast every lidar of the robot at ``path`` into ``out_dir``.
 
@@ -99,6 +101,8 @@ def render_preview(
             warn too); None never fails.
         select, ignore: validate's rules to run or skip (ids or prefixes), as for
             ``sensorkit validate``.
+        cache: the expansion cache (``sensorkit.loading.cache``) the robot and the scene
+            are read through; None: none. Not used with ``untrusted``.
 
     Raises:
         InputError: the robot or the scene cannot be read or loaded.
@@ -133,6 +137,7 @@ class _Request:
     fail_on: Severity | None
     select: Sequence[str]
     ignore: Sequence[str]
+    cache: ExpansionCache | None  # the expansion cache (sensorkit.loading.cache), if any
 
 
 @dataclass
@@ -164,7 +169,12 @@ def _ready(request: _Request) -> _Ready:
 
     say(request.progress, f"loading {request.path}")
     robot, loaded = _load(
-        request.path, dict(request.args or {}), request.package_paths, "", request.untrusted
+        request.path,
+        dict(request.args or {}),
+        request.package_paths,
+        "",
+        request.untrusted,
+        request.cache,
     )
     admission.check_sensor_names(robot, request.sensors)
     target, target_reason = admission.chosen_target(robot, request.target, request.target_origin)
@@ -213,6 +223,7 @@ def _load(
     package_paths: Sequence[str],
     what: str,
     untrusted: Untrusted | None = None,
+    cache: ExpansionCache | None = None,
 ) -> tuple[Robot, Loaded]:
     """The robot at ``path`` and what loading it gave (kept for validate)."""
     from sensorkit.model import load_robot
@@ -223,6 +234,7 @@ def _load(
         package_paths=tuple(package_paths),
         untrusted=untrusted,
         timeout=EXPANSION_TIMEOUT,
+        cache=cache,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None
@@ -271,7 +283,9 @@ def _scene(request: _Request, robot: Robot, reach: float) -> tuple[Robot | None,
         )
         return None, default_scene(reach, textured=cameras)
     say(request.progress, f"loading scene {request.scene}")
-    scene_robot, _ = _load(request.scene, {}, request.package_paths, "scene:", request.untrusted)
+    scene_robot, _ = _load(
+        request.scene, {}, request.package_paths, "scene:", request.untrusted, request.cache
+    )
     shapes = scene_shapes_from_robot(scene_robot)
     extent = max(
         (float(np.abs(s.footprint()).max()) for s in shapes if len(s.footprint())), default=3.0
