@@ -27,6 +27,10 @@ from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.reads import ExpandDeps, Recording, record_reads
+from sensorkit.loading.xacro_errors import PackageMissing
+from sensorkit.loading.xacro_errors import classify as _classify
+from sensorkit.loading.xacro_errors import describe_stack as _describe_stack
+from sensorkit.loading.xacro_errors import innermost_macro as _innermost_macro
 
 if TYPE_CHECKING:  # untrusted.py (and its evaluator) load only for --untrusted
     from sensorkit.loading.untrusted import Confinement, Untrusted
@@ -42,15 +46,6 @@ MEMORY_LIMIT = 1024**3
 # The child's answer is read up to this many bytes: the input limit (64 MiB,
 # loading.document.MAX_FILE_BYTES) and 1 MiB for the rest of the outcome.
 MAX_ANSWER_BYTES = 65 * 1024**2
-
-
-class PackageMissing(Exception):
-    """``$(find pkg)`` named a package the resolver could not find."""
-
-    def __init__(self, name: str, searched: list[str]) -> None:
-        super().__init__(f"package {name!r} not found")
-        self.name = name
-        self.searched = searched
 
 
 @dataclass
@@ -272,15 +267,7 @@ def expand_in_process(
             reads.restore()
         stack_files = [f for f in (xacro.filestack or []) if f]
         macros = list(xacro.macrostack or [])
-        for k, v in saved_x.items():
-            setattr(xacro, k, v)
-        xacro.__dict__.pop("open", None)
-        xacro._global_symbols.get("python", {}).update(saved_python)
-        for k, v in saved_sa.items():
-            setattr(sa, k, v)
-        for k, v in saved_dict.items():
-            if v is not None:
-                sa._eval_dict[k] = v
+        _restore(xacro, sa, saved_x, saved_sa, saved_dict, saved_python)
         sys.stderr = orig_stderr
     if out.error_kind is not None:
         if out.error_file is None and stack_files:
@@ -289,6 +276,26 @@ def expand_in_process(
         out.macro_file, out.macro_line = _innermost_macro(macros, files)
     _reset_xacro()
     return out
+
+
+def _restore(
+    xacro: Any,
+    sa: Any,
+    saved_x: dict[str, Any],
+    saved_sa: dict[str, Any],
+    saved_dict: dict[str, Any],
+    saved_python: dict[str, Any],
+) -> None:
+    """Put back everything ``expand_in_process`` patched in xacro for one expansion."""
+    for k, v in saved_x.items():
+        setattr(xacro, k, v)
+    xacro.__dict__.pop("open", None)
+    xacro._global_symbols.get("python", {}).update(saved_python)
+    for k, v in saved_sa.items():
+        setattr(sa, k, v)
+    for k, v in saved_dict.items():
+        if v is not None:
+            sa._eval_dict[k] = v
 
 
 def _record_reads(
@@ -364,93 +371,6 @@ def _narrow(
     for name in HIDDEN_PYTHON_NAMES:  # restored by expand_in_process
         if name in python:
             saved_python[name] = python.pop(name)
-
-
-def _classify(exc: BaseException, out: ExpandOutcome) -> None:
-    import xml.parsers.expat
-
-    chain: list[BaseException] = []
-    cur: BaseException | None = exc
-    while cur is not None and cur not in chain:
-        chain.append(cur)
-        cur = getattr(cur, "exc", None) or cur.__cause__ or cur.__context__
-    for item in chain:
-        if isinstance(item, PackageMissing):
-            out.error_kind = "package"
-            out.package = item.name
-            out.searched = item.searched
-            out.message = f"$(find {item.name}): package {item.name!r} not found"
-            return
-    for item in chain:
-        if isinstance(item, xml.parsers.expat.ExpatError):
-            out.error_kind = "xml"
-            out.message = xml.parsers.expat.ErrorString(item.code)
-            out.error_line = item.lineno
-            out.error_column = item.offset + 1
-            return
-    if any(isinstance(i, RecursionError) for i in chain):
-        out.error_kind = "xacro"
-        out.message = "xacro recursed too deep: a macro that calls itself without end?"
-        return
-    if any(isinstance(i, MemoryError) for i in chain):
-        out.error_kind = "memory"
-        out.message = "xacro ran out of memory evaluating an expression"
-        return
-    text = _tidy(str(exc) or repr(exc))
-    if os.environ.get("SENSORKIT_DEBUG"):
-        import traceback
-
-        text += "\n" + "".join(traceback.format_exception(exc))
-    out.error_kind = "xacro"
-    out.message = text.strip()
-
-
-_CLASS_PREFIX = re.compile(r"^<class '[\w.]+'>: ")
-
-
-def _tidy(text: str) -> str:
-    """xacro's wrapped message without the exception class and the repeated text.
-
-    ``XacroException(exc=e)`` prints as ``<class 'X'>: MESSAGE MESSAGE``.
-    """
-    text = _CLASS_PREFIX.sub("", text.strip())
-    head, _, rest = text.partition("\n")
-    half = (len(head) - 1) // 2
-    if len(head) % 2 == 1 and head[half] == " " and head[:half] == head[half + 1 :]:
-        head = head[:half]
-    return head + ("\n" + rest if rest else "")
-
-
-def _innermost_macro(macros: list[Any], files: list[str]) -> tuple[str | None, int | None]:
-    """File and line of the definition of the macro whose body failed (the innermost)."""
-    for m in reversed(macros):
-        try:
-            loc = m.body.getAttribute(LOC_ATTR)
-        except Exception:
-            continue
-        idx, _, line = (loc or "").partition(":")
-        if idx.isdigit() and int(idx) < len(files) and line.isdigit():
-            return os.path.abspath(files[int(idx)]), int(line)
-    return None, None
-
-
-def _describe_stack(stack_files: list[str], macros: list[Any], files: list[str]) -> list[str]:
-    lines: list[str] = []
-    for m in reversed(macros):
-        try:
-            name = m.body.getAttribute("name")
-            loc = m.body.getAttribute(LOC_ATTR)
-        except Exception:
-            continue
-        where = ""
-        if loc:
-            idx, _, line = loc.partition(":")
-            if idx.isdigit() and int(idx) < len(files):
-                where = f" ({files[int(idx)]}:{line})"
-        lines.append(f"in macro {name}{where}")
-    for f in reversed(stack_files):
-        lines.append(f"in file {f}")
-    return lines
 
 
 def expand(
