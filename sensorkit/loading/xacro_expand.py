@@ -503,7 +503,13 @@ def _confine(
 
     if parent is not None:
         confine.die_with_parent(parent)
-    confine.limit_resources(memory_growth=MEMORY_LIMIT, cpu_seconds=timeout, file_size=0)
+    # The CPU limit stops an orphan (its parent gone); the parent's wall-clock wait
+    # decides the timeout. Equal to it, the two raced: a child on a free core reached
+    # ``timeout`` s of CPU as the parent's wait ran out, died of SIGXCPU first, and the
+    # finding said "stopped without an answer" instead of "did not finish" (test_fleet).
+    confine.limit_resources(
+        memory_growth=MEMORY_LIMIT, cpu_seconds=timeout + 2.0, file_size=0
+    )
     if untrusted is None:
         return
     from sensorkit.loading.untrusted import keep_only_environment
