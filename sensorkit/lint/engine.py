@@ -368,19 +368,25 @@ def check_robot(
     )
 
 
+def load_as(path: Path, options: Options) -> Loaded:
+    """Load and model ``path`` as ``options`` say: args, packages, timeout, trust, the
+    overlay and the expansion cache. Raises InputError for unreadable input."""
+    return load_robot(
+        path,
+        args=options.args,
+        package_paths=options.package_paths,
+        timeout=options.timeout,
+        untrusted=options.untrusted,
+        overlay=options.overlay or None,
+        cache=options.cache,
+    )
+
+
 def validate_file(path: Path, options: Options | None = None) -> FileReport:
     """Load, model and check one file. Unreadable input becomes ``FileReport.error``."""
     options = options or Options()
     try:
-        loaded = load_robot(
-            path,
-            args=options.args,
-            package_paths=options.package_paths,
-            timeout=options.timeout,
-            untrusted=options.untrusted,
-            overlay=options.overlay or None,
-            cache=options.cache,
-        )
+        loaded = load_as(path, options)
     except InputError as exc:
         return FileReport(path=path, error=str(exc))
     except RecursionError:
@@ -452,6 +458,7 @@ __all__ = [
     "Report",
     "RuleRun",
     "check_robot",
+    "load_as",
     "make_context",
     "run_rules",
     "validate_file",

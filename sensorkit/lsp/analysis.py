@@ -3,7 +3,7 @@
 :func:`load` is the one place the server loads and expands a robot (diagnostics and hover
 both go through it), so an expansion cache is plugged in here with one line. Quick fixes
 plan with :func:`sensorkit.fix.apply.plan_file`, which loads through
-:func:`sensorkit.model.load_robot` as ``validate --fix`` does.
+:func:`sensorkit.lint.engine.load_as` as ``validate`` does.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from pathlib import Path
 
 from sensorkit.base.errors import InputError, SensorkitError
 from sensorkit.base.findings import Finding
-from sensorkit.lint.engine import FileReport, Options, validate_loaded
-from sensorkit.model import Loaded, load_robot
+from sensorkit.lint.engine import FileReport, Options, load_as, validate_loaded
+from sensorkit.model import Loaded
 from sensorkit.model.robot import Robot
 
 __all__ = ["Analysis", "analyse", "heap_frozen", "load", "source_path"]
@@ -49,14 +49,7 @@ def load(path: Path, options: Options) -> Loaded:
     Every load of the server goes through here. Raises InputError for unreadable input.
     """
     with heap_frozen():
-        return load_robot(
-            path,
-            args=options.args,
-            package_paths=options.package_paths,
-            timeout=options.timeout,
-            untrusted=options.untrusted,
-            overlay=options.overlay or None,
-        )
+        return load_as(path, options)
 
 
 def source_path(file: str | None, top: Path) -> str:

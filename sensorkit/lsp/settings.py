@@ -20,7 +20,13 @@ from typing import Any
 from sensorkit.base.errors import UsageError
 from sensorkit.lint.config import Config, load_config, package_folder
 from sensorkit.lint.engine import Options
+from sensorkit.loading.cache import MemoryCache
 from sensorkit.loading.document import display_path
+
+# The server's expansions, kept in memory for its life: an edit to one file of a robot
+# expands again, a re-check with nothing changed (a hover, a settings reload, a file
+# saved as it was) does not. The cache checks every file it read (sensorkit.loading.cache).
+EXPANSIONS = MemoryCache()
 
 __all__ = ["Overrides", "Settings", "settings_for"]
 
@@ -104,5 +110,6 @@ def settings_for(path: Path, overrides: Overrides) -> Settings:
         package_paths=overrides.package_paths or tuple(cfg.package_paths),
         launch=tuple(cfg.launch),
         target_origin=origin,
+        cache=EXPANSIONS,
     )
     return Settings(options, cfg)
