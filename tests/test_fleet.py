@@ -245,15 +245,23 @@ def test_ctrl_c_stops_workers_and_xacro_children(tmp_path: Path) -> None:
             f'<robot name="r" {XACRO_NS}><link name="${{10**10**10}}"/></robot>\n'
         )
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "sensorkit", "validate", "-j", "2", "--timeout", "60", "."],
-        cwd=tmp_path,
-        env=env,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        start_new_session=True,  # its own process group, as a shell job has
-    )
+    # SIGINT's default action, as a terminal's foreground job has: a background job of a
+    # non-interactive shell (`cmd &`) starts with SIGINT ignored (POSIX), pytest inherits
+    # that, and so would sensorkit, which rightly keeps an inherited ignore. A handled
+    # signal is reset to its default by exec.
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "sensorkit", "validate", "-j", "2", "--timeout", "60", "."],
+            cwd=tmp_path,
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            start_new_session=True,  # its own process group, as a shell job has
+        )
+    finally:
+        signal.signal(signal.SIGINT, old)
     try:
         deadline = time.monotonic() + 30
         while time.monotonic() < deadline and len(_group(proc.pid)) < 5:
