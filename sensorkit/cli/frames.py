@@ -157,7 +157,14 @@ def _sensor_line(s: SensorFrame, simulator: str) -> str:
     head = f"sensor {s.name} ({s.type}) {where}: "
     if not s.stamps:
         return head + f"stamps nothing ({s.note})"
-    return head + "frame_id " + ", ".join(stamp_text(t, s, simulator) for t in s.stamps)
+    line = head + "frame_id " + ", ".join(stamp_text(t, s, simulator) for t in s.stamps)
+    if s.camera and s.stamps[-1].frame != s.optical:
+        line += "; " + (
+            f"optical frame at the camera: {s.optical}"
+            if s.optical
+            else "no link is placed as the camera's optical frame"
+        )
+    return line
 
 
 def frames_text(tree: FrameTree) -> str:
@@ -201,6 +208,7 @@ def _sensor_json(s: SensorFrame) -> dict[str, Any]:
             for t in s.stamps
         ],
         "note": s.note,
+        "optical_frame": s.optical,
     }
 
 

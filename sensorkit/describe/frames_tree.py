@@ -56,6 +56,8 @@ class SensorFrame:
     plugin: str | None  # the publishing plugin's filename (None on Gazebo Sim, or none)
     stamps: list[Stamp] = field(default_factory=list)
     note: str | None = None  # why it stamps nothing
+    camera: bool = False
+    optical: str | None = None  # a camera: the link placed as its optical frame, if any
 
 
 @dataclass
@@ -186,6 +188,7 @@ def _sensor(info: SensorInfo, robot: Robot, target: str) -> SensorFrame:
         info.link,
         plugin.filename if plugin is not None else None,
         _stamps(info, robot),
+        camera=sensor.is_camera,
     )
     if not out.stamps:
         if info.frame_how == "no plugin":
@@ -219,6 +222,7 @@ def frame_tree(info: RobotInfo) -> FrameTree:
             optical = optical_frame_at(robot, render_pose(robot, s.sensor))
             if optical is not None and optical in frames:
                 frames[optical].optical_for.append(entry.name)
+                entry.optical = optical
     return FrameTree(
         robot=robot.name,
         target=info.target,
