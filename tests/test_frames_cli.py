@@ -10,6 +10,7 @@ import json
 import re
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -412,3 +413,25 @@ def test_readme_example_is_what_frames_prints() -> None:
     shown = readme.split(cmd, 1)[1].split("```", 1)[0]
     res = run_cli("frames", "tests/robots/acceptance/sk605_fixed.urdf", cwd=ROOT)
     assert res.stdout + res.stderr == shown
+
+
+def test_loading_options_are_topics_own(tmp_path: Path) -> None:
+    """-q, --color, - (stdin) with --stdin-filename, and the settings file's target."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(rover(classic_camera()))
+    quiet = run_cli("frames", str(path), "-q", "--color", "never")
+    assert quiet.returncode == 0 and quiet.stderr == "" and "root link: base_link" in quiet.stdout
+    (tmp_path / "sensorkit.toml").write_text('target = "jetty"\n')
+    res = subprocess.run(
+        [sys.executable, "-m", "sensorkit", "frames", "-", "--stdin-filename", "robot.urdf"],
+        input=path.read_text(),
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=tmp_path,
+        timeout=120,
+    )
+    assert res.returncode == 0, res.stderr
+    assert "lumped into base_link by Gazebo Jetty" in line_of(res.stdout, "camera_link")
+    assert "(target jetty, chosen with sensorkit.toml)" in res.stderr
+    assert run_cli("frames", str(path), "--color", "sometimes").returncode == 2
