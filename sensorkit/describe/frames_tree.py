@@ -13,10 +13,14 @@ Every link, from each root down in the order the joints are written (as urdfdom'
 - what Gazebo's URDF-to-SDF conversion does to the link (:func:`sensorkit.model.sdf.convert`,
   sdformat ``parser_urdf.cc``, which Gazebo Classic and Gazebo Sim both load URDF with):
   a fixed joint's child is lumped into its parent unless the joint's gazebo block sets
-  ``preserveFixedJoint`` or ``disableFixedJointLumping``; a surviving link with no mass is
-  dropped with everything below it. ``robot_state_publisher`` still publishes every link:
-  lumping changes which link Gazebo attaches sensors to (a plugin's default frame, a gz
-  scoped name), not the TF tree.
+  ``preserveFixedJoint`` or ``disableFixedJointLumping``, and never into a parent named
+  ``world`` (ReduceFixedJoints and FixedJointShouldBeReduced: gazebosim/sdformat@sdf9
+  (9ee2d4f), Gazebo 11's, src/parser_urdf.cc:398-420 and :3381-3391; the same code in
+  @sdf12 (b9417e5) :407-421, :3456 for Fortress and @sdf14 (8512585) :410-424, :3471
+  for Harmonic); a surviving link with no mass is dropped with everything below it
+  (@sdf9 :2658). ``robot_state_publisher`` still publishes every link: lumping changes
+  which link Gazebo attaches sensors to (a plugin's default frame, a gz scoped name), not
+  the TF tree.
 
 :func:`frame_tree` builds a :class:`FrameTree`; the CLI formats it.
 """
