@@ -66,7 +66,11 @@ def _register() -> None:
     import importlib
 
     alone = _alone()
-    for name in (alone,) if alone else ("validate", "edit", "new", "render", "export", "topics", "lsp"):
+    for name in (
+        (alone,)
+        if alone
+        else ("validate", "edit", "new", "render", "export", "topics", "frames", "lsp")
+    ):
         try:
             module = importlib.import_module(f"sensorkit.cli.{name}")
         except ModuleNotFoundError as exc:
