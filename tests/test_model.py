@@ -83,6 +83,23 @@ def test_lumping_and_dropping() -> None:
     assert conv.dropped == {"kept": "kept"}
 
 
+@pytest.mark.parametrize(
+    ("value", "kept"),
+    [("true", True), ("yes", True), ("YES", True), ("1", True), ("no", False), ("false", False)],
+)
+def test_preserve_fixed_joint_takes_what_sdformat_takes_as_true(value: str, kept: bool) -> None:
+    """sdformat keeps a fixed joint for "true", "yes" (any case) and "1"
+    (gazebosim/sdformat@sdformat14_14.9.0:src/parser_urdf.cc:1540-1549; the same in
+    sdformat9 and sdformat12)."""
+    for tag in ("preserveFixedJoint", "disableFixedJointLumping"):
+        text = (
+            '<robot name="r">' + link("base", inertial(1, 0.1)) + link("cam", inertial(0.1, 0.01))
+            + joint("cj", "base", "cam")
+            + f'<gazebo reference="cj"><{tag}>{value}</{tag}></gazebo></robot>'
+        )
+        assert convert(_robot(text)).is_lumped("cam") is not kept, (tag, value)
+
+
 def test_massless_revolute_link_drops_its_subtree() -> None:
     text = (
         '<robot name="r">' + link("base", inertial(1, 0.1)) + '<link name="pan"/>'

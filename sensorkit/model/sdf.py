@@ -18,7 +18,12 @@ from sensorkit.model.parse import text_of
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
 
-_TRUE = {"true", "1"}
+# What sdformat takes as true in preserveFixedJoint and disableFixedJointLumping:
+# `lowerStr(valueStr) == "true" || lowerStr(valueStr) == "yes" || valueStr == "1"`
+# (gazebosim/sdformat@sdformat9_9.10.2:src/parser_urdf.cc:1516-1535, Gazebo Classic;
+# @sdformat12_12.8.0:src/parser_urdf.cc:1527-1546, Fortress;
+# @sdformat14_14.9.0:src/parser_urdf.cc:1530-1549, Harmonic).
+_TRUE = {"true", "yes", "1"}
 MASS_EPSILON = 1e-6  # sdformat compares the (lumped) mass with 0 by math::equal
 
 
