@@ -321,6 +321,42 @@ def test_an_include_changed_on_disk_is_read_again(ws: Path) -> None:
         c.kill()
 
 
+def test_a_yaml_read_by_load_yaml_changed_on_disk_is_read_again(ws: Path) -> None:
+    """A YAML file the expansion read with xacro.load_yaml is one of the robot's sources
+    (the expansion records it): changed on disk, the robot is validated again."""
+    c = Client(cwd=ws)
+    try:
+        watching = {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}}
+        c.initialize(ws, capabilities=watching)
+        asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
+        (reg,) = asked["params"]["registrations"]
+        assert "**/*.yaml" in [w["globPattern"] for w in reg["registerOptions"]["watchers"]]
+        c.respond(asked["id"])
+
+        pkg = _package(ws / "src" / "rover_description", "rover_description")
+        cam = pkg / "urdf" / "sensors" / "camera.urdf.xacro"
+        cam.parent.mkdir(parents=True)
+        cam.write_text(
+            CAMERA_XACRO.replace(
+                f'rpy="{APPROX}"',
+                "rpy=\"${xacro.load_yaml('sensors/mount.yaml')['rpy']}\"",
+            )
+        )
+        mount = pkg / "urdf" / "sensors" / "mount.yaml"
+        mount.write_text(f"rpy: {APPROX}\n")
+        top = pkg / "urdf" / "rover.urdf.xacro"
+        top.write_text(_top("sensors/camera.urdf.xacro"))
+        c.open(top)
+        assert only(c.diagnostics(cam), "SK505")
+        exact = "-1.5707963267948966 0 -1.5707963267948966"
+        mount.write_text(f"rpy: {exact}\n")
+        c.notify("workspace/didChangeWatchedFiles", {"changes": [{"uri": uri(mount), "type": 2}]})
+        assert only(c.diagnostics(cam), "SK505") == []
+        assert c.close() == 0
+    finally:
+        c.kill()
+
+
 def test_a_client_that_resolves_gets_the_edit_when_it_chooses_the_fix(ws: Path) -> None:
     c = Client(cwd=ws)
     try:

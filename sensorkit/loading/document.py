@@ -140,6 +140,9 @@ class Document:
     files: list[str] = field(default_factory=list)
     expanded: bool = False
     includes: list[str] = field(default_factory=list)
+    # every file the expansion read, when it was recorded (sensorkit.loading.reads):
+    # includes, and YAML files read with xacro.load_yaml, which ``files`` does not hold
+    reads: list[str] = field(default_factory=list)
 
     _display: str | None = field(default=None, repr=False)
     _file_display: dict[int, str] = field(default_factory=dict, repr=False)
@@ -345,6 +348,7 @@ def load_description(
         files=outcome.files,
         expanded=True,
         includes=outcome.includes,
+        reads=sorted(outcome.deps.files) if outcome.deps is not None else [],
     )
     return LoadResult(doc)
 

@@ -96,7 +96,8 @@ def analyse(top: Path, options: Options, overlay: Mapping[str, bytes]) -> Analys
     out.report = report
     out.robot = report.robot
     if report.robot is not None:
-        out.sources |= {os.path.abspath(f) for f in report.robot.document.source_files()}
+        document = report.robot.document
+        out.sources |= {os.path.abspath(f) for f in (*document.source_files(), *document.reads)}
     if report.error:
         out.error = report.error
     for f in report.findings:
