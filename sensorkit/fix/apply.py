@@ -143,8 +143,10 @@ class FileFix:
         return n
 
 
-class _Files(Mapping[str, bytes]):
-    """The current bytes of every file: edited text first, else the disk (read once)."""
+class Files(Mapping[str, bytes]):
+    """The current bytes of every file: edited text first, else the disk (read once).
+
+    The language server gives its fixers the open buffers through it too."""
 
     def __init__(self, contents: dict[str, bytes], originals: dict[str, bytes]) -> None:
         self.contents = contents
@@ -208,7 +210,7 @@ def plan_file(
     """
     contents = {} if contents is None else contents
     out = FileFix(path=path, originals=dict(originals or {}))
-    files = _Files(contents, out.originals)
+    files = Files(contents, out.originals)
     everything = dataclasses.replace(options, select=(), ignore=())
     report = check(path, everything, files)
     out.before = _wanted(report, options, only)
@@ -261,7 +263,7 @@ def _wanted(
 def _candidates(
     report: FileReport,
     options: Options,
-    files: _Files,
+    files: Files,
     unsafe: bool,
     scope: Callable[[str], str | None],
     allowed: set[str] | None,
@@ -334,7 +336,7 @@ def _choose(candidates: list[Fix]) -> tuple[list[_Unit], list[Fix]]:
     return units, waiting
 
 
-def _apply(files: _Files, base: dict[str, bytes], units: Sequence[_Unit]) -> dict[str, bytes]:
+def _apply(files: Files, base: dict[str, bytes], units: Sequence[_Unit]) -> dict[str, bytes]:
     """``base`` (the round's starting text) with the edits of ``units``."""
     by_file: dict[str, list[Edit]] = {}
     for u in units:
@@ -356,7 +358,7 @@ def _verify(
     report: FileReport,
     path: Path,
     everything: Options,
-    files: _Files,
+    files: Files,
     base: dict[str, bytes],
     out: FileFix,
 ) -> tuple[list[_Unit], FileReport, list[tuple[Note, Fix]]]:
@@ -549,4 +551,14 @@ def _read(path: str) -> bytes | None:
         return None
 
 
-__all__ = ["FileFix", "FixRun", "Note", "check", "edit_scope", "fix_paths", "plan_file", "publish"]
+__all__ = [
+    "FileFix",
+    "Files",
+    "FixRun",
+    "Note",
+    "check",
+    "edit_scope",
+    "fix_paths",
+    "plan_file",
+    "publish",
+]

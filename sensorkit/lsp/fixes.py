@@ -17,7 +17,7 @@ from pathlib import Path
 
 from sensorkit.base.findings import Finding
 from sensorkit.fix import fixable
-from sensorkit.fix.apply import context_of, plan_file
+from sensorkit.fix.apply import Files, context_of, plan_file
 from sensorkit.fix.registry import FIXERS, FixContext, subject
 from sensorkit.lint.engine import Options
 from sensorkit.lsp.analysis import Analysis, heap_frozen
@@ -114,27 +114,6 @@ def _plan(
     return QuickFix(title, changes, ff.fixed)
 
 
-class _Text(dict[str, bytes]):
-    """The buffers, and any other file's bytes read from the disk when a fixer asks."""
-
-    def __missing__(self, path: str) -> bytes:
-        try:
-            data = Path(path).read_bytes()
-        except OSError as exc:
-            raise KeyError(path) from exc
-        self[path] = data
-        return data
-
-    def __contains__(self, path: object) -> bool:
-        if not isinstance(path, str):
-            return False
-        try:
-            self[path]
-        except KeyError:
-            return False
-        return True
-
-
 def offer(analysis: Analysis, finding: Finding, overlay: Mapping[str, bytes]) -> str | None:
     """The title of the safe fix the fixer of ``finding`` gives on the text as it is, or
     None: the fixer alone, without validating the result (:func:`plan` does that when
@@ -145,7 +124,7 @@ def offer(analysis: Analysis, finding: Finding, overlay: Mapping[str, bytes]) ->
         return None
     fx = analysis.memo.get("fix_context")
     if not isinstance(fx, FixContext):
-        fx = FixContext(context_of(report, analysis.options), _Text(overlay))
+        fx = FixContext(context_of(report, analysis.options), Files(dict(overlay), {}))
         analysis.memo["fix_context"] = fx
     try:
         fix = info.func(fx, finding)
