@@ -243,10 +243,18 @@ def test_color_auto_on_a_terminal_unless_no_color() -> None:
 
 
 def test_every_printing_command_takes_color_and_quiet() -> None:
-    for cmd in (
+    import sensorkit.cli
+
+    commands = (
         ["validate"], ["rules"], ["intrinsics"], ["export"], ["topics"], ["render", "preview"],
         ["new"], ["add-camera"], ["add-depth-camera"], ["add-lidar"], ["add-stereo"], ["add-imu"],
-    ):  # fmt: skip
+        ["frames"],
+    )  # fmt: skip
+    app = sensorkit.cli.app
+    registered = {c.name for c in app.registered_commands} | {g.name for g in app.registered_groups}
+    # every command but the language server (it speaks JSON-RPC, prints nothing) is listed
+    assert registered - {"lsp"} == {cmd[0] for cmd in commands}
+    for cmd in commands:
         text = _sk(*cmd, "-h", env={"COLUMNS": "200"}).stdout
         assert "--color" in text, cmd
         assert cmd == ["rules"] or "--quiet" in text, cmd
