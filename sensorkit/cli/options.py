@@ -80,10 +80,17 @@ class Command(TyperCommand):
 def examples(*pairs: tuple[str, str]) -> str:
     """A command's --help epilog: each example is (what it does, the command line). Each
     command line must run as written from the project's root (tests/test_help.py runs
-    them)."""
+    them). A long one is continued shell-style (`` \\``) so 100 columns do not wrap it."""
     lines = ["Examples:"]
     for said, command in pairs:
-        lines += [f"{said}:", f"  {command}"]
+        lines.append(f"{said}:")
+        line = " "
+        for word in command.split(" "):
+            if len(line) + len(word) > 88 and line.strip():
+                lines.append(line + " \\")
+                line = "   "
+            line += " " + word
+        lines.append(line)
     return "\n".join(lines)
 
 
@@ -183,16 +190,14 @@ TargetOpt = Annotated[
         show_default="the settings file's, else auto",
     ),
 ]
-# validate's --bridge; topics' says "Gazebo Sim: " first
+# validate's --bridge and --launch; topics' say "Gazebo Sim: " first
 LAUNCH_HELP = (
     "a launch file to read for ros_gz_bridge entries, static transforms, frame_prefix and the "
-    "spawned model name (repeatable; default: the settings file's launch, else the launch "
-    "files beside the robot's package)"
+    "spawned model name (repeatable)"
 )
-BRIDGE_HELP = (
-    "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable; default: "
-    "parameter_bridge YAMLs in the robot package's config/)"
-)
+LAUNCH_DEFAULT = "the settings file's launch, else the launch files beside the robot's package"
+BRIDGE_HELP = "ros_gz_bridge YAML that carries the robot's gz topics to ROS (repeatable)"
+BRIDGE_DEFAULT = "the parameter_bridge YAMLs in the robot package's config/"
 
 
 F = TypeVar("F", bound=Callable[..., Any])

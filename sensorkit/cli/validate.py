@@ -24,8 +24,10 @@ from sensorkit.cli.common import (
     use_color,
 )
 from sensorkit.cli.options import (
+    BRIDGE_DEFAULT,
     BRIDGE_HELP,
     FIXING,
+    LAUNCH_DEFAULT,
     LAUNCH_HELP,
     OUTPUT,
     RULES,
@@ -120,10 +122,12 @@ TimeoutOpt = Annotated[
     typer.Option("--timeout", help="seconds one xacro expansion may take", rich_help_panel=XACRO),
 ]
 BridgeOpt = Annotated[
-    list[Path] | None, typer.Option("--bridge", help=BRIDGE_HELP, rich_help_panel=RULES)
+    list[Path] | None,
+    typer.Option("--bridge", help=BRIDGE_HELP, show_default=BRIDGE_DEFAULT, rich_help_panel=RULES),
 ]
 LaunchOpt = Annotated[
-    list[Path] | None, typer.Option("--launch", help=LAUNCH_HELP, rich_help_panel=RULES)
+    list[Path] | None,
+    typer.Option("--launch", help=LAUNCH_HELP, show_default=LAUNCH_DEFAULT, rich_help_panel=RULES),
 ]
 FixOpt = Annotated[
     bool,
