@@ -86,7 +86,7 @@ def examples(*pairs: tuple[str, str]) -> str:
         lines.append(f"{said}:")
         line = " "
         for word in command.split(" "):
-            if len(line) + len(word) > 88 and line.strip():
+            if len(line) + len(word) > 94 and line.strip():
                 lines.append(line + " \\")
                 line = "   "
             line += " " + word

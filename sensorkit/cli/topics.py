@@ -63,7 +63,7 @@ HARMONIC = "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_rob
 EXAMPLES = examples(
     ("The topics of a Gazebo Sim robot, as its bridge names them", f"sensorkit topics {HARMONIC}"),
     (
-        "The same as JSON, for a script",
+        "Another robot's, as JSON for a script",
         "sensorkit topics examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro -f json",
     ),
 )
