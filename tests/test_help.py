@@ -11,6 +11,7 @@ import shlex
 import shutil
 import subprocess
 import sys
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -18,7 +19,7 @@ from conftest import ROOT
 
 ADD = ["add-camera", "add-depth-camera", "add-lidar", "add-stereo", "add-imu"]
 COMMANDS = [
-    "validate", "rules", "new", "intrinsics", "export", "topics", "lsp", "render",
+    "validate", "rules", "new", "intrinsics", "export", "topics", "frames", "lsp", "render",
     "render preview", *ADD,
 ]  # fmt: skip
 # the argument part of each usage line
@@ -28,11 +29,15 @@ USAGE = {
     "new": "[OPTIONS] ROBOT.yaml",
     "lsp": "[OPTIONS]",
     "render": "[OPTIONS] COMMAND [ARGS]...",
-    **{c: "[OPTIONS] FILE" for c in ["intrinsics", "export", "topics", "render preview", *ADD]},
+    **{
+        c: "[OPTIONS] FILE"
+        for c in ["intrinsics", "export", "topics", "frames", "render preview", *ADD]
+    },
 }
 BOX = re.compile(r"[│╭╮╰╯─]")
 
 
+@cache
 def _help(command: str, columns: int = 100) -> str:
     env = {k: v for k, v in os.environ.items() if k not in ("FORCE_COLOR",)}
     env.update(COLUMNS=str(columns), NO_COLOR="1", TERM="dumb")
@@ -96,6 +101,16 @@ def _examples(text: str) -> list[str]:
             commands.append(joined)
             joined = ""
     return commands
+
+
+def test_every_command_is_here() -> None:
+    """A command added later gets its examples and defaults checked too."""
+    import typer
+
+    from sensorkit.cli import app
+
+    group = typer.main.get_command(app)
+    assert set(group.commands) == {c.split()[0] for c in COMMANDS}  # type: ignore[attr-defined]
 
 
 @pytest.mark.parametrize("command", COMMANDS)
