@@ -140,6 +140,10 @@ def test_settings_file_is_named_as_written(command: str) -> None:
 def test_options_are_grouped(command: str, panels: set[str]) -> None:
     found = _panels(_help(command))
     assert panels <= set(found), found.keys()
+    shared = [t for t in found if t in ("Rules", "Fixing", "Output", "xacro & packages", "Trust")]
+    order = ["Rules", "Fixing", "Output", "xacro & packages", "Trust"]
+    assert shared == [t for t in order if t in shared]  # in one order on every command
+    assert list(found)[-len(shared) :] == shared  # after the command's own
     where = {
         "--select": "Rules", "--fail-on": "Rules", "--fix": "Fixing", "--unsafe-fixes": "Fixing",
         "--format": "Output", "--quiet": "Output", "--arg": "xacro & packages",

@@ -18,12 +18,14 @@ from typing import Annotated, Any, TypeVar
 import typer
 from typer.core import TyperCommand
 
-# the --help panels, in the order a command's options first name them
+# the --help panels, printed in this order after the command's own (no panel: "Options";
+# add-*'s Mount and Sensor, render preview's Rendering)
 RULES = "Rules"
 FIXING = "Fixing"
 OUTPUT = "Output"
 XACRO = "xacro & packages"
 TRUST = "Trust"
+_LAST = (RULES, FIXING, OUTPUT, XACRO, TRUST)
 
 # What Rich takes for a markup tag ([bold], [tool.sensorkit], [default: x]), as
 # rich.markup.escape finds it: --help text is plain text, never markup. (rich itself is
@@ -65,6 +67,9 @@ class Command(TyperCommand):
         if rich:
             self.help, self.epilog = _plain(self.help), _plain(self.epilog)
             self.short_help = _plain(self.short_help)
+        # typer prints the panels in the order their first option comes: the shared ones
+        # last, in one order for every command (a stable sort: options keep theirs)
+        self.params.sort(key=_panel_rank)
 
     def collect_usage_pieces(self, ctx: Any) -> list[str]:
         pieces = [self.options_metavar] if self.options_metavar else []
@@ -75,6 +80,11 @@ class Command(TyperCommand):
             name = name if param.required else f"[{name}]"
             pieces.append(name + ("..." if param.nargs != 1 else ""))
         return pieces
+
+
+def _panel_rank(param: Any) -> int:
+    panel = getattr(param, "rich_help_panel", None)
+    return 1 + _LAST.index(panel) if panel in _LAST else 0
 
 
 def examples(*pairs: tuple[str, str]) -> str:
