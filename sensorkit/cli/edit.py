@@ -43,7 +43,7 @@ from sensorkit.cli.edit_options import (
     Vec3,
     parameters,
 )
-from sensorkit.cli.options import with_parameters
+from sensorkit.cli.options import Command, examples, with_parameters
 
 if TYPE_CHECKING:
     from sensorkit.cli.common import Settings
@@ -82,7 +82,7 @@ def _add_command(
 
     add.__name__ = add.__qualname__ = command.replace("-", "_")
     add.__doc__ = doc
-    return handle_errors(with_parameters(add, parameters(own)))
+    return handle_errors(with_parameters(add, parameters(own, command)))
 
 
 def _lidar_kind(three_d: bool, values: dict[str, Any]) -> str:
@@ -228,11 +228,57 @@ add_stereo = _add_command(
 add_imu = _add_command("add-imu", "imu", "Add an IMU (sensorkit_imu macro) to FILE.", IMU)
 
 
+CAR = "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro"
+# each add-*'s --help examples: what the first does, its options; then the second's
+_EXAMPLES = {
+    "add-camera": (
+        "A camera 20 cm ahead of base_link and 10 cm up, shown as a diff",
+        "--name front_cam --parent base_link --xyz 0.2 0 0.1 --diff",
+        "A rear camera at 15 Hz, into a new file",
+        "--name rear_cam --parent base_link --rpy 0 0 3.1416 --update-rate 15 -o car_rear.xacro",
+    ),
+    "add-depth-camera": (
+        "An RGB-D camera looking down 0.3 rad, shown as a diff",
+        "--name down_cam --parent base_link --xyz 0.2 0 0.2 --rpy 0 0.3 0 --diff",
+        "One that sees 0.3 to 5 m, into a new file",
+        "--name rgbd --parent base_link --min-depth 0.3 --max-depth 5 -o car_rgbd.xacro",
+    ),
+    "add-lidar": (
+        "A 2D lidar 25 cm up, shown as a diff",
+        "--name top_lidar --parent base_link --xyz 0 0 0.25 --diff",
+        "A 32-beam 3D lidar, into a new file",
+        "--name velo --parent base_link --3d --vertical-samples 32 -o car_3d.xacro",
+    ),
+    "add-stereo": (
+        "A stereo pair with a 12 cm baseline, shown as a diff",
+        "--name stereo --parent base_link --xyz 0.2 0 0.1 --diff",
+        "A wider one at 15 Hz, into a new file",
+        "--name wide --parent base_link --baseline 0.3 --update-rate 15 -o car_stereo.xacro",
+    ),
+    "add-imu": (
+        "An IMU at the base_link origin, shown as a diff",
+        "--name imu --parent base_link --diff",
+        "A noisier one at 200 Hz, into a new file",
+        "--name imu --parent base_link --update-rate 200 --gyro-noise-stddev 0.001 -o car_imu.xacro",
+    ),
+}
+
+
+def _epilog(command: str) -> str:
+    said, options, said2, options2 = _EXAMPLES[command]
+    return examples(
+        (said, f"sensorkit {command} {CAR} {options}"),
+        (said2, f"sensorkit {command} {CAR} {options2}"),
+    )
+
+
 def register(app: typer.Typer) -> None:
     """Add the five add-* commands to the sensorkit app."""
-    panel = "Edit"
-    app.command("add-camera", rich_help_panel=panel)(add_camera)
-    app.command("add-depth-camera", rich_help_panel=panel)(add_depth_camera)
-    app.command("add-lidar", rich_help_panel=panel)(add_lidar)
-    app.command("add-stereo", rich_help_panel=panel)(add_stereo)
-    app.command("add-imu", rich_help_panel=panel)(add_imu)
+    for name, command in (
+        ("add-camera", add_camera),
+        ("add-depth-camera", add_depth_camera),
+        ("add-lidar", add_lidar),
+        ("add-stereo", add_stereo),
+        ("add-imu", add_imu),
+    ):
+        app.command(name, cls=Command, rich_help_panel="Edit", epilog=_epilog(name))(command)

@@ -8,14 +8,15 @@ signature, which typer reads.
 
 from __future__ import annotations
 
+import copy
 import enum
 import inspect
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, get_args
 
 import typer
 
-from sensorkit.cli.options import PRINTING, ROBOT_FLAGS, FileArg, parameter
+from sensorkit.cli.options import OUTPUT, PRINTING, ROBOT_FLAGS, FileArg, parameter
 
 
 class Sim(str, enum.Enum):
@@ -31,13 +32,14 @@ class GzVersion(str, enum.Enum):
 
 
 Vec3 = tuple[float, float, float]
-_SENSOR = "sensor"
-_MOUNT = "mount"
-_OUT = "output"
+_SENSOR = "Sensor"
+_MOUNT = "Mount"
+_OUT = OUTPUT
 
 
 def _sensor(flag: str, help: str, metavar: str | None = None) -> Any:
-    """An option of the sensor panel. Left out, the macro's default holds: none is shown."""
+    """An option of the sensor panel. Left out, the macro's default holds: the command
+    shows the shipped macro's (``parameters``)."""
     return typer.Option(
         flag, help=help, metavar=metavar, show_default=False, rich_help_panel=_SENSOR
     )
@@ -83,22 +85,29 @@ SimOpt = Annotated[
     Sim | None,
     typer.Option(
         "--sim",
-        help="simulator the sensor block is for [default: the robot's: its other sensors' "
-        "sim expression, else what --target auto sees, else classic]",
-        show_default=False,
+        help="simulator the sensor block is for",
+        show_default="the robot's: its other sensors' sim expression, else what --target auto "
+        "sees, else classic",
+        rich_help_panel=_SENSOR,
     ),
 ]
 GzVersionOpt = Annotated[
     GzVersion | None,
     typer.Option(
         "--gz-version",
-        help="Gazebo Sim version (frame tag) [macro default: harmonic]",
+        help="Gazebo Sim version (frame tag)",
         show_default=False,
+        rich_help_panel=_SENSOR,
     ),
 ]
 NamespaceOpt = Annotated[
     str | None,
-    typer.Option("--namespace", help="ROS namespace of the sensor's topics", show_default=False),
+    typer.Option(
+        "--namespace",
+        help="ROS namespace of the sensor's topics",
+        show_default=False,
+        rich_help_panel=_SENSOR,
+    ),
 ]
 MassOpt = Annotated[float | None, _sensor("--mass", "sensor body mass (kg)")]
 SizeOpt = Annotated[Vec3 | None, _sensor("--size", "sensor body box size (m)", "X Y Z")]
@@ -135,7 +144,13 @@ GyroOpt = Annotated[float | None, _sensor("--gyro-noise-stddev", "rad/s")]
 AccelOpt = Annotated[float | None, _sensor("--accel-noise-stddev", "m/s^2")]
 ParamOpt = Annotated[
     list[str] | None,
-    _sensor("--param", "any other macro parameter NAME=VALUE (repeatable)", "NAME=VALUE"),
+    typer.Option(
+        "--param",
+        help="any other macro parameter NAME=VALUE (repeatable)",
+        metavar="NAME=VALUE",
+        show_default="none",
+        rich_help_panel=_SENSOR,
+    ),
 ]
 DiffOpt = Annotated[
     bool,
@@ -147,7 +162,7 @@ OutOpt = Annotated[
         "-o",
         "--output",
         help="write the result here instead of editing FILE in place",
-        show_default=False,
+        show_default="FILE, edited in place",
         rich_help_panel=_OUT,
     ),
 ]
@@ -218,6 +233,142 @@ SHARED_MACRO = ("sim", "gz_version", "namespace", "mass", "size")
 VERTICAL = ("vertical_samples", "vertical_min_angle", "vertical_max_angle")
 
 
-def parameters(own: tuple[inspect.Parameter, ...]) -> list[inspect.Parameter]:
-    """Every parameter of an add-* command whose sensor options are ``own``, in order."""
-    return [*MOUNT, *own, *SHARED]
+# The parameters' defaults in the macros sensorkit ships, as written there (--help shows
+# them; tests/test_help.py holds them to the macro files). A macro copy beside the robot
+# may have its own: the add keeps whichever macro it calls.
+MACRO_DEFAULTS: dict[str, dict[str, str]] = {
+    "camera": {
+        "update_rate": "30",
+        "width": "640",
+        "height": "480",
+        "hfov": "1.3962634",
+        "format": "R8G8B8",
+        "near": "0.05",
+        "far": "50.0",
+        "noise_stddev": "0.007",
+        "mass": "0.035",
+        "size": "0.025 0.09 0.025",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+    "depth_camera": {
+        "update_rate": "30",
+        "width": "640",
+        "height": "480",
+        "hfov": "1.3962634",
+        "format": "R8G8B8",
+        "near": "0.05",
+        "far": "10.0",
+        "noise_stddev": "0.007",
+        "min_depth": "0.1",
+        "max_depth": "10.0",
+        "mass": "0.072",
+        "size": "0.025 0.09 0.025",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+    "lidar_2d": {
+        "update_rate": "10",
+        "samples": "360",
+        "resolution": "1",
+        "min_angle": "${-pi}",
+        "max_angle": "${pi}",
+        "range_min": "0.12",
+        "range_max": "12.0",
+        "range_resolution": "0.01",
+        "noise_stddev": "0.01",
+        "mass": "0.17",
+        "size": "0.07 0.07 0.05",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+    "lidar_3d": {
+        "update_rate": "10",
+        "samples": "1800",
+        "resolution": "1",
+        "min_angle": "${-pi}",
+        "max_angle": "${pi}",
+        "vertical_samples": "16",
+        "vertical_min_angle": "-0.2618",
+        "vertical_max_angle": "0.2618",
+        "range_min": "0.12",
+        "range_max": "100.0",
+        "range_resolution": "0.01",
+        "noise_stddev": "0.01",
+        "mass": "0.83",
+        "size": "0.10 0.10 0.07",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+    "stereo_camera": {
+        "update_rate": "30",
+        "width": "640",
+        "height": "480",
+        "hfov": "1.3962634",
+        "format": "R8G8B8",
+        "near": "0.05",
+        "far": "50.0",
+        "noise_stddev": "0.007",
+        "baseline": "0.12",
+        "mass": "0.15",
+        "size": "0.03 0.16 0.03",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+    "imu": {
+        "update_rate": "100",
+        "gyro_noise_stddev": "2e-4",
+        "accel_noise_stddev": "1.7e-2",
+        "mass": "0.01",
+        "size": "0.02 0.02 0.01",
+        "namespace": "",
+        "gz_version": "harmonic",
+    },
+}
+# the macros each add-* command calls (add-lidar: the 2D one, the 3D one with --3d)
+COMMAND_KINDS = {
+    "add-camera": ("camera",),
+    "add-depth-camera": ("depth_camera",),
+    "add-lidar": ("lidar_2d", "lidar_3d"),
+    "add-stereo": ("stereo_camera",),
+    "add-imu": ("imu",),
+}
+
+
+def _as_shown(value: str) -> str:
+    """A macro default as --help shows it: ``${-pi}`` as -pi, nothing as none."""
+    if value.startswith("${") and value.endswith("}"):
+        return value[2:-1]
+    return value or "none"
+
+
+def shown_defaults(command: str) -> dict[str, str]:
+    """The default --help shows for each macro option of ``command``: the shipped macro's;
+    for add-lidar the 2D macro's, with the 3D one's beside it where it differs."""
+    first, *more = (MACRO_DEFAULTS[kind] for kind in COMMAND_KINDS[command])
+    shown = {name: _as_shown(value) for name, value in first.items()}
+    for other in more:  # the 3D lidar's
+        for name, value in other.items():
+            if name not in shown:
+                shown[name] = _as_shown(value)  # a 3D option: its help says "needs --3d"
+            elif value != first[name]:
+                shown[name] += f"; with --3d {_as_shown(value)}"
+    return shown
+
+
+def _with_default(param: inspect.Parameter, shown: str) -> inspect.Parameter:
+    """``param`` whose option --help shows ``[default: shown]`` (its value stays None:
+    left out, the macro's default holds)."""
+    base, info = get_args(param.annotation)
+    info = copy.copy(info)
+    info.show_default = shown
+    return param.replace(annotation=Annotated[base, info])
+
+
+def parameters(own: tuple[inspect.Parameter, ...], command: str) -> list[inspect.Parameter]:
+    """Every parameter of the add-* ``command`` whose sensor options are ``own``, in order,
+    each macro option showing the shipped macro's default."""
+    shown = shown_defaults(command)
+    return [
+        _with_default(p, shown[p.name]) if p.name in shown else p for p in (*MOUNT, *own, *SHARED)
+    ]

@@ -14,15 +14,15 @@ from typing import Annotated
 import typer
 
 from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
-from sensorkit.cli.options import FileArg, TargetOpt
+from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
 
 ImuOpt = Annotated[
     str | None,
     typer.Option(
         "--imu",
-        help="the IMU for Kalibr's T_cam_imu and the stereo-inertial files (default: the "
-        "first; a note names it when there are several)",
+        help="the IMU for Kalibr's T_cam_imu and the stereo-inertial files",
         metavar="NAME",
+        show_default="the first (a note names it when there are several)",
     ),
 ]
 
@@ -38,13 +38,16 @@ def intrinsics(
             help="only this camera (a sensor name, or SENSOR/CAMERA inside a multicamera) "
             "or stereo pair (kalibr and orbslam3 formats print the pair's document)",
             metavar="NAME",
+            show_default="every camera",
         ),
     ] = None,
     convention: Annotated[
         str | None,
         typer.Option(
             "--convention",
-            help="classic, gz or ideal (default: the target's; classic for classic and ros1)",
+            help="classic (Gazebo Classic), gz (Gazebo Sim) or ideal (the pixel-centre "
+            "pinhole): where cx, cy and the focal length come from",
+            show_default="the target's (classic for classic and ros1, else gz)",
         ),
     ] = None,
     fmt: Annotated[
@@ -55,6 +58,7 @@ def intrinsics(
             help="json (every camera), camera-info, orbslam3, orbslam3-v1 (monocular; "
             "stereo for a pair, stereo-inertial with --imu), kalibr or opencv (one camera "
             "or pair each)",
+            rich_help_panel=OUTPUT,
         ),
     ] = "json",
     imu: ImuOpt = None,
@@ -87,11 +91,16 @@ def export(
     out: Annotated[
         Path,
         typer.Option(
-            "--out", "-o", "--output", help="the folder to create (must be missing or empty)"
+            "--out",
+            "-o",
+            "--output",
+            help="the folder to create (must be missing or empty)",
+            rich_help_panel=OUTPUT,
         ),
     ] = Path("sensorkit-export"),
     force: Annotated[
-        bool, typer.Option("--force", help="replace --out if it is not empty")
+        bool,
+        typer.Option("--force", help="replace --out if it is not empty", rich_help_panel=OUTPUT),
     ] = False,
     imu: ImuOpt = None,
     target: TargetOpt = None,
@@ -131,7 +140,24 @@ def export(
         raise typer.Exit(1)
 
 
+CAR = "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro"
+INTRINSICS_EXAMPLES = examples(
+    ("Every camera's camera_info, as JSON", f"sensorkit intrinsics {CAR}"),
+    ("The ORB-SLAM3 settings of one camera", f"sensorkit intrinsics {CAR} -f orbslam3"),
+)
+EXPORT_EXAMPLES = examples(
+    ("Every sensor's files, one folder per sensor", f"sensorkit export {CAR} -o car-config"),
+    (
+        "A Gazebo Sim robot's, with its bridge.yaml",
+        "sensorkit export -o harmonic-config examples/harmonic_robot/"
+        "harmonic_robot_description/urdf/harmonic_robot.urdf.xacro",
+    ),
+)
+
+
 def register(app: typer.Typer) -> None:
     """Add ``intrinsics`` and ``export`` to ``app``."""
-    app.command("intrinsics", no_args_is_help=True)(intrinsics)
-    app.command("export", no_args_is_help=True)(export)
+    app.command("intrinsics", cls=Command, no_args_is_help=True, epilog=INTRINSICS_EXAMPLES)(
+        intrinsics
+    )
+    app.command("export", cls=Command, no_args_is_help=True, epilog=EXPORT_EXAMPLES)(export)

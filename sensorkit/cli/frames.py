@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
-from sensorkit.cli.options import FileArg, TargetOpt
+from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
 
 if TYPE_CHECKING:
     from sensorkit.describe.frames_tree import Frame, FrameTree, SensorFrame, Stamp
@@ -30,8 +30,20 @@ FormatOpt = Annotated[
         help="text (the tree as check_urdf prints it, then the frame each sensor stamps), "
         "json, or dot (a graphviz digraph as tf2_tools view_frames draws: "
         "`sensorkit frames robot.urdf -f dot | dot -Tpdf -o frames.pdf`)",
+        rich_help_panel=OUTPUT,
     ),
 ]
+
+EXAMPLES = examples(
+    (
+        "The TF tree, each sensor's frames, and what Gazebo lumps",
+        "sensorkit frames examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro",
+    ),
+    (
+        "The same as a graphviz digraph, for dot -Tpdf",
+        "sensorkit frames examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro -f dot",
+    ),
+)
 
 LUMPING_NOTE = (
     "lumped frames stay in TF (robot_state_publisher publishes every joint); Gazebo merges "
@@ -286,4 +298,4 @@ def frames_dot(tree: FrameTree) -> str:
 
 def register(app: typer.Typer) -> None:
     """Add ``frames`` to ``app``."""
-    app.command("frames", no_args_is_help=True)(frames)
+    app.command("frames", cls=Command, no_args_is_help=True, epilog=EXAMPLES)(frames)

@@ -8,6 +8,13 @@ from __future__ import annotations
 
 import typer
 
+from sensorkit.cli.options import Command, examples
+
+EXAMPLES = examples(
+    ("What an editor runs (it speaks the protocol on stdin/stdout)", "sensorkit lsp"),
+    ("Check the server is installed: it starts, reads no request and ends", "sensorkit lsp -h"),
+)
+
 
 def lsp() -> None:
     """Start the language server on stdin/stdout for an editor: diagnostics as you type,
@@ -32,4 +39,4 @@ def lsp() -> None:
 
 def register(app: typer.Typer) -> None:
     """Add ``lsp`` to ``app``."""
-    app.command("lsp")(lsp)
+    app.command("lsp", cls=Command, epilog=EXAMPLES)(lsp)

@@ -9,7 +9,18 @@ import typer
 
 from sensorkit.cli.common import RobotFlags, handle_errors, settings, target_simulator, use_color
 from sensorkit.cli.common import note as say
-from sensorkit.cli.options import ColorOpt, ConfigOpt, QuietOpt
+from sensorkit.cli.options import OUTPUT, ColorOpt, Command, ConfigOpt, QuietOpt, examples
+
+EXAMPLES = examples(
+    (
+        "List the files a package would have, writing nothing",
+        "sensorkit new examples/harmonic_robot/robot.yaml -o my_robot_description --dry-run",
+    ),
+    (
+        "Generate it into a colcon workspace",
+        "sensorkit new examples/harmonic_robot/robot.yaml -o ws/src/harmonic_robot_description",
+    ),
+)
 
 
 @handle_errors
@@ -25,14 +36,23 @@ def new(
     output: Annotated[
         Path,
         typer.Option(
-            "--out", "-o", "--output", help="the package folder to create", show_default=False
+            "--out",
+            "-o",
+            "--output",
+            help="the package folder to create",
+            show_default=False,
+            rich_help_panel=OUTPUT,
         ),
     ],
     force: Annotated[
-        bool, typer.Option("--force", help="replace OUTPUT if it is not empty")
+        bool,
+        typer.Option("--force", help="replace OUTPUT if it is not empty", rich_help_panel=OUTPUT),
     ] = False,
     dry_run: Annotated[
-        bool, typer.Option("--dry-run", help="check and list the files, write nothing")
+        bool,
+        typer.Option(
+            "--dry-run", help="check and list the files, write nothing", rich_help_panel=OUTPUT
+        ),
     ] = False,
     config: ConfigOpt = None,
     quiet: QuietOpt = False,
@@ -64,4 +84,4 @@ def new(
 
 def register(app: typer.Typer) -> None:
     """Add the ``new`` command to ``app``."""
-    app.command(name="new", no_args_is_help=True)(new)
+    app.command(name="new", cls=Command, no_args_is_help=True, epilog=EXAMPLES)(new)

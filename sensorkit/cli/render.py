@@ -42,8 +42,11 @@ from sensorkit.cli.common import (
     use_color,
 )
 from sensorkit.cli.options import (
+    OUTPUT,
+    RULES,
     ArgOpt,
     ColorOpt,
+    Command,
     ConfigOpt,
     EnvOpt,
     FileArg,
@@ -51,6 +54,7 @@ from sensorkit.cli.options import (
     PackagePathOpt,
     QuietOpt,
     UntrustedOpt,
+    examples,
 )
 
 if TYPE_CHECKING:
@@ -75,10 +79,24 @@ class _RenderGroup(TyperGroup):
             raise
 
 
+CAR = "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro"
+PREVIEW_EXAMPLES = examples(
+    (
+        "Look through every sensor; then open car-preview/index.html",
+        f"sensorkit render preview -o car-preview {CAR}",
+    ),
+    (
+        "Only the lidar, failing on warnings too (for CI)",
+        f"sensorkit render preview -o lidar-preview --sensor lidar --fail-on warning {CAR}",
+    ),
+)
+RENDERING = "Rendering"
+
 render_app = typer.Typer(
     name="render",
     cls=_RenderGroup,
     help="Render the robot's sensors in pybullet (no display needed).",
+    epilog=PREVIEW_EXAMPLES,
     no_args_is_help=True,
     add_completion=False,
     context_settings={"help_option_names": ["-h", "--help"]},
@@ -110,6 +128,7 @@ OutOpt = Annotated[
         "-o",
         "--output",
         help="folder to write; replaced whole at the end (an earlier preview is replaced)",
+        rich_help_panel=OUTPUT,
     ),
 ]
 SceneOpt = Annotated[
@@ -117,18 +136,28 @@ SceneOpt = Annotated[
     typer.Option(
         "--scene",
         help="a URDF of static objects to use instead of the default room (the ground stays)",
+        show_default="a room with textured walls",
+        rich_help_panel=RENDERING,
     ),
 ]
 SensorOpt = Annotated[
     list[str] | None,
-    typer.Option("--sensor", help="only this sensor (repeatable; default: all)", metavar="NAME"),
+    typer.Option(
+        "--sensor",
+        help="only this sensor (repeatable)",
+        metavar="NAME",
+        show_default="every camera and lidar",
+        rich_help_panel=RENDERING,
+    ),
 ]
 JointOpt = Annotated[
     list[str] | None,
     typer.Option(
         "--joint",
-        help="joint position NAME=VALUE in radians or metres (repeatable; default 0)",
+        help="joint position NAME=VALUE in radians or metres (repeatable)",
         metavar="NAME=VALUE",
+        show_default="0 for every joint",
+        rich_help_panel=RENDERING,
     ),
 ]
 TargetOpt = Annotated[
@@ -136,20 +165,32 @@ TargetOpt = Annotated[
     typer.Option(
         "--target",
         help="auto, classic, ros1, fortress, harmonic or jetty (camera_info convention, "
-        "frames; default: the settings file's, else auto)",
-        show_default=False,
+        "frames; auto: detected as validate does)",
+        show_default="the settings file's, else auto",
+        rich_help_panel=RULES,
     ),
 ]
 MaxPixelsOpt = Annotated[
-    int, typer.Option("--max-pixels", help="most pixels one camera may have (default 4096x4096)")
+    int,
+    typer.Option(
+        "--max-pixels",
+        help="most pixels one camera may have",
+        show_default="16777216 (4096x4096)",
+        rich_help_panel=RENDERING,
+    ),
 ]
 MaxRaysOpt = Annotated[
-    int, typer.Option("--max-rays", help="most rays one lidar may cast per scan")
+    int,
+    typer.Option(
+        "--max-rays", help="most rays one lidar may cast per scan", rich_help_panel=RENDERING
+    ),
 ]
 ForceOpt = Annotated[
     bool,
     typer.Option(
-        "--force", help="replace a non-empty --out that is not an earlier sensorkit preview"
+        "--force",
+        help="replace a non-empty --out that is not an earlier sensorkit preview",
+        rich_help_panel=OUTPUT,
     ),
 ]
 FailOnOpt = Annotated[
@@ -157,9 +198,9 @@ FailOnOpt = Annotated[
     typer.Option(
         "--fail-on",
         help="lowest severity of validate's findings that fails, and of checks (a failed "
-        "check is an error, a warned one a warning): error | warning | info | never "
-        "(default: the settings file's, else error)",
-        show_default=False,
+        "check is an error, a warned one a warning): error | warning | info | never",
+        show_default="the settings file's, else error",
+        rich_help_panel=RULES,
     ),
 ]
 ExitZeroOpt = Annotated[
@@ -167,11 +208,12 @@ ExitZeroOpt = Annotated[
     typer.Option(
         "--exit-zero",
         help="exit 0 even when the verdict fails (still 2 when the preview cannot run)",
+        rich_help_panel=RULES,
     ),
 ]
 
 
-@render_app.command("preview")
+@render_app.command("preview", cls=Command, epilog=PREVIEW_EXAMPLES)
 @handle_errors
 def preview(
     file: FileArg,

@@ -13,7 +13,18 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
-from sensorkit.cli.options import BRIDGE_HELP, LAUNCH_HELP, FileArg, TargetOpt
+from sensorkit.cli.options import (
+    BRIDGE_DEFAULT,
+    BRIDGE_HELP,
+    LAUNCH_DEFAULT,
+    LAUNCH_HELP,
+    OUTPUT,
+    RULES,
+    Command,
+    FileArg,
+    TargetOpt,
+    examples,
+)
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
@@ -27,14 +38,35 @@ FormatOpt = Annotated[
         "-f",
         help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
         "sensor of each topic) or json",
+        rich_help_panel=OUTPUT,
     ),
 ]
 BridgeOpt = Annotated[
-    list[Path] | None, typer.Option("--bridge", help="Gazebo Sim: " + BRIDGE_HELP)
+    list[Path] | None,
+    typer.Option(
+        "--bridge",
+        help="Gazebo Sim: " + BRIDGE_HELP,
+        show_default=BRIDGE_DEFAULT,
+        rich_help_panel=RULES,
+    ),
 ]
 LaunchOpt = Annotated[
-    list[Path] | None, typer.Option("--launch", help="Gazebo Sim: " + LAUNCH_HELP)
+    list[Path] | None,
+    typer.Option(
+        "--launch",
+        help="Gazebo Sim: " + LAUNCH_HELP,
+        show_default=LAUNCH_DEFAULT,
+        rich_help_panel=RULES,
+    ),
 ]
+HARMONIC = "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_robot.urdf.xacro"
+EXAMPLES = examples(
+    ("The topics of a Gazebo Sim robot, as its bridge names them", f"sensorkit topics {HARMONIC}"),
+    (
+        "Another robot's, as JSON for a script",
+        "sensorkit topics examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro -f json",
+    ),
+)
 
 
 @handle_errors
@@ -113,4 +145,4 @@ def _say_notes_and_summary(result: RobotTopics) -> None:
 
 def register(app: typer.Typer) -> None:
     """Add ``topics`` to ``app``."""
-    app.command("topics", no_args_is_help=True)(topics)
+    app.command("topics", cls=Command, no_args_is_help=True, epilog=EXAMPLES)(topics)

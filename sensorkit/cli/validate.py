@@ -24,10 +24,17 @@ from sensorkit.cli.common import (
     use_color,
 )
 from sensorkit.cli.options import (
+    BRIDGE_DEFAULT,
     BRIDGE_HELP,
+    FIXING,
+    LAUNCH_DEFAULT,
     LAUNCH_HELP,
+    OUTPUT,
+    RULES,
+    XACRO,
     ArgOpt,
     ColorOpt,
+    Command,
     ConfigOpt,
     EnvOpt,
     NoCacheOpt,
@@ -35,6 +42,7 @@ from sensorkit.cli.options import (
     QuietOpt,
     StdinFilenameOpt,
     UntrustedOpt,
+    examples,
 )
 
 if TYPE_CHECKING:
@@ -45,9 +53,23 @@ _KEPT: list[object] = []  # see validate(): models left for the process exit to 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
 
 
+CAR = "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro"
+VALIDATE_EXAMPLES = examples(
+    ("Check a robot", f"sensorkit validate {CAR}"),
+    (
+        "Show the safe fixes for every robot below a folder, as a diff",
+        "sensorkit validate --diff tests/robots/acceptance",
+    ),
+)
+RULES_EXAMPLES = examples(
+    ("List every rule", "sensorkit rules"),
+    ("Explain one, with a bad and a good example", "sensorkit rules SK502"),
+)
+
+
 def register(app: typer.Typer) -> None:
-    app.command("validate")(validate)
-    app.command("rules")(rules)
+    app.command("validate", cls=Command, epilog=VALIDATE_EXAMPLES)(validate)
+    app.command("rules", cls=Command, epilog=RULES_EXAMPLES)(rules)
 
 
 PathsArg = Annotated[
@@ -59,42 +81,72 @@ PathsArg = Annotated[
 ]
 TargetOpt = Annotated[
     str | None,
-    typer.Option("--target", help="auto | classic | ros1 | fortress | harmonic | jetty"),
+    typer.Option(
+        "--target",
+        help="auto | classic | ros1 | fortress | harmonic | jetty (auto: Gazebo Sim or Classic "
+        "from the plugins, ROS 1 for a description written wholly for it)",
+        show_default="the settings file's, else auto",
+        rich_help_panel=RULES,
+    ),
 ]
-FormatOpt = Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP)]
+FormatOpt = Annotated[str, typer.Option("--format", "-f", help=FORMAT_HELP, rich_help_panel=OUTPUT)]
 FailOnOpt = Annotated[
     str | None,
     typer.Option(
         "--fail-on",
-        help="lowest severity that fails: error | warning | info | never (default: the "
-        "settings file's, else error)",
-        show_default=False,
+        help="lowest severity that fails: error | warning | info | never",
+        show_default="the settings file's, else error",
+        rich_help_panel=RULES,
     ),
 ]
 SelectOpt = Annotated[
     list[str] | None,
-    typer.Option("--select", help="only these rules (ids or prefixes, repeatable)"),
+    typer.Option(
+        "--select",
+        help="only these rules (ids or prefixes, repeatable)",
+        show_default="the settings file's, else every rule",
+        rich_help_panel=RULES,
+    ),
 ]
 IgnoreOpt = Annotated[
     list[str] | None,
-    typer.Option("--ignore", help="skip these rules (ids or prefixes, repeatable)"),
+    typer.Option(
+        "--ignore",
+        help="skip these rules (ids or prefixes, repeatable)",
+        show_default="the settings file's, else none",
+        rich_help_panel=RULES,
+    ),
 ]
 TimeoutOpt = Annotated[
-    float, typer.Option("--timeout", help="seconds one xacro expansion may take")
+    float,
+    typer.Option("--timeout", help="seconds one xacro expansion may take", rich_help_panel=XACRO),
 ]
-BridgeOpt = Annotated[list[Path] | None, typer.Option("--bridge", help=BRIDGE_HELP)]
-LaunchOpt = Annotated[list[Path] | None, typer.Option("--launch", help=LAUNCH_HELP)]
+BridgeOpt = Annotated[
+    list[Path] | None,
+    typer.Option("--bridge", help=BRIDGE_HELP, show_default=BRIDGE_DEFAULT, rich_help_panel=RULES),
+]
+LaunchOpt = Annotated[
+    list[Path] | None,
+    typer.Option("--launch", help=LAUNCH_HELP, show_default=LAUNCH_DEFAULT, rich_help_panel=RULES),
+]
 FixOpt = Annotated[
-    bool, typer.Option("--fix", help="apply the safe fixes, then report what remains")
+    bool,
+    typer.Option(
+        "--fix", help="apply the safe fixes, then report what remains", rich_help_panel=FIXING
+    ),
 ]
 DiffOpt = Annotated[
-    bool, typer.Option("--diff", help="print the fixes as a unified diff; write nothing")
+    bool,
+    typer.Option(
+        "--diff", help="print the fixes as a unified diff; write nothing", rich_help_panel=FIXING
+    ),
 ]
 UnsafeFixesOpt = Annotated[
     bool,
     typer.Option(
         "--unsafe-fixes",
         help="with --fix or --diff: also fixes that change behaviour beyond the finding",
+        rich_help_panel=FIXING,
     ),
 ]
 JobsOpt = Annotated[
@@ -109,7 +161,9 @@ JobsOpt = Annotated[
 ExitZeroOpt = Annotated[
     bool,
     typer.Option(
-        "--exit-zero", help="exit 0 even with findings (still 2 when sensorkit cannot run)"
+        "--exit-zero",
+        help="exit 0 even with findings (still 2 when sensorkit cannot run)",
+        rich_help_panel=RULES,
     ),
 ]
 
@@ -306,9 +360,11 @@ def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
 def rules(
     ids: Annotated[
         list[str] | None,
-        typer.Argument(help="explain these rules (ids such as SK502)", show_default=False),
+        typer.Argument(help="explain these rules (ids such as SK502)", show_default="all"),
     ] = None,
-    fmt: Annotated[str, typer.Option("--format", "-f", help="text, json or markdown")] = "text",
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="text, json or markdown", rich_help_panel=OUTPUT)
+    ] = "text",
     color: ColorOpt = "auto",
 ) -> None:
     """List every rule (id, severity, fixable, what it checks), or explain the ones named."""
