@@ -411,13 +411,28 @@ def test_unreadable_robot_exits_2(tmp_path: Path) -> None:
 def test_importing_the_cli_does_not_import_pybullet() -> None:
     code = (
         "import sys, sensorkit.cli, sensorkit.render, sensorkit.render.preview;"
-        "bad = [m for m in ('pybullet', 'sensorkit.render.sim') if m in sys.modules];"
+        "bad = [m for m in ('pybullet', 'sensorkit.render.sim', 'PIL') if m in sys.modules];"
         "assert not bad, bad"
     )
     proc = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
     )
     assert proc.returncode == 0, proc.stderr
+
+
+def test_validate_does_not_import_pillow() -> None:
+    """Pillow is the preview's: ``sensorkit validate`` runs without loading it."""
+    proc = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", str(WALL_BOT)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert proc.returncode == 0, proc.stderr
+    imported = {line.split("|")[-1].strip() for line in proc.stderr.splitlines() if "|" in line}
+    assert "sensorkit.lint" in imported  # the check can see what validate imports
+    assert not {m for m in imported if m.split(".")[0] == "PIL" or m == "sensorkit.render.png"}
 
 
 def _chromium() -> str:

@@ -66,6 +66,40 @@ def test_png_chunks_carry_valid_crcs() -> None:
         pos += 12 + length
 
 
+def _hand_built_png(rows: list[bytes], width: int, height: int, colour: int) -> bytes:
+    """A PNG assembled from zlib and struct, each row led by its own filter byte."""
+    import struct
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (
+            struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        )
+
+    header = struct.pack(">IIBBBBB", width, height, 8, colour, 0, 0, 0)
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", header)
+        + chunk(b"IDAT", zlib.compress(b"".join(rows)))
+        + chunk(b"IEND", b"")
+    )
+
+
+def test_read_png_decodes_every_filter_of_a_file_it_did_not_write() -> None:
+    """A 3 x 2 RGB file built by hand: row 0 with Sub (1), row 1 with Up (2); a grey
+    2 x 2 one with Average (3) and Paeth (4). The pixels are worked out here."""
+    sub = bytes([1, 10, 20, 30, 5, 5, 5, 1, 2, 3])  # 10,20,30 then +5 then +1,2,3
+    up = bytes([2, 1, 1, 1, 0, 0, 0, 250, 0, 0])  # the row above, plus these
+    rgb = read_png(_hand_built_png([sub, up], 3, 2, 2))
+    assert rgb.tolist() == [
+        [[10, 20, 30], [15, 25, 35], [16, 27, 38]],
+        [[11, 21, 31], [15, 25, 35], [10, 27, 38]],  # 16 + 250 wraps to 10
+    ]
+    avg = bytes([3, 100, 10])  # left 100, then 10 + (100 + 0) // 2
+    paeth = bytes([4, 1, 1])  # above 100 -> 101; then Paeth(101, 60, 100) = 60 -> 61
+    grey = read_png(_hand_built_png([avg, paeth], 2, 2, 0))
+    assert grey[:, :, 0].tolist() == [[100, 60], [101, 61]]
+
+
 def test_png_refuses_what_it_cannot_write() -> None:
     with pytest.raises(ValueError, match="uint8"):
         encode_png(np.zeros((2, 2), dtype=np.float32))
