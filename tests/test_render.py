@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -662,6 +663,26 @@ def test_the_verdict_fails_at_or_above_fail_on_and_on_failed_checks() -> None:
     assert len(v.reasons) == 12
 
 
+def test_one_status_rule_for_checks_and_findings() -> None:
+    """An error finding counts as a failed check, a warning as a warned one, an info as
+    nothing: a sensor is never shown "ok" or "warn" beside an error."""
+    from sensorkit.render.gate import status_of
+    from sensorkit.render.result import SensorPreview
+
+    ok, warned = Check("depth", "ok", ""), Check("self_occlusion", "warn", "2% hit")
+    error, warning = _f("SK502", Severity.ERROR), _f("SK407", Severity.WARNING)
+    info = _f("SK900", Severity.INFO)
+    assert status_of([ok]) == "ok" and status_of([]) == "skipped"
+    assert status_of([ok], [error]) == "fail" and status_of([warned], [error]) == "fail"
+    assert status_of([ok], [warning]) == "warn" and status_of([ok], [info]) == "ok"
+    s = SensorPreview("cam", "cam", "camera", "camera", "cam_link", checks=[ok], findings=[error])
+    assert s.status == "fail"
+    s.skipped = "no image"
+    assert s.status == "fail"  # not rendered, but its error still shows
+    s.findings = [info]
+    assert s.status == "skipped"
+
+
 def _verdict_on_page(page: str) -> str:
     import re
 
@@ -683,6 +704,10 @@ def test_a_mis_stamped_camera_fails_the_preview_and_the_header_says_why(tmp_path
     assert data["verdict"]["status"] == "fail" and data["verdict"]["findings"]["error"] == 1
     cam = sensor(data, "front_camera")
     assert [f["rule"] for f in cam["findings"]] == ["SK502"]
+    # one status rule: a sensor with an error is "fail" everywhere, never "ok · 1 error"
+    assert cam["status"] == "fail" and data["status"] == "fail"
+    shown = re.findall(r'<span class="(\w+)">\1</span> &middot; <span class="error">', page)
+    assert shown and set(shown) == {"fail"}, shown
     assert page.index("id='findings-front_camera'") < page.index("rgb.png")  # top of its section
     # --fail-on never: the same page, not gated
     result = CliRunner().invoke(
