@@ -387,3 +387,20 @@ def test_stereo_pair_side_by_side_with_its_baseline(
     for image, eye in ((left, "left"), (right, "right")):
         data = base64.b64decode(image.get("href", "").split(",", 1)[1])
         assert data == (out / "stereo" / eye / "rgb.png").read_bytes()
+
+
+def test_values_read_in_mm_and_degrees_with_fixed_decimals() -> None:
+    """No ``2.34773e-06 m``: lengths in mm, angles in degrees, a fixed number of decimals,
+    and a non-breaking space between number and unit so the unit never wraps alone."""
+    from sensorkit.render.svg import quantity, vector
+
+    nbsp = "\u00a0"
+    assert quantity(2.34773e-06, "m") == f"0.0{nbsp}mm"
+    assert quantity(0.25, "m") == f"250.0{nbsp}mm"
+    assert quantity(-1e-9, "m") == f"0.0{nbsp}mm"  # never "-0.0"
+    assert quantity(math.radians(11.5), "rad") == "11.50\u00b0"
+    assert quantity(0.123456, "px") == f"0.12{nbsp}px"
+    assert quantity(0.5, "deg") == "0.50\u00b0"
+    assert quantity(0.00436, "rad", 3) == "0.250\u00b0"
+    assert vector([0.25, 0, 0.1], "m") == f"(250.0, 0.0, 100.0){nbsp}mm"
+    assert vector([0, math.pi / 2, 0], "rad") == "(0.00, 90.00, 0.00)\u00b0"

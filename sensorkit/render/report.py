@@ -173,6 +173,23 @@ def _fmt(value: Any) -> str:
     return html.escape(str(value))
 
 
+def _amount(value: Any, unit: str, decimals: int | None = None) -> str:
+    """A number with its unit, as ``svg.quantity`` writes it (escaped; empty for None)."""
+    from sensorkit.render.svg import quantity
+
+    if not isinstance(value, (int, float)):
+        return "" if value is None else _fmt(value)
+    return html.escape(quantity(float(value), unit, decimals))
+
+
+def _vec(values: Any, unit: str) -> str:
+    from sensorkit.render.svg import vector
+
+    if not isinstance(values, (list, tuple)):
+        return _fmt(values)
+    return html.escape(vector(list(values), unit))
+
+
 def _sensor_html(s: SensorPreview, base: Path) -> str:
     e = html.escape
     colour = s.info.get("colour")
@@ -223,8 +240,8 @@ def _checks_html(s: SensorPreview) -> str:
     """The sensor's checks, one a row."""
     e = html.escape
     rows = "".join(
-        f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_fmt(c.value) if c.value is not None else ''} {e(c.unit)}</td>"
-        f"<td>{_fmt(c.limit) if c.limit is not None else ''}</td><td>{e(c.message)}</td></tr>"
+        f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_amount(c.value, c.unit)}</td>"
+        f"<td>{_amount(c.limit, c.unit)}</td><td>{e(c.message)}</td></tr>"
         for c in s.checks
     )
     return f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
@@ -241,7 +258,10 @@ def _frame_facts(s: SensorPreview) -> _Facts:
     if frames:
         pose = frames.get("render_pose", {})
         facts.append(
-            ("render pose (xyz, rpy)", f"{_fmt(pose.get('xyz'))}, {_fmt(pose.get('rpy'))}")
+            (
+                "render pose (xyz, rpy)",
+                f"{_vec(pose.get('xyz'), 'm')}, {_vec(pose.get('rpy'), 'rad')}",
+            )
         )
         facts.append(
             (
@@ -263,11 +283,11 @@ def _camera_facts(s: SensorPreview) -> _Facts:
     return [
         (
             "camera_info K",
-            f"fx {_fmt(intr['fx'])}, fy {_fmt(intr['fy'])}, cx {_fmt(intr['cx'])}, cy {_fmt(intr['cy'])} ({html.escape(str(intr['convention']))})",
+            f"fx {_amount(intr['fx'], 'px')}, fy {_amount(intr['fy'], 'px')}, cx {_amount(intr['cx'], 'px')}, cy {_amount(intr['cy'], 'px')} ({html.escape(str(intr['convention']))})",
         ),
         (
             "rendered",
-            f"fx {_fmt(r['fx'])}, fy {_fmt(r['fy'])}, principal point ({_fmt(r['cx'])}, {_fmt(r['cy'])}) 0-based; clip {_fmt(r['near'])}..{_fmt(r['far'])} m",
+            f"fx {_amount(r['fx'], 'px')}, fy {_amount(r['fy'], 'px')}, principal point {_vec((r['cx'], r['cy']), 'px')} 0-based; clip {_amount(r['near'], 'm')} to {_amount(r['far'], 'm')}",
         ),
     ]
 
@@ -280,7 +300,7 @@ def _scan_facts(s: SensorPreview) -> _Facts:
     facts = [
         (
             "scan",
-            f"{scan['samples']} beams, {_fmt(scan['angle_min'])}..{_fmt(scan['angle_max'])} rad, step {_fmt(scan['angle_increment'])}, range {_fmt(scan['range_min'])}..{_fmt(scan['range_max'])} m",
+            f"{scan['samples']} beams, {_amount(scan['angle_min'], 'rad')} to {_amount(scan['angle_max'], 'rad')}, step {_amount(scan['angle_increment'], 'rad', 3)}, range {_amount(scan['range_min'], 'm')} to {_amount(scan['range_max'], 'm')}",
         )
     ]
     if "vertical" in s.info:
@@ -288,7 +308,7 @@ def _scan_facts(s: SensorPreview) -> _Facts:
         facts.append(
             (
                 "vertical",
-                f"{v['samples']} rows, {_fmt(v['angle_min'])}..{_fmt(v['angle_max'])} rad",
+                f"{v['samples']} rows, {_amount(v['angle_min'], 'rad')} to {_amount(v['angle_max'], 'rad')}",
             )
         )
     return facts

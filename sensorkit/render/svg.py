@@ -4,7 +4,8 @@ A figure is an inline SVG for index.html (PNG pixels where there are many dots, 
 every label, tick and axis, so text stays sharp and needs no font library) and ``facts``,
 the numbers it draws (also written to summary.json). ``Svg`` builds the document as
 escaped text; ``num``, ``metres`` and ``hex_colour`` write numbers and colours the way
-every picture shows them; ``nice_step`` and ``ticks`` pick round values for scales.
+every picture shows them, ``quantity`` and ``vector`` the way index.html's tables do
+(lengths in mm, angles in degrees, fixed decimals, a non-breaking space before the unit); ``nice_step`` and ``ticks`` pick round values for scales.
 """
 
 from __future__ import annotations
@@ -18,7 +19,17 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Figure", "Svg", "hex_colour", "metres", "nice_step", "num", "ticks"]
+__all__ = [
+    "Figure",
+    "Svg",
+    "hex_colour",
+    "metres",
+    "nice_step",
+    "num",
+    "quantity",
+    "ticks",
+    "vector",
+]
 
 FloatArray = npt.NDArray[np.float64]
 _FONT = "font-family:system-ui,sans-serif"
@@ -50,6 +61,39 @@ def metres(v: float) -> str:
         return f"{v} m"
     text = f"{v:.3f}".rstrip("0").rstrip(".")
     return f"{'0' if text == '-0' else text} m"
+
+
+NBSP = "\u00a0"  # between a number and its unit: a line never breaks there
+# unit given -> (factor, unit shown, decimals): lengths in mm, angles in degrees
+_SHOWN: dict[str, tuple[float, str, int]] = {
+    "m": (1000.0, NBSP + "mm", 1),
+    "mm": (1.0, NBSP + "mm", 1),
+    "rad": (180.0 / math.pi, "\u00b0", 2),
+    "deg": (1.0, "\u00b0", 2),
+    "px": (1.0, NBSP + "px", 2),
+    "%": (1.0, NBSP + "%", 1),
+}
+
+
+def _fixed(v: float, decimals: int) -> str:
+    if not math.isfinite(v):
+        return str(v)
+    text = f"{v:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text  # no "-0.0"
+
+
+def quantity(value: float, unit: str, decimals: int | None = None) -> str:
+    """``2.3\u00a0mm`` for (0.0023, "m"), ``11.46\u00b0`` for (0.2, "rad"), ``0.35\u00a0px``:
+    lengths in mm and angles in degrees, with fixed decimals (``decimals`` overrides);
+    another unit is kept, with 3 decimals."""
+    factor, shown, places = _SHOWN.get(unit, (1.0, NBSP + unit if unit else "", 3))
+    return _fixed(value * factor, places if decimals is None else decimals) + shown
+
+
+def vector(values: list[float] | tuple[float, ...], unit: str) -> str:
+    """``(250.0, 0.0, 100.0)\u00a0mm``: a vector in one unit, as ``quantity`` writes it."""
+    factor, shown, places = _SHOWN.get(unit, (1.0, NBSP + unit if unit else "", 3))
+    return "(" + ", ".join(_fixed(float(v) * factor, places) for v in values) + ")" + shown
 
 
 class Svg:
