@@ -455,6 +455,18 @@ window.addEventListener("error", (e) => {
   const t = e.target;
   window.__seen.push(t && t.tagName ? "load-failed: " + (t.id || t.tagName) : "error: " + e.message);
 }, true);
+// Off-thread decodes do not hold Chromium's virtual time: wait for them in real time,
+// a few milliseconds of work between short timers (up to about 10 s).
+async function __settle(promises) {
+  let done = false;
+  const all = Promise.all(promises).then((v) => { done = true; return v; });
+  for (let k = 0; k < 2000 && !done; k++) {
+    let spin = 0;
+    for (let i = 0; i < 2e6; i++) spin += i;
+    await new Promise((r) => setTimeout(r, 1 + (spin & 0)));
+  }
+  return all;
+}
 async function __width(src) {
   const i = new Image();
   i.src = src;
@@ -467,7 +479,7 @@ window.addEventListener("load", async () => {
   const imgs = [...document.images].filter((i) => i !== control);
   const svg = [...document.querySelectorAll("image")].map(
     (i) => i.getAttribute("href") || i.getAttribute("xlink:href"));
-  const svgWidths = await Promise.all(svg.map(__width));
+  const svgWidths = await __settle(svg.map(__width));
   const verdict = document.getElementById("verdict");
   const overview = [...document.querySelectorAll("h2")].find((h) => h.textContent === "Overview");
   const out = document.createElement("pre");
@@ -485,6 +497,39 @@ window.addEventListener("load", async () => {
     verdict: verdict ? verdict.firstChild.textContent : null,
     verdict_class: verdict ? verdict.className : null,
     verdict_first: !!(verdict && overview && (verdict.compareDocumentPosition(overview) & 4)),
+    first_screen: ["verdict", "findings", "overview"].map((id) => {
+      const el = document.getElementById(id);
+      const next = id === "verdict" ? el : id === "overview"
+        ? document.querySelector('figure[data-figure="overview"]') : el && el.nextElementSibling;
+      return next ? [id, next.getBoundingClientRect().bottom + window.scrollY] : [id, null];
+    }),
+    window_height: window.innerHeight,
+    page_height: document.documentElement.scrollHeight,
+    open_details: document.querySelectorAll("details[open]").length,
+    checks_tables: [...document.querySelectorAll("section.sensor table")].map(
+      (t) => t.closest("details") !== null),
+    marker_fills: [...document.querySelectorAll('figure[data-figure="overview"] circle.marker')].map(
+      (c) => getComputedStyle(c).fill),
+    rviz_border: (() => { const f = document.querySelector("figure.rviz");
+      return f ? getComputedStyle(f).borderTopColor : null; })(),
+    key: [...document.querySelectorAll('figure[data-figure="overview"] text.key')].map(
+      (t) => [t.textContent, t.getAttribute("data-colour")]),
+    overview_ticks: [...document.querySelectorAll('figure[data-figure="overview"] text.tick')].map(
+      (t) => t.textContent),
+    frame_names: [...document.querySelectorAll('figure[data-figure="overview"] text.frame-name')].map(
+      (t) => t.textContent),
+    overlaps: [...document.querySelectorAll("svg")].flatMap((svg) => {
+      const boxes = [...svg.querySelectorAll("text")].filter((t) => t.textContent.trim())
+        .map((t) => [t.textContent, t.getBoundingClientRect()]);
+      const out = [];
+      for (let i = 0; i < boxes.length; i++) for (let j = i + 1; j < boxes.length; j++) {
+        const [a, p] = boxes[i], [b, q] = boxes[j];
+        const dx = Math.min(p.right, q.right) - Math.max(p.left, q.left);
+        const dy = Math.min(p.bottom, q.bottom) - Math.max(p.top, q.top);
+        if (dx > 0.5 && dy > 0.5) out.push([a, b]);
+      }
+      return out;
+    }),
     seen: window.__seen,
   });
   document.body.appendChild(out);
@@ -528,6 +573,7 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
     depths = [s for s in summary(mounts)["sensors"] if "depth" in s.get("pictures", {})]
     assert len(seen["colour_bars"]) == len(depths) and all(w > 0 for w in seen["colour_bars"])
+    _read_at_a_glance(seen)
 
     # the depth camera's colour bar, drawn with its ends at the range summary.json gives;
     # a correctly stamped robot gets no RViz view
@@ -541,6 +587,26 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     assert ends == {"min": facts["colour_min_m"], "max": facts["colour_max_m"]}
     assert ends["min"] < 2.75 < ends["max"]  # the wall, 2.75 m from the lens, is inside the range
     assert all(w > 0 for _, _, w in seen["ticks"])  # the labels are laid out, not empty
+    assert seen["overlaps"] == [] and seen["marker_fills"], seen["overlaps"]
+    assert "rgb(230, 0, 200)" not in seen["marker_fills"]  # the scene's own spheres, too
+    assert all(0 < bottom <= 900 for _, bottom in seen["first_screen"]), seen["first_screen"]
+
+
+def _read_at_a_glance(seen: dict[str, Any]) -> None:
+    """The colour key, the overview's ticks and frame names, the first screen, labels
+    clear of each other, check tables folded away (what the probe measured)."""
+    rviz = "rgb(230, 0, 200)"  # the magenta of "where RViz will put it"
+    assert seen["rviz_border"] == rviz
+    assert seen["marker_fills"] and rviz not in seen["marker_fills"], seen["marker_fills"]
+    magenta = [text for text, colour in seen["key"] if colour == "#e600c8"]
+    assert len(seen["key"]) >= 6 and magenta == ["magenta: where RViz puts the data"]
+    assert {"-1 m", "0 m", "1 m"} <= set(seen["overview_ticks"]), seen["overview_ticks"]
+    assert any(n.startswith("body_cam: ") for n in seen["frame_names"]), seen["frame_names"]
+    for _what, bottom in seen["first_screen"]:  # verdict, findings and overview on screen one
+        assert bottom is not None and 0 < bottom <= 900, seen["first_screen"]
+    assert seen["overlaps"] == [], seen["overlaps"]
+    assert seen["open_details"] == 0 and seen["checks_tables"], seen["checks_tables"]
+    assert all(seen["checks_tables"])  # every table of checks and facts starts folded
 
 
 def _probe(browser: str, preview: Path, tmp_path: Path) -> dict[str, Any]:
@@ -561,6 +627,8 @@ def _probe(browser: str, preview: Path, tmp_path: Path) -> dict[str, Any]:
             "--no-sandbox",
             "--disable-gpu",
             "--virtual-time-budget=10000",
+            "--window-size=1400,900",
+            "--hide-scrollbars",
             "--dump-dom",
             probed.as_uri(),
         ],

@@ -131,7 +131,7 @@ def write_summary(result: PreviewResult) -> None:
 # ---- index.html ----------------------------------------------------------------------
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:24px;color:#222;background:#fafafa;max-width:1400px}
-h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:28px 0 8px;border-bottom:1px solid #ddd}
+h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:18px 0 6px;border-bottom:1px solid #ddd}
 h3{font-size:15px;margin:16px 0 6px}
 table{border-collapse:collapse;margin:6px 0;font-size:13px;background:#fff}
 td,th{border:1px solid #ddd;padding:4px 8px;text-align:left;vertical-align:top}
@@ -142,7 +142,7 @@ th{background:#f0f0f0} .meta{color:#555;font-size:13px}
 .imgs{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .imgs figure{margin:0;background:#fff;border:1px solid #ddd;padding:6px}
 .imgs img{max-width:640px;image-rendering:pixelated;display:block}
-figcaption{font-size:12px;color:#555;margin-top:4px}
+figcaption{font-size:12px;color:#555;margin-top:4px;max-width:640px}
 .swatch{display:inline-block;width:12px;height:12px;border-radius:2px;margin-right:6px;vertical-align:middle}
 code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict{font-size:17px;font-weight:700;padding:10px 14px;margin:10px 0 4px;border-radius:4px;border:2px solid}
@@ -152,6 +152,15 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict ul{font-size:13px;font-weight:400;margin:6px 0 0;padding-left:20px}
 .rviz{border-color:#e600c8 !important}
 .findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
+.sensors{display:grid;grid-template-columns:repeat(auto-fill,minmax(620px,1fr));gap:10px 18px}
+.sensors .imgs img{max-width:280px} .sensors figure.picture svg{max-width:330px !important;max-height:300px}
+figure[data-figure=closeup] svg{max-width:520px !important;max-height:280px} .sensors figcaption{max-width:330px}
+.top-list{list-style:none;padding-left:0} .top-list li{margin:2px 0}
+.finding summary,.verdict li{white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
+.finding[open] summary{white-space:normal}
+.top{display:flex;gap:18px;align-items:flex-start} .top-findings{flex:1 1 0;min-width:320px}
+details summary{cursor:pointer;font-size:13px;color:#333;margin:4px 0}
+details summary h2{display:inline;border:0}
 """
 
 
@@ -195,24 +204,39 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
     colour = s.info.get("colour")
     swatch = f'<span class="swatch" style="background:{colour}"></span>' if colour else ""
     parts = [
+        '<section class="sensor">',
         f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}{_counts(s)}</h3>',
         _sensor_findings_html(s),
         _rviz_html(s),
     ]
     if s.skipped:
-        parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
+        parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p></section>")
         return "\n".join(parts)
     figures = _figures_html(s)
     if figures:
         parts.append('<div class="imgs">' + "".join(figures) + "</div>")
-    parts.append(_checks_html(s))
     facts = [*_frame_facts(s), *_camera_facts(s), *_scan_facts(s), *_file_facts(s, base)]
     parts.append(
-        "<table>" + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts) + "</table>"
+        f"<details class='checks'><summary>{_checks_summary(s)}</summary>{_checks_html(s)}<table>"
+        + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts)
+        + "</table>"
     )
     if s.notes:
         parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
+    parts.append("</details></section>")
     return "\n".join(parts)
+
+
+def _checks_summary(s: SensorPreview) -> str:
+    """``checks: 4 ok, 1 warn (self_occlusion) · facts and files``: the collapsed line."""
+    e = html.escape
+    counts = []
+    for status in ("fail", "warn", "ok", "skipped"):
+        these = [c.name for c in s.checks if c.status == status]
+        if these:
+            named = f" ({e(', '.join(these))})" if status in ("fail", "warn") else ""
+            counts.append(f"{len(these)} {_status(status)}{named}")
+    return f"checks: {', '.join(counts) or 'none'} &middot; facts and files"
 
 
 def _figures_html(s: SensorPreview) -> list[str]:
@@ -403,25 +427,34 @@ def _findings_html(result: PreviewResult) -> str:
     rows = []
     for f in sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key())):
         where = f"{f.file}:{f.line}" if f.line else (f.file or "")
+        short = f"{f.file.rsplit('/', 1)[-1]}:{f.line}" if f.file and f.line else where
+        about = f.sensor or f.link or f.joint or f.frame or ""
         fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
         rows.append(
-            f"<tr><td>{e(f.rule)}</td><td>{_status(f.severity.label)}</td><td>{e(where)}</td><td>{e(f.message)}{fix}</td></tr>"
+            f"<li><details class='finding'><summary>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
+            f"{e(about)} <span class='meta'>{e(short)}</span> {e(f.message)}</summary>"
+            f"<div class='meta'>{e(where)}</div>{e(f.message)}{fix}</details></li>"
         )
-    return (
-        "<table><tr><th>rule</th><th>severity</th><th>where</th><th>finding</th></tr>"
-        + "".join(rows)
-        + "</table>"
-    )
+    return "<ul class='findings top-list'>" + "".join(rows) + "</ul>"
 
 
 def _pictures_html(result: PreviewResult) -> str:
-    """The robot close up, then each stereo pair (sensorkit.render.pictures)."""
+    """Each stereo pair (sensorkit.render.mount_pictures); the robot close up stands
+    beside the overview."""
     out = []
-    for title, prefix in (("The robot close up", "closeup"), ("Stereo pairs", "stereo:")):
+    for title, prefix in (("Stereo pairs", "stereo:"),):
         shown = [f.html() for f in result.figures if f.key.startswith(prefix)]
         if shown:
             out.append(f"<h2>{title}</h2><div class='imgs'>{''.join(shown)}</div>")
     return "\n".join(out)
+
+
+def _overview_html(result: PreviewResult) -> str:
+    """The overview figure (ticks, frame names, colour key), or the bare picture."""
+    figure = next((f for f in result.figures if f.key == "overview"), None)
+    if figure is not None:
+        return figure.html()
+    return f"<figure>{_img(result.files['overview'], 'overview')}</figure>"
 
 
 def write_index(result: PreviewResult) -> None:
@@ -447,17 +480,16 @@ def write_index(result: PreviewResult) -> None:
 {_verdict_html(result)}
 <p class="meta">{e(str(result.source))} &middot; target {e(result.target)} ({e(result.target_reason)}) &middot; scene {e(result.scene)}
 &middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
-<h2 id="findings">validate's findings</h2>
-{_findings_html(result)}
-<h2>Overview</h2>
-<div class="imgs"><figure>{_img(result.files["overview"], "overview")}
-<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Magenta, when the frame its data is stamped with differs: that frame's forward axis (dashed) and the data as RViz will place it.</figcaption></figure>
-<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
+<div class="top"><div class="top-findings"><h2 id="findings">validate's findings</h2>
+{_findings_html(result)}</div>
+<div><h2>Overview</h2>{_overview_html(result)}</div></div>
+<div class="imgs"><table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table>
+{"".join(f.html() for f in result.figures if f.key == "closeup")}</div>
 {_pictures_html(result)}
 <h2>Sensors</h2>
-{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
-<h2>Conventions</h2>
-<table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table>
+<div class="sensors">{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}</div>
+<details><summary><h2>Conventions</h2></summary>
+<table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table></details>
 {f"<h2>Notes</h2><ul class='meta'>{notes}</ul>" if notes else ""}
 <p class="meta">Files: <a href="summary.json">summary.json</a> &middot; <a href="overview.png">overview.png</a></p>
 </body></html>

@@ -30,12 +30,13 @@ if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
     from sensorkit.render.textures import Texture
 
-__all__ = ["Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
+__all__ = ["MARKER_RGBA", "Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
 
 Array = npt.NDArray[np.float64]
 
 GROUND = "ground"
 MARKER = "marker"
+MARKER_RGBA = (0.9, 0.667, 0.0, 1.0)  # amber: magenta is kept for where RViz puts data
 
 
 @dataclass
@@ -297,7 +298,7 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
                         transform(p),
                         (radius,),
                         MARKER,
-                        (1.0, 0.1, 0.9, 1.0),
+                        MARKER_RGBA,
                     )
                 )
     textures: dict[str, Texture] = {}

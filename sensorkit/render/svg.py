@@ -23,6 +23,7 @@ __all__ = [
     "Figure",
     "Svg",
     "hex_colour",
+    "label_box",
     "metres",
     "nice_step",
     "num",
@@ -103,6 +104,7 @@ class Svg:
         self.width = width
         self.height = height
         self.parts: list[str] = []
+        self.boxes: list[tuple[float, float, float, float]] = []  # text laid out so far
 
     def add(self, tag: str, text: str | None = None, **attrs: Any) -> None:
         def value(v: Any) -> str:
@@ -133,7 +135,25 @@ class Svg:
     def text(
         self, x: float, y: float, s: str, *, size: float = 11, anchor: str = "start", **attrs: Any
     ) -> None:
+        """``s`` at (``x``, ``y``), or, when that would cover text already laid out, at
+        the nearest free place a line above or below or beside it (``label_box``)."""
+        bold = str(attrs.get("font_weight", "")) == "bold"
+        x, y = self._free_place(x, y, label_box(x, y, s, size, anchor, bold=bold))
+        self.boxes.append(label_box(x, y, s, size, anchor, bold=bold))
         self.add("text", s, x=x, y=y, font_size=size, text_anchor=anchor, style=_FONT, **attrs)
+
+    def _free_place(
+        self, x: float, y: float, box: tuple[float, float, float, float]
+    ) -> tuple[float, float]:
+        w, h = box[2] - box[0], box[3] - box[1]
+        steps = [(0.0, 0.0)]
+        for k in (1, 2, 3):
+            steps += [(0.0, -k * h), (0.0, k * h), (k * (w / 2 + 2), 0.0), (-k * (w / 2 + 2), 0.0)]
+        for dx, dy in steps:
+            moved = (box[0] + dx, box[1] + dy, box[2] + dx, box[3] + dy)
+            if not any(_overlap(moved, other) for other in self.boxes):
+                return x + dx, y + dy
+        return x, y
 
     def line(
         self,
@@ -161,6 +181,20 @@ class Svg:
             + "".join(self.parts)
             + "</svg>"
         )
+
+
+def label_box(
+    x: float, y: float, s: str, size: float, anchor: str = "start", *, bold: bool = False
+) -> tuple[float, float, float, float]:
+    """(left, top, right, bottom) that text ``s`` at baseline (``x``, ``y``) stays within,
+    a little generously: 0.62 em a character (0.68 bold), 1.25 em tall."""
+    w = len(s) * size * (0.68 if bold else 0.62)
+    left = x - w / 2 if anchor == "middle" else x - w if anchor == "end" else x
+    return (left, y - size, left + w, y + 0.25 * size)
+
+
+def _overlap(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> bool:
+    return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
 
 
 def hex_colour(colour: tuple[int, int, int] | npt.NDArray[np.uint8]) -> str:
