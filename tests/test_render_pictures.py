@@ -304,7 +304,9 @@ def test_imu_triad_points_along_the_imu_axes_and_shows_the_stamped_frame(imu: Pa
     check = texts(svg, "frame-check")
     assert check[0].text == "frame check: warn"
     data = next(s for s in summary(imu)["sensors"] if s["name"] == "imu")
-    assert data["status"] == "warn" and not data["skipped"]
+    # its checks warn and validate finds an error (SK504): one rule, the worse of the two
+    assert data["status"] == "fail" and not data["skipped"]
+    assert [f["rule"] for f in data["findings"]] == ["SK504"]
     assert {c["name"]: c["status"] for c in data["checks"]} == {
         "render_pose": "ok",
         "published_frame": "warn",
@@ -315,8 +317,9 @@ def test_an_unrendered_sensor_says_so_once(imu: Path) -> None:
     page = (imu / "index.html").read_text()
     assert "Not rendered: only cameras and lidars are" in page
     assert "not rendered: not rendered" not in page.lower()
-    # the overview's table gives the IMU the status of its checks, not "skipped"
-    assert "<a href='#imu'>imu</a></td><td>imu</td><td><span class=\"warn\">" in page
+    # the overview's table gives the IMU the status of its checks and findings (a warned
+    # check and an SK504 error: fail), not "skipped"
+    assert "<a href='#imu'>imu</a></td><td>imu</td><td><span class=\"fail\">" in page
 
 
 # ---- the robot close up ------------------------------------------------------------------------
