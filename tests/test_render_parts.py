@@ -726,3 +726,26 @@ def test_intact_png_tells_a_whole_png_from_a_damaged_one() -> None:
     flipped = bytearray(data)
     flipped[40] ^= 1  # a pixel byte in IDAT: its CRC no longer holds
     assert not intact_png(bytes(flipped), 4, 6)
+
+
+def test_a_wall_shows_one_copy_of_its_texture() -> None:
+    """No seam and no repeat on a wall of the default room: every face's texture
+    coordinates stay within one copy (0..1), so a camera facing a wall never sees two
+    halves of one pattern; the floor's tiles still repeat every metre."""
+    from sensorkit.render.scene import box_mesh, default_scene
+
+    for reach in (0.5, 3.0, 9.0):
+        scene = default_scene(reach, textured=False)
+        walls = [s for s in scene.shapes if s.role in ("wall", "crate")]
+        assert len(walls) == 8
+        for wall in walls:
+            _, _, uvs, _ = box_mesh(tuple(wall.size), wall.uv_per_m)  # type: ignore[arg-type]
+            uv = np.array(uvs)
+            assert uv.min() >= -1e-9 and uv.max() <= 1 + 1e-9, (
+                reach,
+                wall.name,
+                uv.min(),
+                uv.max(),
+            )
+        ground = next(s for s in scene.shapes if s.role == "ground")
+        assert ground.uv_per_m == 1.0
