@@ -7,6 +7,7 @@ trigonometry, not with sensorkit's own helpers. Robots and scenes live in
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import os
@@ -843,3 +844,24 @@ def test_clean_robots_pass_the_gate_in_the_default_room(robot: Path, tmp_path: P
         assert ranges["status"] == "ok", (s["name"], ranges["message"])
     if robot != ROOT / "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro":
         assert lidars, "a lidar robot without a lidar"
+
+
+def test_a_robot_with_parts_below_the_ground_is_told_so(wall: Path, tmp_path: Path) -> None:
+    """Placed with its root link at z = 0, a base whose box reaches 100 mm below the
+    ground gets one line at the top of the page (and in summary.json); a robot standing
+    above the ground gets none."""
+    urdf = tmp_path / "sunk.urdf"
+    urdf.write_text(
+        '<robot name="sunk"><link name="base_link"><visual><geometry><box size="0.4 0.4 0.2"/>'
+        '</geometry></visual><collision><geometry><box size="0.4 0.4 0.2"/></geometry>'
+        "</collision></link></robot>"
+    )
+    render_preview(urdf, tmp_path / "out")
+    line = summary(tmp_path / "out")["placement"]
+    assert line.startswith("The robot is placed with its root link at z = 0")
+    assert "100\u00a0mm below the ground (lowest: 'base_link')" in line, line
+    page = (tmp_path / "out" / "index.html").read_text()
+    assert f"<p class='warning' id='placement'>{html.escape(line)}</p>" in page
+    assert page.index("id='verdict'") < page.index("id='placement'") < page.index('id="findings"')
+    assert summary(wall)["placement"] is None
+    assert "id='placement'" not in (wall / "index.html").read_text()

@@ -99,6 +99,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
             "validate": {"findings": findings, "error": result.findings_error},
             "pictures": {f.key: f.facts for f in result.figures},
             "notes": result.notes,
+            "placement": result.placement,
         }
     )
     return out
@@ -480,6 +481,7 @@ def write_index(result: PreviewResult) -> None:
 {_verdict_html(result)}
 <p class="meta">{e(str(result.source))} &middot; target {e(result.target)} ({e(result.target_reason)}) &middot; scene {e(result.scene)}
 &middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
+{f"<p class='warning' id='placement'>{e(result.placement)}</p>" if result.placement else ""}
 <div class="top"><div class="top-findings"><h2 id="findings">validate's findings</h2>
 {_findings_html(result)}</div>
 <div><h2>Overview</h2>{_overview_html(result)}</div></div>

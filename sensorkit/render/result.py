@@ -76,6 +76,7 @@ class PreviewResult:
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
     figures: list[Figure] = field(default_factory=list)  # the robot close up, stereo pairs
+    placement: str | None = None  # a line when parts of the robot are below the ground
 
     @property
     def status(self) -> str:
