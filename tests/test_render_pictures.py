@@ -120,6 +120,21 @@ def test_depth_colour_bar_spans_the_scene_in_metres(wall: Path) -> None:
     assert decoded == pytest.approx(2.75, abs=(hi - lo) / 40)
 
 
+def test_the_depth_caption_states_the_percentiles_it_used(wall: Path) -> None:
+    """The caption's 2nd and 98th percentiles are those of depth.npy's valid depths (numpy
+    computes them here), and lie within the colour range they were widened to."""
+    facts = pictures(wall, "depth_cam")["depth"]
+    depth = np.load(wall / "depth_cam" / "depth.npy").astype(np.float64)
+    p2, p98 = np.percentile(depth[np.isfinite(depth)], [2, 98])
+    assert facts["p2_m"] == pytest.approx(p2, abs=1e-4)
+    assert facts["p98_m"] == pytest.approx(p98, abs=1e-4)
+    assert facts["colour_min_m"] <= facts["p2_m"] <= facts["p98_m"] <= facts["colour_max_m"]
+    page = (wall / "index.html").read_text()
+    start = page.index('data-figure="depth">')
+    caption = page[page.index("<figcaption>", start) : page.index("</figcaption>", start)]
+    assert f"2nd and 98th percentiles, {p2:.3f} m and {p98:.3f} m" in caption, caption
+
+
 def test_depth_colour_range_stays_within_near_and_far() -> None:
     rng = np.random.default_rng(4)
     depth = rng.uniform(0.3, 9.0, size=(40, 50))

@@ -37,6 +37,7 @@ __all__ = [
     "at_far_clip",
     "depth_colour_range",
     "depth_figure",
+    "depth_percentiles",
     "draw_side",
     "occluded_sectors",
     "scan_figure",
@@ -59,18 +60,31 @@ def at_far_clip(depth: npt.NDArray[np.floating], far: float) -> npt.NDArray[np.b
     return out
 
 
-def depth_colour_range(
-    depth: npt.NDArray[np.floating], near: float, far: float
-) -> tuple[float, float]:
-    """The depths the colour map spans: the 2nd to 98th percentile of the finite depths
-    off the far clip plane (so that sky and a few far pixels do not wash the scene out),
-    widened to round values (a tenth of the span, 1-2-5) and kept within ``near``..``far``."""
+def depth_percentiles(depth: npt.NDArray[np.floating], far: float) -> tuple[float, float] | None:
+    """The 2nd and 98th percentiles of the finite depths off the far clip plane, which
+    ``depth_colour_range`` widens (None: no such depth)."""
     values = np.asarray(depth, dtype=np.float64)
     values = values[np.isfinite(values) & ~at_far_clip(values, far)]
     if values.size == 0:
+        return None
+    return percentile(values, 2.0), percentile(values, 98.0)
+
+
+def depth_colour_range(
+    depth: npt.NDArray[np.floating],
+    near: float,
+    far: float,
+    used: tuple[float, float] | None = None,
+) -> tuple[float, float]:
+    """The depths the colour map spans: the 2nd to 98th percentile of the finite depths
+    off the far clip plane (so that sky and a few far pixels do not wash the scene out),
+    widened to round values (a tenth of the span, 1-2-5) and kept within ``near``..``far``
+    (``used``: those percentiles, when ``depth_percentiles`` already gave them)."""
+    used = used if used is not None else depth_percentiles(depth, far)
+    if used is None:
         hi = far if math.isfinite(far) else near + 1.0
         return float(near), float(hi)
-    lo, hi = percentile(values, 2.0), percentile(values, 98.0)
+    lo, hi = used
     step = nice_step(hi - lo, 10) if hi > lo else nice_step(max(abs(hi), 1e-3), 10)
     lo = math.floor(lo / step + 1e-9) * step
     hi = math.ceil(hi / step - 1e-9) * step
@@ -78,6 +92,8 @@ def depth_colour_range(
         hi = lo + step
     lo, hi = max(lo, near), min(hi, far)
     if hi <= lo:  # near/far closer than one step
+        values = np.asarray(depth, dtype=np.float64)
+        values = values[np.isfinite(values) & ~at_far_clip(values, far)]
         lo, hi = float(values.min()), float(values.max()) + 1e-6
     return round(lo, 9), round(hi, 9)
 
@@ -92,9 +108,11 @@ def depth_figure(
     far: float,
     *,
     display: int = 480,
+    percentiles: tuple[float, float] | None = None,
 ) -> Figure:
     """depth.png with a vertical colour bar from ``lo`` (bottom, warm) to ``hi`` (top,
-    dark blue), ticks in metres, and swatches for +inf and -inf."""
+    dark blue), ticks in metres, and swatches for +inf and -inf; the caption gives the
+    ``percentiles`` (2nd, 98th) that ``lo`` and ``hi`` were widened from."""
     scale = min(display / width, 360 / height, 4.0)
     w, h = width * scale, height * scale
     bar_x, bar_w = w + 16, 16
@@ -138,11 +156,19 @@ def depth_figure(
     svg.text(14, legend_y, f"nothing within {metres(far)} (+inf, or the far clip plane)", size=10)
     svg.add("rect", x=0, y=legend_y + 5, width=10, height=10, fill="#000")
     svg.text(14, legend_y + 14, f"nearer than {metres(near)} (-inf)", size=10)
-    facts = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
+    facts: dict[str, Any] = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
+    if percentiles is not None:
+        p2, p98 = percentiles
+        facts.update(p2_m=p2, p98_m=p98)
+        used = (
+            f"the valid depths' 2nd and 98th percentiles, {p2:.3f} m and {p98:.3f} m, "
+            "widened to round values within the clip range"
+        )
+    else:
+        used = "no valid depth: the clip range"
     caption = (
         f"depth.png: metres along the optical axis, {metres(lo)} (yellow) to {metres(hi)} "
-        "(dark blue), the 2nd to 98th percentile of the valid depths; nearer and further "
-        "pixels take the end colours"
+        f"(dark blue): {used}; nearer and further pixels take the end colours"
     )
     return Figure("depth", caption, str(svg), facts)
 
