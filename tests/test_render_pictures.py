@@ -182,6 +182,46 @@ def test_ring_labels_sit_on_their_rings_at_their_radii(wall: Path) -> None:
     assert (c - blue.mean()) / scale == pytest.approx(2.9, abs=2 / scale)
 
 
+def _labels_over_returns(svg: ET.Element, view: Any, returns: np.ndarray, k: float) -> list[str]:
+    """The ring labels whose box (10 px text, 6.5 px a character) covers a return."""
+    px = view.px(returns) * k
+    covered = []
+    for t in texts(svg, "ring"):
+        x, y = float(t.get("x", "")), float(t.get("y", ""))
+        w = len(t.text or "") * 6.5
+        under = (px[:, 0] >= x - 1) & (px[:, 0] <= x + w + 1) & (px[:, 1] >= y - 12)
+        if (under & (px[:, 1] <= y + 3)).any():
+            covered.append(t.text or "")
+    return covered
+
+
+def test_ring_labels_do_not_cover_the_returns() -> None:
+    """A wall crossing the forward-right diagonal, where the 2 m label would sit: the
+    label moves along its ring to where no return lies under it (and stays on the ring)."""
+    from sensorkit.render.overview import scan_view
+    from sensorkit.render.pictures import scan_figure
+
+    t = np.linspace(-3.0, 3.0, 600)
+    wall = np.stack([np.full_like(t, 1.6), t], axis=1)  # 1.6 m ahead: crosses ring 2 at 37 deg
+    diagonal = np.stack([np.linspace(0.3, 3.0, 300), -np.linspace(0.3, 3.0, 300)], axis=1)
+    returns = np.vstack([wall, diagonal])  # and a row of returns along the diagonal itself
+    points = np.hstack([returns, np.zeros((len(returns), 1))])
+    view = scan_view(points, 10.0)
+    png = encode_png(np.full((view.size, view.size, 3), 250, dtype=np.uint8))
+    k = 480 / view.size
+    bare = ET.fromstring(scan_figure(png, view, [], 1, 0).svg)
+    assert _labels_over_returns(bare, view, returns, k)  # where they were: on the returns
+    svg = ET.fromstring(scan_figure(png, view, [], 1, 0, returns=returns).svg)
+    labels = texts(svg, "ring")
+    assert len(labels) >= 3 and _labels_over_returns(svg, view, returns, k) == []
+    c = view.centre * k
+    for label in labels:  # each still on its own ring
+        x, y = float(label.get("x", "")) - 2, float(label.get("y", "")) + 2
+        assert math.hypot(x - c, y - c) == pytest.approx(
+            metres(label.text) * view.scale * k, abs=0.05
+        )
+
+
 def test_beams_hidden_by_the_mast_are_a_shaded_sector(
     tmp_path_factory: pytest.TempPathFactory,
 ) -> None:

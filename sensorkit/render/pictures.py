@@ -174,6 +174,45 @@ def depth_figure(
 
 
 # ---- lidar from above ----------------------------------------------------------------------
+def _return_pixels(
+    view: ScanView, returns: FloatArray | None, k: float, display: int
+) -> npt.NDArray[np.bool_]:
+    """The figure's pixels (``display`` square) a return is drawn on, and their
+    neighbours: what a ring's label must not cover."""
+    taken = np.zeros((display + 1, display + 1), dtype=bool)
+    if returns is None or not len(returns):
+        return taken
+    xy = np.asarray(returns, dtype=np.float64)[:, :2]
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    px = np.rint(view.px(xy) * k).astype(np.int64)
+    for dx in (-2, -1, 0, 1, 2):
+        for dy in (-2, -1, 0, 1, 2):
+            cols, rows = px[:, 0] + dx, px[:, 1] + dy
+            inside = (cols >= 0) & (cols <= display) & (rows >= 0) & (rows <= display)
+            taken[rows[inside], cols[inside]] = True
+    return taken
+
+
+def _ring_label_spot(
+    view: ScanView, radius: float, k: float, display: int, taken: npt.NDArray[np.bool_]
+) -> tuple[float, float] | None:
+    """Where on the ring of ``radius`` its label goes: the first angle, from the
+    forward-right diagonal round the ring, whose label box is inside the picture and
+    covers no return (None: no such place)."""
+    c = view.centre * k
+    r = radius * view.scale * k
+    width = len(metres(radius)) * 6.5
+    for step in range(24):
+        a = math.radians(45.0 + 15.0 * (step // 2 + step % 2) * (1 if step % 2 else -1))
+        x, y = c + r * math.cos(a), c - r * math.sin(a)
+        left, top, right, bottom = x + 1, y - 14, x + 3 + width, y + 1
+        if left < 0 or top < 0 or right > display or bottom > display:
+            continue
+        if not taken[int(top) : int(bottom) + 1, int(left) : int(right) + 1].any():
+            return x, y
+    return None
+
+
 def occluded_sectors(
     azimuth: FloatArray, blocked: npt.NDArray[np.bool_], *, full_circle: bool
 ) -> list[tuple[float, float]]:
@@ -205,21 +244,23 @@ def scan_figure(
     self_hits: int,
     *,
     display: int = 480,
+    returns: FloatArray | None = None,
 ) -> Figure:
-    """scan.png with each range ring labelled in metres where it crosses the forward-right
-    diagonal, and a legend: beam colours, hits on the robot, self-occluded sectors."""
+    """scan.png with each range ring labelled in metres on the ring, where no return is
+    under the label (``returns``: the points' x, y in the sensor's frame; the
+    forward-right diagonal first, then round the ring), and a legend: beam colours, hits
+    on the robot, self-occluded sectors."""
     k = display / view.size
     legend_h = 20 + 16 * (2 + bool(sectors))
     svg = Svg(display, display + legend_h)
     svg.image(png, 0, 0, display, display)
-    c = view.centre * k
+    taken = _return_pixels(view, returns, k, display)
     for radius in view.rings:
-        r = radius * view.scale * k
-        x, y = c + r * math.sqrt(0.5), c - r * math.sqrt(0.5)
-        if 0 <= x <= display - 8 and y >= 10:
+        spot = _ring_label_spot(view, radius, k, display, taken)
+        if spot is not None:
             svg.text(
-                x + 2,
-                y - 2,
+                spot[0] + 2,
+                spot[1] - 2,
                 metres(radius),
                 size=10,
                 class_="ring",
