@@ -749,3 +749,24 @@ def test_a_wall_shows_one_copy_of_its_texture() -> None:
             )
         ground = next(s for s in scene.shapes if s.role == "ground")
         assert ground.uv_per_m == 1.0
+
+
+def test_scene_markers_are_never_drawn_in_the_rviz_magenta() -> None:
+    """Magenta is kept for where RViz will put data: the default room's marker spheres
+    render amber, and the overview draws them amber, with no magenta pixel when no data
+    is misplaced."""
+    from sensorkit.render.overview import MARKER_COLOUR, MISMATCH, draw_overview, overview_px
+    from sensorkit.render.scene import default_scene
+
+    scene = default_scene(0.5, textured=False)
+    assert scene.markers
+    for marker in scene.markers:
+        rgb = np.array(marker.rgba[:3]) * 255
+        assert np.abs(rgb - np.array(MISMATCH)).max() > 100, marker.rgba
+    half = scene.half_extent + 0.3
+    image = draw_overview(scene.shapes, [], [], [], half).astype(np.int64)
+    for marker in scene.markers:
+        col, row = np.rint(overview_px(marker.centre[:2], half, image.shape[1])[0]).astype(int)
+        assert image[row, col].tolist() == list(MARKER_COLOUR)
+    near_magenta = np.abs(image - np.array(MISMATCH)).sum(axis=2) < 60
+    assert not near_magenta.any()

@@ -462,3 +462,45 @@ def test_values_read_in_mm_and_degrees_with_fixed_decimals() -> None:
     assert quantity(0.00436, "rad", 3) == "0.250\u00b0"
     assert vector([0.25, 0, 0.1], "m") == f"(250.0, 0.0, 100.0){nbsp}mm"
     assert vector([0, math.pi / 2, 0], "rad") == "(0.00, 90.00, 0.00)\u00b0"
+
+
+def _text_boxes(svg: ET.Element) -> list[tuple[str, tuple[float, float, float, float]]]:
+    from sensorkit.render.svg import label_box
+
+    out = []
+    for t in svg.iter(f"{SVG}text"):
+        size = float(t.get("font-size", "11"))
+        anchor = t.get("text-anchor", "start")
+        bold = t.get("font-weight") == "bold"
+        box = label_box(
+            float(t.get("x", "")), float(t.get("y", "")), t.text or "", size, anchor, bold=bold
+        )
+        out.append((t.text or "", box))
+    return out
+
+
+def _overlapping(svg: ET.Element) -> list[tuple[str, str]]:
+    boxes = _text_boxes(svg)
+    return [
+        (a, b)
+        for i, (a, p) in enumerate(boxes)
+        for b, q in boxes[i + 1 :]
+        if min(p[2], q[2]) > max(p[0], q[0]) and min(p[3], q[3]) > max(p[1], q[1])
+    ]
+
+
+@pytest.mark.parametrize("stamped", [None, "same", "turned"])
+def test_imu_axis_labels_never_overlap(stamped: str | None) -> None:
+    """The IMU's x, y, z, the world's and the stamped frame's names: where axes point the
+    same way (an IMU aligned with the world, a stamped frame equal to its own) the labels
+    move apart instead of printing over one another."""
+    from sensorkit.render.mount_pictures import imu_figure
+
+    R = np.eye(3)
+    turned = _rpy(0.0, 0.0, 0.1)
+    R_stamped = None if stamped is None else R if stamped == "same" else turned
+    fig = imu_figure(R, R_stamped, "base_link", "warn", "turned")
+    svg = ET.fromstring(fig.svg)
+    names = [text for text, _ in _text_boxes(svg)]
+    assert {"x", "y", "z", "world x", "world y", "world z"} <= set(names)
+    assert _overlapping(svg) == []
