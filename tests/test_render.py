@@ -865,3 +865,39 @@ def test_a_robot_with_parts_below_the_ground_is_told_so(wall: Path, tmp_path: Pa
     assert page.index("id='verdict'") < page.index("id='placement'") < page.index('id="findings"')
     assert summary(wall)["placement"] is None
     assert "id='placement'" not in (wall / "index.html").read_text()
+
+
+FOUR_SENSORS = """\
+name: four_bot
+sim: gz
+gz_version: harmonic
+sensors:
+  - {type: camera, name: front_camera, xyz: [0.25, 0, 0.1]}
+  - {type: depth_camera, name: rgbd, xyz: [0.2, 0, 0.15], rpy: [0, 0.2, 0]}
+  - {type: lidar_2d, name: laser, xyz: [0.15, 0, 0.2]}
+  - {type: imu, name: imu, xyz: [0, 0, 0.02]}
+"""
+
+
+def test_a_four_sensor_page_fits_in_about_two_screens(tmp_path: Path) -> None:
+    """A robot of four sensors (camera, depth camera, 2D lidar, IMU) from `sensorkit new`:
+    with its checks folded, the page is about two 1400x900 screens; its tables give
+    lengths in mm and angles in degrees, a non-breaking space before the unit, and no
+    number in exponent form."""
+    from sensorkit.generate import new_package
+
+    spec = tmp_path / "robot.yaml"
+    spec.write_text(FOUR_SENSORS)
+    new_package(spec, tmp_path / "pkg")
+    out = tmp_path / "preview"
+    render_preview(tmp_path / "pkg" / "urdf" / "four_bot.urdf.xacro", out)
+    seen = _probe(_chromium(), out, tmp_path)
+    assert seen["sections"] == ["front_camera", "rgbd", "laser", "imu"]
+    assert seen["page_height"] <= 2.2 * 900, seen["page_height"]
+    assert all(0 < bottom <= 900 for _, bottom in seen["first_screen"]), seen["first_screen"]
+    assert seen["overlaps"] == [] and seen["open_details"] == 0 and all(seen["checks_tables"])
+    page = (out / "index.html").read_text()
+    tables = re.sub(r"<svg.*?</svg>|data:image/png;base64,[A-Za-z0-9+/=]+", "", page, flags=re.S)
+    assert re.search(r"\d\.?\d*e[-+]\d", tables) is None
+    assert "(250.0, 0.0, 180.0)\u00a0mm, (0.00, 0.00, 0.00)\u00b0" in html.unescape(tables)
+    assert re.search(r"\d mm|\d m\b", html.unescape(tables)) is None  # never a plain space

@@ -132,7 +132,8 @@ def test_the_depth_caption_states_the_percentiles_it_used(wall: Path) -> None:
     page = (wall / "index.html").read_text()
     start = page.index('data-figure="depth">')
     caption = page[page.index("<figcaption>", start) : page.index("</figcaption>", start)]
-    assert f"2nd and 98th percentiles, {p2:.3f} m and {p98:.3f} m" in caption, caption
+    said = f"2nd and 98th percentiles, {p2:.3f}\u00a0m and {p98:.3f}\u00a0m"  # units kept on
+    assert said in caption, caption
 
 
 def test_depth_colour_range_stays_within_near_and_far() -> None:

@@ -165,6 +165,13 @@ details summary h2{display:inline;border:0}
 """
 
 
+def _text(text: str) -> str:
+    """``text`` escaped, each number joined to its unit by a non-breaking space."""
+    from sensorkit.render.svg import glue_units
+
+    return html.escape(glue_units(text))
+
+
 def _img(path: Path, alt: str, width: int | None = None) -> str:
     data = base64.b64encode(path.read_bytes()).decode("ascii")
     size = f' width="{width}"' if width else ""
@@ -223,7 +230,9 @@ def _sensor_html(s: SensorPreview, base: Path) -> str:
         + "</table>"
     )
     if s.notes:
-        parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
+        parts.append(
+            "<ul class='meta'>" + "".join(f"<li>{_text(n)}</li>" for n in s.notes) + "</ul>"
+        )
     parts.append("</details></section>")
     return "\n".join(parts)
 
@@ -266,7 +275,7 @@ def _checks_html(s: SensorPreview) -> str:
     e = html.escape
     rows = "".join(
         f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_amount(c.value, c.unit)}</td>"
-        f"<td>{_amount(c.limit, c.unit)}</td><td>{e(c.message)}</td></tr>"
+        f"<td>{_amount(c.limit, c.unit)}</td><td>{_text(c.message)}</td></tr>"
         for c in s.checks
     )
     return f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
@@ -374,7 +383,7 @@ def _sensor_findings_html(s: SensorPreview) -> str:
     e = html.escape
     rows = "".join(
         f"<li>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
-        f"<span class='meta'>{e(f'{f.file}:{f.line}' if f.line else f.file or '')}</span> {e(f.message)}"
+        f"<span class='meta'>{e(f'{f.file}:{f.line}' if f.line else f.file or '')}</span> {_text(f.message)}"
         + (f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else "")
         + "</li>"
         for f in s.findings
@@ -395,7 +404,7 @@ def _rviz_html(s: SensorPreview) -> str:
     )
     return (
         f"<div class='imgs'><figure class='rviz' id='rviz-{e(s.name)}'>"
-        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{e(caption)}</figcaption></figure></div>"
+        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{_text(caption)}</figcaption></figure></div>"
     )
 
 
@@ -409,7 +418,7 @@ def _verdict_html(result: PreviewResult) -> str:
         if len(v.reasons) > len(shown)
         else ""
     )
-    reasons = "".join(f"<li>{e(r)}</li>" for r in shown) + more
+    reasons = "".join(f"<li>{_text(r)}</li>" for r in shown) + more
     return (
         f"<div id='verdict' class='verdict {kind}'>{e(v.text)}"
         + (f"<ul>{reasons}</ul>" if reasons and kind != "pass" else "")
@@ -433,8 +442,8 @@ def _findings_html(result: PreviewResult) -> str:
         fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
         rows.append(
             f"<li><details class='finding'><summary>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
-            f"{e(about)} <span class='meta'>{e(short)}</span> {e(f.message)}</summary>"
-            f"<div class='meta'>{e(where)}</div>{e(f.message)}{fix}</details></li>"
+            f"{e(about)} <span class='meta'>{e(short)}</span> {_text(f.message)}</summary>"
+            f"<div class='meta'>{e(where)}</div>{_text(f.message)}{fix}</details></li>"
         )
     return "<ul class='findings top-list'>" + "".join(rows) + "</ul>"
 
@@ -473,7 +482,7 @@ def write_index(result: PreviewResult) -> None:
         if "colour" not in s.info
     )
     joints = ", ".join(f"{e(k)}={v:g}" for k, v in result.joints.items()) or "all at zero"
-    notes = "".join(f"<li>{e(n)}</li>" for n in result.notes)
+    notes = "".join(f"<li>{_text(n)}</li>" for n in result.notes)
     page = f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sensorkit preview: {e(result.robot)}</title>
 <style>{_CSS}</style></head><body>

@@ -22,6 +22,7 @@ import numpy.typing as npt
 __all__ = [
     "Figure",
     "Svg",
+    "glue_units",
     "hex_colour",
     "label_box",
     "metres",
@@ -48,7 +49,7 @@ class Figure:
     def html(self) -> str:
         return (
             f'<figure class="picture" data-figure="{html.escape(self.key)}">{self.svg}'
-            f"<figcaption>{html.escape(self.caption)}</figcaption></figure>"
+            f"<figcaption>{html.escape(glue_units(self.caption))}</figcaption></figure>"
         )
 
 
@@ -74,6 +75,17 @@ _SHOWN: dict[str, tuple[float, str, int]] = {
     "px": (1.0, NBSP + "px", 2),
     "%": (1.0, NBSP + "%", 1),
 }
+
+
+_UNIT_AFTER_NUMBER = r"(\d) (mm|m|cm|px|deg|degrees|rad|s|ms|%)(?![\w])"
+
+
+def glue_units(text: str) -> str:
+    """``text`` with a non-breaking space between each number and the unit after it
+    (``2.75 m``, ``0.35 px``), so that a line never ends between them."""
+    import re
+
+    return re.sub(_UNIT_AFTER_NUMBER, "\\1" + NBSP + "\\2", text)
 
 
 def _fixed(v: float, decimals: int) -> str:
