@@ -492,10 +492,10 @@ def write_index(result: PreviewResult) -> None:
 &middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
 {f"<p class='warning' id='placement'>{e(result.placement)}</p>" if result.placement else ""}
 <div class="top"><div class="top-findings"><h2 id="findings">validate's findings</h2>
-{_findings_html(result)}</div>
-<div><h2>Overview</h2>{_overview_html(result)}</div></div>
-<div class="imgs"><table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table>
+{_findings_html(result)}
+<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table>
 {"".join(f.html() for f in result.figures if f.key == "closeup")}</div>
+<div><h2>Overview</h2>{_overview_html(result)}</div></div>
 {_pictures_html(result)}
 <h2>Sensors</h2>
 <div class="sensors">{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}</div>
