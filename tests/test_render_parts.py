@@ -770,3 +770,25 @@ def test_scene_markers_are_never_drawn_in_the_rviz_magenta() -> None:
         assert image[row, col].tolist() == list(MARKER_COLOUR)
     near_magenta = np.abs(image - np.array(MISMATCH)).sum(axis=2) < 60
     assert not near_magenta.any()
+
+
+def test_polygons_fill_what_they_enclose_and_clip_at_the_edges() -> None:
+    """Canvas.polygon (Pillow's scan conversion): a square fills its inside and nothing
+    beyond its edges; a concave shape leaves its notch empty; a polygon reaching far past
+    the canvas is clipped, not refused."""
+    c = Canvas(20, 20, (0, 0, 0))
+    c.polygon(np.array([[2.0, 2.0], [8.0, 2.0], [8.0, 8.0], [2.0, 8.0]]), (255, 0, 0))
+    red = c.image[:, :, 0] == 255
+    assert red[3:8, 3:8].all() and not red[:2].any() and not red[9:].any()
+    assert not red[:, :2].any() and not red[:, 9:].any()
+    u = Canvas(20, 20, (0, 0, 0))  # a U: the notch between its arms stays empty
+    u.polygon(
+        np.array([[2.0, 2], [6, 2], [6, 12], [12, 12], [12, 2], [16, 2], [16, 17], [2, 17]]),
+        (0, 255, 0),
+    )
+    green = u.image[:, :, 1] == 255
+    assert green[14, 4] and green[5, 4] and green[5, 14] and not green[5, 9]
+    far = Canvas(20, 20, (0, 0, 0))
+    far.polygon(np.array([[10.0, 10.0], [-500.0, 2000.0], [2000.0, 2000.0]]), (0, 0, 255))
+    blue = far.image[:, :, 2] == 255
+    assert blue[19, 10] and blue[12, 10] and not blue[5, 10]
