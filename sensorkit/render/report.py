@@ -154,7 +154,7 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .rviz{border-color:#e600c8 !important}
 .findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
 .sensors{display:grid;grid-template-columns:repeat(auto-fill,minmax(620px,1fr));gap:10px 18px}
-.sensors .imgs img{max-width:280px} .sensors figure.picture svg{max-width:330px !important;max-height:300px}
+.sensors .imgs img{max-width:280px} .sensors figure.rviz img{max-width:600px} .sensors figure.picture svg{max-width:330px !important;max-height:300px}
 figure[data-figure=closeup] svg{max-width:520px !important;max-height:280px} .sensors figcaption{max-width:330px}
 .top-list{list-style:none;padding-left:0} .top-list li{margin:2px 0}
 .finding summary,.verdict li{white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
