@@ -7,9 +7,11 @@ trigonometry, not with sensorkit's own helpers. Robots and scenes live in
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -411,13 +413,28 @@ def test_unreadable_robot_exits_2(tmp_path: Path) -> None:
 def test_importing_the_cli_does_not_import_pybullet() -> None:
     code = (
         "import sys, sensorkit.cli, sensorkit.render, sensorkit.render.preview;"
-        "bad = [m for m in ('pybullet', 'sensorkit.render.sim') if m in sys.modules];"
+        "bad = [m for m in ('pybullet', 'sensorkit.render.sim', 'PIL') if m in sys.modules];"
         "assert not bad, bad"
     )
     proc = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
     )
     assert proc.returncode == 0, proc.stderr
+
+
+def test_validate_does_not_import_pillow() -> None:
+    """Pillow is the preview's: ``sensorkit validate`` runs without loading it."""
+    proc = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "sensorkit", "validate", str(WALL_BOT)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert proc.returncode == 0, proc.stderr
+    imported = {line.split("|")[-1].strip() for line in proc.stderr.splitlines() if "|" in line}
+    assert "sensorkit.lint" in imported  # the check can see what validate imports
+    assert not {m for m in imported if m.split(".")[0] == "PIL" or m == "sensorkit.render.png"}
 
 
 def _chromium() -> str:
@@ -439,6 +456,18 @@ window.addEventListener("error", (e) => {
   const t = e.target;
   window.__seen.push(t && t.tagName ? "load-failed: " + (t.id || t.tagName) : "error: " + e.message);
 }, true);
+// Off-thread decodes do not hold Chromium's virtual time: wait for them in real time,
+// a few milliseconds of work between short timers (up to about 10 s).
+async function __settle(promises) {
+  let done = false;
+  const all = Promise.all(promises).then((v) => { done = true; return v; });
+  for (let k = 0; k < 2000 && !done; k++) {
+    let spin = 0;
+    for (let i = 0; i < 2e6; i++) spin += i;
+    await new Promise((r) => setTimeout(r, 1 + (spin & 0)));
+  }
+  return all;
+}
 async function __width(src) {
   const i = new Image();
   i.src = src;
@@ -451,7 +480,7 @@ window.addEventListener("load", async () => {
   const imgs = [...document.images].filter((i) => i !== control);
   const svg = [...document.querySelectorAll("image")].map(
     (i) => i.getAttribute("href") || i.getAttribute("xlink:href"));
-  const svgWidths = await Promise.all(svg.map(__width));
+  const svgWidths = await __settle(svg.map(__width));
   const verdict = document.getElementById("verdict");
   const overview = [...document.querySelectorAll("h2")].find((h) => h.textContent === "Overview");
   const out = document.createElement("pre");
@@ -469,6 +498,39 @@ window.addEventListener("load", async () => {
     verdict: verdict ? verdict.firstChild.textContent : null,
     verdict_class: verdict ? verdict.className : null,
     verdict_first: !!(verdict && overview && (verdict.compareDocumentPosition(overview) & 4)),
+    first_screen: ["verdict", "findings", "overview"].map((id) => {
+      const el = document.getElementById(id);
+      const next = id === "verdict" ? el : id === "overview"
+        ? document.querySelector('figure[data-figure="overview"]') : el && el.nextElementSibling;
+      return next ? [id, next.getBoundingClientRect().bottom + window.scrollY] : [id, null];
+    }),
+    window_height: window.innerHeight,
+    page_height: document.documentElement.scrollHeight,
+    open_details: document.querySelectorAll("details[open]").length,
+    checks_tables: [...document.querySelectorAll("section.sensor table")].map(
+      (t) => t.closest("details") !== null),
+    marker_fills: [...document.querySelectorAll('figure[data-figure="overview"] circle.marker')].map(
+      (c) => getComputedStyle(c).fill),
+    rviz_border: (() => { const f = document.querySelector("figure.rviz");
+      return f ? getComputedStyle(f).borderTopColor : null; })(),
+    key: [...document.querySelectorAll('figure[data-figure="overview"] text.key')].map(
+      (t) => [t.textContent, t.getAttribute("data-colour")]),
+    overview_ticks: [...document.querySelectorAll('figure[data-figure="overview"] text.tick')].map(
+      (t) => t.textContent),
+    frame_names: [...document.querySelectorAll('figure[data-figure="overview"] text.frame-name')].map(
+      (t) => t.textContent),
+    overlaps: [...document.querySelectorAll("svg")].flatMap((svg) => {
+      const boxes = [...svg.querySelectorAll("text")].filter((t) => t.textContent.trim())
+        .map((t) => [t.textContent, t.getBoundingClientRect()]);
+      const out = [];
+      for (let i = 0; i < boxes.length; i++) for (let j = i + 1; j < boxes.length; j++) {
+        const [a, p] = boxes[i], [b, q] = boxes[j];
+        const dx = Math.min(p.right, q.right) - Math.max(p.left, q.left);
+        const dy = Math.min(p.bottom, q.bottom) - Math.max(p.top, q.top);
+        if (dx > 0.5 && dy > 0.5) out.push([a, b]);
+      }
+      return out;
+    }),
     seen: window.__seen,
   });
   document.body.appendChild(out);
@@ -512,6 +574,7 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     assert seen["verdict_class"] == "verdict fail" and seen["verdict_first"]
     depths = [s for s in summary(mounts)["sensors"] if "depth" in s.get("pictures", {})]
     assert len(seen["colour_bars"]) == len(depths) and all(w > 0 for w in seen["colour_bars"])
+    _read_at_a_glance(seen)
 
     # the depth camera's colour bar, drawn with its ends at the range summary.json gives;
     # a correctly stamped robot gets no RViz view
@@ -525,6 +588,26 @@ def test_index_html_in_headless_chromium(wall: Path, mounts: Path, tmp_path: Pat
     assert ends == {"min": facts["colour_min_m"], "max": facts["colour_max_m"]}
     assert ends["min"] < 2.75 < ends["max"]  # the wall, 2.75 m from the lens, is inside the range
     assert all(w > 0 for _, _, w in seen["ticks"])  # the labels are laid out, not empty
+    assert seen["overlaps"] == [] and seen["marker_fills"], seen["overlaps"]
+    assert "rgb(230, 0, 200)" not in seen["marker_fills"]  # the scene's own spheres, too
+    assert all(0 < bottom <= 900 for _, bottom in seen["first_screen"]), seen["first_screen"]
+
+
+def _read_at_a_glance(seen: dict[str, Any]) -> None:
+    """The colour key, the overview's ticks and frame names, the first screen, labels
+    clear of each other, check tables folded away (what the probe measured)."""
+    rviz = "rgb(230, 0, 200)"  # the magenta of "where RViz will put it"
+    assert seen["rviz_border"] == rviz
+    assert seen["marker_fills"] and rviz not in seen["marker_fills"], seen["marker_fills"]
+    magenta = [text for text, colour in seen["key"] if colour == "#e600c8"]
+    assert len(seen["key"]) >= 6 and magenta == ["magenta: where RViz puts the data"]
+    assert {"-1 m", "0 m", "1 m"} <= set(seen["overview_ticks"]), seen["overview_ticks"]
+    assert any(n.startswith("body_cam: ") for n in seen["frame_names"]), seen["frame_names"]
+    for _what, bottom in seen["first_screen"]:  # verdict, findings and overview on screen one
+        assert bottom is not None and 0 < bottom <= 900, seen["first_screen"]
+    assert seen["overlaps"] == [], seen["overlaps"]
+    assert seen["open_details"] == 0 and seen["checks_tables"], seen["checks_tables"]
+    assert all(seen["checks_tables"])  # every table of checks and facts starts folded
 
 
 def _probe(browser: str, preview: Path, tmp_path: Path) -> dict[str, Any]:
@@ -545,6 +628,8 @@ def _probe(browser: str, preview: Path, tmp_path: Path) -> dict[str, Any]:
             "--no-sandbox",
             "--disable-gpu",
             "--virtual-time-budget=10000",
+            "--window-size=1400,900",
+            "--hide-scrollbars",
             "--dump-dom",
             probed.as_uri(),
         ],
@@ -647,6 +732,26 @@ def test_the_verdict_fails_at_or_above_fail_on_and_on_failed_checks() -> None:
     assert len(v.reasons) == 12
 
 
+def test_one_status_rule_for_checks_and_findings() -> None:
+    """An error finding counts as a failed check, a warning as a warned one, an info as
+    nothing: a sensor is never shown "ok" or "warn" beside an error."""
+    from sensorkit.render.gate import status_of
+    from sensorkit.render.result import SensorPreview
+
+    ok, warned = Check("depth", "ok", ""), Check("self_occlusion", "warn", "2% hit")
+    error, warning = _f("SK502", Severity.ERROR), _f("SK407", Severity.WARNING)
+    info = _f("SK900", Severity.INFO)
+    assert status_of([ok]) == "ok" and status_of([]) == "skipped"
+    assert status_of([ok], [error]) == "fail" and status_of([warned], [error]) == "fail"
+    assert status_of([ok], [warning]) == "warn" and status_of([ok], [info]) == "ok"
+    s = SensorPreview("cam", "cam", "camera", "camera", "cam_link", checks=[ok], findings=[error])
+    assert s.status == "fail"
+    s.skipped = "no image"
+    assert s.status == "fail"  # not rendered, but its error still shows
+    s.findings = [info]
+    assert s.status == "skipped"
+
+
 def _verdict_on_page(page: str) -> str:
     import re
 
@@ -668,6 +773,10 @@ def test_a_mis_stamped_camera_fails_the_preview_and_the_header_says_why(tmp_path
     assert data["verdict"]["status"] == "fail" and data["verdict"]["findings"]["error"] == 1
     cam = sensor(data, "front_camera")
     assert [f["rule"] for f in cam["findings"]] == ["SK502"]
+    # one status rule: a sensor with an error is "fail" everywhere, never "ok · 1 error"
+    assert cam["status"] == "fail" and data["status"] == "fail"
+    shown = re.findall(r'<span class="(\w+)">\1</span> &middot; <span class="error">', page)
+    assert shown and set(shown) == {"fail"}, shown
     assert page.index("id='findings-front_camera'") < page.index("rgb.png")  # top of its section
     # --fail-on never: the same page, not gated
     result = CliRunner().invoke(
@@ -735,3 +844,60 @@ def test_clean_robots_pass_the_gate_in_the_default_room(robot: Path, tmp_path: P
         assert ranges["status"] == "ok", (s["name"], ranges["message"])
     if robot != ROOT / "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro":
         assert lidars, "a lidar robot without a lidar"
+
+
+def test_a_robot_with_parts_below_the_ground_is_told_so(wall: Path, tmp_path: Path) -> None:
+    """Placed with its root link at z = 0, a base whose box reaches 100 mm below the
+    ground gets one line at the top of the page (and in summary.json); a robot standing
+    above the ground gets none."""
+    urdf = tmp_path / "sunk.urdf"
+    urdf.write_text(
+        '<robot name="sunk"><link name="base_link"><visual><geometry><box size="0.4 0.4 0.2"/>'
+        '</geometry></visual><collision><geometry><box size="0.4 0.4 0.2"/></geometry>'
+        "</collision></link></robot>"
+    )
+    render_preview(urdf, tmp_path / "out")
+    line = summary(tmp_path / "out")["placement"]
+    assert line.startswith("The robot is placed with its root link at z = 0")
+    assert "100\u00a0mm below the ground (lowest: 'base_link')" in line, line
+    page = (tmp_path / "out" / "index.html").read_text()
+    assert f"<p class='warning' id='placement'>{html.escape(line)}</p>" in page
+    assert page.index("id='verdict'") < page.index("id='placement'") < page.index('id="findings"')
+    assert summary(wall)["placement"] is None
+    assert "id='placement'" not in (wall / "index.html").read_text()
+
+
+FOUR_SENSORS = """\
+name: four_bot
+sim: gz
+gz_version: harmonic
+sensors:
+  - {type: camera, name: front_camera, xyz: [0.25, 0, 0.1]}
+  - {type: depth_camera, name: rgbd, xyz: [0.2, 0, 0.15], rpy: [0, 0.2, 0]}
+  - {type: lidar_2d, name: laser, xyz: [0.15, 0, 0.2]}
+  - {type: imu, name: imu, xyz: [0, 0, 0.02]}
+"""
+
+
+def test_a_four_sensor_page_fits_in_about_two_screens(tmp_path: Path) -> None:
+    """A robot of four sensors (camera, depth camera, 2D lidar, IMU) from `sensorkit new`:
+    with its checks folded, the page is about two 1400x900 screens; its tables give
+    lengths in mm and angles in degrees, a non-breaking space before the unit, and no
+    number in exponent form."""
+    from sensorkit.generate import new_package
+
+    spec = tmp_path / "robot.yaml"
+    spec.write_text(FOUR_SENSORS)
+    new_package(spec, tmp_path / "pkg")
+    out = tmp_path / "preview"
+    render_preview(tmp_path / "pkg" / "urdf" / "four_bot.urdf.xacro", out)
+    seen = _probe(_chromium(), out, tmp_path)
+    assert seen["sections"] == ["front_camera", "rgbd", "laser", "imu"]
+    assert seen["page_height"] <= 2.1 * 900, seen["page_height"]  # 1718 px when written
+    assert all(0 < bottom <= 900 for _, bottom in seen["first_screen"]), seen["first_screen"]
+    assert seen["overlaps"] == [] and seen["open_details"] == 0 and all(seen["checks_tables"])
+    page = (out / "index.html").read_text()
+    tables = re.sub(r"<svg.*?</svg>|data:image/png;base64,[A-Za-z0-9+/=]+", "", page, flags=re.S)
+    assert re.search(r"\d\.?\d*e[-+]\d", tables) is None
+    assert "(250.0, 0.0, 180.0)\u00a0mm, (0.00, 0.00, 0.00)\u00b0" in html.unescape(tables)
+    assert re.search(r"\d mm|\d m\b", html.unescape(tables)) is None  # never a plain space

@@ -66,6 +66,40 @@ def test_png_chunks_carry_valid_crcs() -> None:
         pos += 12 + length
 
 
+def _hand_built_png(rows: list[bytes], width: int, height: int, colour: int) -> bytes:
+    """A PNG assembled from zlib and struct, each row led by its own filter byte."""
+    import struct
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (
+            struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        )
+
+    header = struct.pack(">IIBBBBB", width, height, 8, colour, 0, 0, 0)
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", header)
+        + chunk(b"IDAT", zlib.compress(b"".join(rows)))
+        + chunk(b"IEND", b"")
+    )
+
+
+def test_read_png_decodes_every_filter_of_a_file_it_did_not_write() -> None:
+    """A 3 x 2 RGB file built by hand: row 0 with Sub (1), row 1 with Up (2); a grey
+    2 x 2 one with Average (3) and Paeth (4). The pixels are worked out here."""
+    sub = bytes([1, 10, 20, 30, 5, 5, 5, 1, 2, 3])  # 10,20,30 then +5 then +1,2,3
+    up = bytes([2, 1, 1, 1, 0, 0, 0, 250, 0, 0])  # the row above, plus these
+    rgb = read_png(_hand_built_png([sub, up], 3, 2, 2))
+    assert rgb.tolist() == [
+        [[10, 20, 30], [15, 25, 35], [16, 27, 38]],
+        [[11, 21, 31], [15, 25, 35], [10, 27, 38]],  # 16 + 250 wraps to 10
+    ]
+    avg = bytes([3, 100, 10])  # left 100, then 10 + (100 + 0) // 2
+    paeth = bytes([4, 1, 1])  # above 100 -> 101; then Paeth(101, 60, 100) = 60 -> 61
+    grey = read_png(_hand_built_png([avg, paeth], 2, 2, 0))
+    assert grey[:, :, 0].tolist() == [[100, 60], [101, 61]]
+
+
 def test_png_refuses_what_it_cannot_write() -> None:
     with pytest.raises(ValueError, match="uint8"):
         encode_png(np.zeros((2, 2), dtype=np.float32))
@@ -692,3 +726,69 @@ def test_intact_png_tells_a_whole_png_from_a_damaged_one() -> None:
     flipped = bytearray(data)
     flipped[40] ^= 1  # a pixel byte in IDAT: its CRC no longer holds
     assert not intact_png(bytes(flipped), 4, 6)
+
+
+def test_a_wall_shows_one_copy_of_its_texture() -> None:
+    """No seam and no repeat on a wall of the default room: every face's texture
+    coordinates stay within one copy (0..1), so a camera facing a wall never sees two
+    halves of one pattern; the floor's tiles still repeat every metre."""
+    from sensorkit.render.scene import box_mesh, default_scene
+
+    for reach in (0.5, 3.0, 9.0):
+        scene = default_scene(reach, textured=False)
+        walls = [s for s in scene.shapes if s.role in ("wall", "crate")]
+        assert len(walls) == 8
+        for wall in walls:
+            _, _, uvs, _ = box_mesh(tuple(wall.size), wall.uv_per_m)  # type: ignore[arg-type]
+            uv = np.array(uvs)
+            assert uv.min() >= -1e-9 and uv.max() <= 1 + 1e-9, (
+                reach,
+                wall.name,
+                uv.min(),
+                uv.max(),
+            )
+        ground = next(s for s in scene.shapes if s.role == "ground")
+        assert ground.uv_per_m == 1.0
+
+
+def test_scene_markers_are_never_drawn_in_the_rviz_magenta() -> None:
+    """Magenta is kept for where RViz will put data: the default room's marker spheres
+    render amber, and the overview draws them amber, with no magenta pixel when no data
+    is misplaced."""
+    from sensorkit.render.overview import MARKER_COLOUR, MISMATCH, draw_overview, overview_px
+    from sensorkit.render.scene import default_scene
+
+    scene = default_scene(0.5, textured=False)
+    assert scene.markers
+    for marker in scene.markers:
+        rgb = np.array(marker.rgba[:3]) * 255
+        assert np.abs(rgb - np.array(MISMATCH)).max() > 100, marker.rgba
+    half = scene.half_extent + 0.3
+    image = draw_overview(scene.shapes, [], [], [], half).astype(np.int64)
+    for marker in scene.markers:
+        col, row = np.rint(overview_px(marker.centre[:2], half, image.shape[1])[0]).astype(int)
+        assert image[row, col].tolist() == list(MARKER_COLOUR)
+    near_magenta = np.abs(image - np.array(MISMATCH)).sum(axis=2) < 60
+    assert not near_magenta.any()
+
+
+def test_polygons_fill_what_they_enclose_and_clip_at_the_edges() -> None:
+    """Canvas.polygon (Pillow's scan conversion): a square fills its inside and nothing
+    beyond its edges; a concave shape leaves its notch empty; a polygon reaching far past
+    the canvas is clipped, not refused."""
+    c = Canvas(20, 20, (0, 0, 0))
+    c.polygon(np.array([[2.0, 2.0], [8.0, 2.0], [8.0, 8.0], [2.0, 8.0]]), (255, 0, 0))
+    red = c.image[:, :, 0] == 255
+    assert red[3:8, 3:8].all() and not red[:2].any() and not red[9:].any()
+    assert not red[:, :2].any() and not red[:, 9:].any()
+    u = Canvas(20, 20, (0, 0, 0))  # a U: the notch between its arms stays empty
+    u.polygon(
+        np.array([[2.0, 2], [6, 2], [6, 12], [12, 12], [12, 2], [16, 2], [16, 17], [2, 17]]),
+        (0, 255, 0),
+    )
+    green = u.image[:, :, 1] == 255
+    assert green[14, 4] and green[5, 4] and green[5, 14] and not green[5, 9]
+    far = Canvas(20, 20, (0, 0, 0))
+    far.polygon(np.array([[10.0, 10.0], [-500.0, 2000.0], [2000.0, 2000.0]]), (0, 0, 255))
+    blue = far.image[:, :, 2] == 255
+    assert blue[19, 10] and blue[12, 10] and not blue[5, 10]

@@ -120,6 +120,22 @@ def test_depth_colour_bar_spans_the_scene_in_metres(wall: Path) -> None:
     assert decoded == pytest.approx(2.75, abs=(hi - lo) / 40)
 
 
+def test_the_depth_caption_states_the_percentiles_it_used(wall: Path) -> None:
+    """The caption's 2nd and 98th percentiles are those of depth.npy's valid depths (numpy
+    computes them here), and lie within the colour range they were widened to."""
+    facts = pictures(wall, "depth_cam")["depth"]
+    depth = np.load(wall / "depth_cam" / "depth.npy").astype(np.float64)
+    p2, p98 = np.percentile(depth[np.isfinite(depth)], [2, 98])
+    assert facts["p2_m"] == pytest.approx(p2, abs=1e-4)
+    assert facts["p98_m"] == pytest.approx(p98, abs=1e-4)
+    assert facts["colour_min_m"] <= facts["p2_m"] <= facts["p98_m"] <= facts["colour_max_m"]
+    page = (wall / "index.html").read_text()
+    start = page.index('data-figure="depth">')
+    caption = page[page.index("<figcaption>", start) : page.index("</figcaption>", start)]
+    said = f"2nd and 98th percentiles, {p2:.3f}\u00a0m and {p98:.3f}\u00a0m"  # units kept on
+    assert said in caption, caption
+
+
 def test_depth_colour_range_stays_within_near_and_far() -> None:
     rng = np.random.default_rng(4)
     depth = rng.uniform(0.3, 9.0, size=(40, 50))
@@ -165,6 +181,46 @@ def test_ring_labels_sit_on_their_rings_at_their_radii(wall: Path) -> None:
     column = png[:, int(c)]
     blue = np.flatnonzero(np.abs(column - [31, 119, 180]).sum(axis=1) == 0)
     assert (c - blue.mean()) / scale == pytest.approx(2.9, abs=2 / scale)
+
+
+def _labels_over_returns(svg: ET.Element, view: Any, returns: np.ndarray, k: float) -> list[str]:
+    """The ring labels whose box (10 px text, 6.5 px a character) covers a return."""
+    px = view.px(returns) * k
+    covered = []
+    for t in texts(svg, "ring"):
+        x, y = float(t.get("x", "")), float(t.get("y", ""))
+        w = len(t.text or "") * 6.5
+        under = (px[:, 0] >= x - 1) & (px[:, 0] <= x + w + 1) & (px[:, 1] >= y - 12)
+        if (under & (px[:, 1] <= y + 3)).any():
+            covered.append(t.text or "")
+    return covered
+
+
+def test_ring_labels_do_not_cover_the_returns() -> None:
+    """A wall crossing the forward-right diagonal, where the 2 m label would sit: the
+    label moves along its ring to where no return lies under it (and stays on the ring)."""
+    from sensorkit.render.overview import scan_view
+    from sensorkit.render.pictures import scan_figure
+
+    t = np.linspace(-3.0, 3.0, 600)
+    wall = np.stack([np.full_like(t, 1.6), t], axis=1)  # 1.6 m ahead: crosses ring 2 at 37 deg
+    diagonal = np.stack([np.linspace(0.3, 3.0, 300), -np.linspace(0.3, 3.0, 300)], axis=1)
+    returns = np.vstack([wall, diagonal])  # and a row of returns along the diagonal itself
+    points = np.hstack([returns, np.zeros((len(returns), 1))])
+    view = scan_view(points, 10.0)
+    png = encode_png(np.full((view.size, view.size, 3), 250, dtype=np.uint8))
+    k = 480 / view.size
+    bare = ET.fromstring(scan_figure(png, view, [], 1, 0).svg)
+    assert _labels_over_returns(bare, view, returns, k)  # where they were: on the returns
+    svg = ET.fromstring(scan_figure(png, view, [], 1, 0, returns=returns).svg)
+    labels = texts(svg, "ring")
+    assert len(labels) >= 3 and _labels_over_returns(svg, view, returns, k) == []
+    c = view.centre * k
+    for label in labels:  # each still on its own ring
+        x, y = float(label.get("x", "")) - 2, float(label.get("y", "")) + 2
+        assert math.hypot(x - c, y - c) == pytest.approx(
+            metres(label.text) * view.scale * k, abs=0.05
+        )
 
 
 def test_beams_hidden_by_the_mast_are_a_shaded_sector(
@@ -304,7 +360,9 @@ def test_imu_triad_points_along_the_imu_axes_and_shows_the_stamped_frame(imu: Pa
     check = texts(svg, "frame-check")
     assert check[0].text == "frame check: warn"
     data = next(s for s in summary(imu)["sensors"] if s["name"] == "imu")
-    assert data["status"] == "warn" and not data["skipped"]
+    # its checks warn and validate finds an error (SK504): one rule, the worse of the two
+    assert data["status"] == "fail" and not data["skipped"]
+    assert [f["rule"] for f in data["findings"]] == ["SK504"]
     assert {c["name"]: c["status"] for c in data["checks"]} == {
         "render_pose": "ok",
         "published_frame": "warn",
@@ -315,8 +373,9 @@ def test_an_unrendered_sensor_says_so_once(imu: Path) -> None:
     page = (imu / "index.html").read_text()
     assert "Not rendered: only cameras and lidars are" in page
     assert "not rendered: not rendered" not in page.lower()
-    # the overview's table gives the IMU the status of its checks, not "skipped"
-    assert "<a href='#imu'>imu</a></td><td>imu</td><td><span class=\"warn\">" in page
+    # the overview's table gives the IMU the status of its checks and findings (a warned
+    # check and an SK504 error: fail), not "skipped"
+    assert "<a href='#imu'>imu</a></td><td>imu</td><td><span class=\"fail\">" in page
 
 
 # ---- the robot close up ------------------------------------------------------------------------
@@ -387,3 +446,62 @@ def test_stereo_pair_side_by_side_with_its_baseline(
     for image, eye in ((left, "left"), (right, "right")):
         data = base64.b64decode(image.get("href", "").split(",", 1)[1])
         assert data == (out / "stereo" / eye / "rgb.png").read_bytes()
+
+
+def test_values_read_in_mm_and_degrees_with_fixed_decimals() -> None:
+    """No ``2.34773e-06 m``: lengths in mm, angles in degrees, a fixed number of decimals,
+    and a non-breaking space between number and unit so the unit never wraps alone."""
+    from sensorkit.render.svg import quantity, vector
+
+    nbsp = "\u00a0"
+    assert quantity(2.34773e-06, "m") == f"0.0{nbsp}mm"
+    assert quantity(0.25, "m") == f"250.0{nbsp}mm"
+    assert quantity(-1e-9, "m") == f"0.0{nbsp}mm"  # never "-0.0"
+    assert quantity(math.radians(11.5), "rad") == "11.50\u00b0"
+    assert quantity(0.123456, "px") == f"0.12{nbsp}px"
+    assert quantity(0.5, "deg") == "0.50\u00b0"
+    assert quantity(0.00436, "rad", 3) == "0.250\u00b0"
+    assert vector([0.25, 0, 0.1], "m") == f"(250.0, 0.0, 100.0){nbsp}mm"
+    assert vector([0, math.pi / 2, 0], "rad") == "(0.00, 90.00, 0.00)\u00b0"
+
+
+def _text_boxes(svg: ET.Element) -> list[tuple[str, tuple[float, float, float, float]]]:
+    from sensorkit.render.svg import label_box
+
+    out = []
+    for t in svg.iter(f"{SVG}text"):
+        size = float(t.get("font-size", "11"))
+        anchor = t.get("text-anchor", "start")
+        bold = t.get("font-weight") == "bold"
+        box = label_box(
+            float(t.get("x", "")), float(t.get("y", "")), t.text or "", size, anchor, bold=bold
+        )
+        out.append((t.text or "", box))
+    return out
+
+
+def _overlapping(svg: ET.Element) -> list[tuple[str, str]]:
+    boxes = _text_boxes(svg)
+    return [
+        (a, b)
+        for i, (a, p) in enumerate(boxes)
+        for b, q in boxes[i + 1 :]
+        if min(p[2], q[2]) > max(p[0], q[0]) and min(p[3], q[3]) > max(p[1], q[1])
+    ]
+
+
+@pytest.mark.parametrize("stamped", [None, "same", "turned"])
+def test_imu_axis_labels_never_overlap(stamped: str | None) -> None:
+    """The IMU's x, y, z, the world's and the stamped frame's names: where axes point the
+    same way (an IMU aligned with the world, a stamped frame equal to its own) the labels
+    move apart instead of printing over one another."""
+    from sensorkit.render.mount_pictures import imu_figure
+
+    R = np.eye(3)
+    turned = _rpy(0.0, 0.0, 0.1)
+    R_stamped = None if stamped is None else R if stamped == "same" else turned
+    fig = imu_figure(R, R_stamped, "base_link", "warn", "turned")
+    svg = ET.fromstring(fig.svg)
+    names = [text for text, _ in _text_boxes(svg)]
+    assert {"x", "y", "z", "world x", "world y", "world z"} <= set(names)
+    assert _overlapping(svg) == []

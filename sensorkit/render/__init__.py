@@ -11,7 +11,9 @@ here or in forked processes), ``session`` (what the jobs share), ``camera_job`` 
 (validate, the overview, the files), ``sim`` (pybullet), ``camera`` and ``lidar``
 (sensor geometry and checks), ``scene`` (shapes with exact geometry), ``poses``
 (kinematics at given joints), ``urdf_out`` (the URDF pybullet loads), ``overview`` /
-``raster`` / ``png`` (pictures), ``svg`` (the labelled figures' SVG), ``pictures``
+``raster`` / ``png`` (pictures; PNG files through Pillow, imported when a picture is
+written or read), ``overview_figure`` (the overview's ticks, frame names and colour key),
+``svg`` (the labelled figures' SVG), ``pictures``
 (depth and scans, labelled; the side view), ``mount_pictures`` (IMU axes, the robot
 close up, stereo pairs), ``result`` (what a preview gives back), ``report``
 (summary.json, index.html).

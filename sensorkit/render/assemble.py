@@ -23,10 +23,11 @@ if TYPE_CHECKING:
     from sensorkit.base.findings import Finding
     from sensorkit.model import Loaded
     from sensorkit.render.overview import SensorDrawing
+    from sensorkit.render.overview_figure import FrameLabel
     from sensorkit.render.scene import Shape
     from sensorkit.render.svg import Figure
 
-__all__ = ["run_validate", "share_findings", "write_preview"]
+__all__ = ["frame_labels", "run_validate", "share_findings", "write_preview"]
 
 
 def run_validate(
@@ -79,6 +80,7 @@ def write_preview(
     robot's pictures, summary.json and index.html, into ``result.out_dir``; the seconds
     taken since ``started``."""
     from sensorkit.render.overview import draw_overview
+    from sensorkit.render.overview_figure import overview_figure
     from sensorkit.render.png import write_png
     from sensorkit.render.report import write_index, write_summary
 
@@ -87,13 +89,35 @@ def write_preview(
     half = max(run.scene.half_extent, reach + 0.5) + 0.3
     overview = draw_overview(run.scene.shapes, robot_shapes, robot_boxes, drawings, half)
     result.files["overview"] = stage / "overview.png"
-    write_png(result.files["overview"], overview)
+    png = write_png(result.files["overview"], overview)
+    result.figures.append(
+        overview_figure(
+            png, overview.shape[1], half, frame_labels(result.sensors), run.scene.markers, drawings
+        )
+    )
     result.figures += _robot_figures(run, result.sensors, robot_boxes, robot_shapes, result.notes)
     result.seconds = time.perf_counter() - started
     result.files["summary"] = stage / "summary.json"
     result.files["index"] = stage / "index.html"
     write_summary(result)
     write_index(result)
+
+
+def frame_labels(previews: list[SensorPreview]) -> list[FrameLabel]:
+    """Each placed sensor's name, the frame its data is stamped with (its link when it
+    publishes nothing), its colour and where it is, for the overview."""
+    from sensorkit.render.overview_figure import FrameLabel
+
+    out = []
+    for p in previews:
+        frames = p.info.get("frames", {})
+        pose = frames.get("render_pose")
+        if pose is None:
+            continue
+        frame = frames.get("published_frame") or p.link or "?"
+        origin = np.array(pose["matrix"], dtype=np.float64)[:3, 3]
+        out.append(FrameLabel(p.name, str(frame), p.info.get("colour", "#555555"), origin))
+    return out
 
 
 def _robot_figures(

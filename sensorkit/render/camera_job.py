@@ -100,7 +100,12 @@ def _write_depth(
     depth.png, labelled."""
     from sensorkit.describe.published import depth_range
     from sensorkit.render._files import save_npy
-    from sensorkit.render.pictures import at_far_clip, depth_colour_range, depth_figure
+    from sensorkit.render.pictures import (
+        at_far_clip,
+        depth_colour_range,
+        depth_figure,
+        depth_percentiles,
+    )
     from sensorkit.render.png import write_png
     from sensorkit.render.raster import colourise_depth
 
@@ -113,9 +118,10 @@ def _write_depth(
     save_npy(out.files["depth"], published_depth.astype(np.float32))
     out.files["depth_png"] = folder / "depth.png"
     shown_depth = np.where(at_far_clip(published_depth, far), np.inf, published_depth)
-    lo, hi = depth_colour_range(shown_depth, near, far)
+    used = depth_percentiles(shown_depth, far)
+    lo, hi = depth_colour_range(shown_depth, near, far, used)
     png = write_png(out.files["depth_png"], colourise_depth(shown_depth, lo=lo, hi=hi))
-    out.add_figure(depth_figure(png, rc.width, rc.height, lo, hi, near, far))
+    out.add_figure(depth_figure(png, rc.width, rc.height, lo, hi, near, far, percentiles=used))
 
 
 def _write_camera_info(

@@ -10,6 +10,10 @@ robot) unless the gate is off.
 The verdict's text is what a CI log and the page's header show first, e.g.
 ``FAIL: 1 error (SK502 front_camera), 1 failed check (bad_cx_cam reprojection)``, and
 its reasons say each in full, one a line.
+
+One rule gives a status (``ok``, ``warn``, ``fail``, ``skipped``) to a sensor and to the
+whole preview, from checks and findings alike (``status_of``): an error finding counts
+as a failed check, a warning as a warned one. A sensor shown "ok" never carries an error.
 """
 
 from __future__ import annotations
@@ -29,10 +33,13 @@ __all__ = [
     "fail_on_label",
     "found_text",
     "sensor_findings",
+    "status_of",
     "verdict",
 ]
 
 CHECK_SEVERITY = {"fail": Severity.ERROR, "warn": Severity.WARNING}
+FINDING_STATUS = {Severity.ERROR: "fail", Severity.WARNING: "warn"}  # and the reverse
+STATUS_ORDER = {"skipped": 0, "ok": 1, "warn": 2, "fail": 3}
 NAMED = 3  # findings or checks named in the verdict's one line
 MESSAGE_CHARS = 300  # of a finding's message in the reasons
 
@@ -158,6 +165,15 @@ def verdict(
     else:
         out.text = f"PASS: no finding or check at or above {fail_on.label} ({out.counts_text})"
     return out
+
+
+def status_of(checks: Sequence[Check], findings: Sequence[Finding] = ()) -> str:
+    """The status of a sensor (or the preview) with these ``checks`` and validate's
+    ``findings``: the most severe of the checks' statuses and the findings' (an error is
+    ``fail``, a warning ``warn``, an info nothing); ``skipped`` with neither."""
+    statuses = [c.status for c in checks]
+    statuses += [FINDING_STATUS[f.severity] for f in findings if f.severity in FINDING_STATUS]
+    return max(statuses, key=STATUS_ORDER.__getitem__, default="skipped")
 
 
 def found_text(findings: Sequence[Finding]) -> str:

@@ -142,7 +142,8 @@ def _lidar_figures(
 
     beams = scan.beams
     V = beams.shape[0]
-    out.add_figure(scan_figure(scan_png, view, sectors, V, int(self_hit.sum())))
+    returns = scan.points.reshape(-1, 3)[:, :2].astype(np.float64)
+    out.add_figure(scan_figure(scan_png, view, sectors, V, int(self_hit.sum()), returns=returns))
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(scan.rotation[2, 2])))))
     if (V <= 1 and tilt <= 1.0) or out.directory is None:
         return

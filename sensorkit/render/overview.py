@@ -27,6 +27,7 @@ __all__ = [
     "SensorDrawing",
     "draw_overview",
     "draw_scan",
+    "overview_px",
     "row_palette",
     "scan_colours",
     "scan_view",
@@ -43,7 +44,8 @@ PALETTE: list[tuple[int, int, int]] = [
     (23, 190, 207),
     (188, 189, 34),
 ]
-MISMATCH = (230, 0, 200)
+MISMATCH = (230, 0, 200)  # kept for "where RViz will put it" (sensorkit.render.rviz)
+MARKER_COLOUR = (230, 170, 0)  # the scene's marker spheres: amber, never magenta
 
 
 @dataclass
@@ -78,6 +80,14 @@ class _View:
         )
 
 
+def overview_px(xy: FloatArray, half: float, size: float) -> FloatArray:
+    """World (x, y) rows to (column, row) in an overview ``size`` px square, ``half`` m
+    from its centre to each edge (as ``draw_overview`` draws)."""
+    a = np.atleast_2d(np.asarray(xy, dtype=np.float64))
+    k = size / (2.0 * half)
+    return np.stack([(a[:, 0] + half) * k, (half - a[:, 1]) * k], axis=1)
+
+
 def draw_overview(
     scene_shapes: list[Shape],
     robot_shapes: list[Shape],
@@ -109,7 +119,7 @@ def draw_overview(
         canvas.polygon(hull, fill, (120, 110, 100))
     for radius in sorted({m.size[0] for m in markers}):
         same = np.array([m.centre[:2] for m in markers if m.size[0] == radius])
-        canvas.points(view.px(same), (240, 120, 220), radius=max(1.0, radius * view.scale))
+        canvas.points(view.px(same), MARKER_COLOUR, radius=max(1.0, radius * view.scale))
     for s in sensors:  # beams first, faint, so that the robot and the axes stay visible
         if s.hits is not None and len(s.hits):
             hits = take_rows(s.hits, finite_rows(s.hits))

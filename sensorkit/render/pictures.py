@@ -37,6 +37,7 @@ __all__ = [
     "at_far_clip",
     "depth_colour_range",
     "depth_figure",
+    "depth_percentiles",
     "draw_side",
     "occluded_sectors",
     "scan_figure",
@@ -59,18 +60,31 @@ def at_far_clip(depth: npt.NDArray[np.floating], far: float) -> npt.NDArray[np.b
     return out
 
 
-def depth_colour_range(
-    depth: npt.NDArray[np.floating], near: float, far: float
-) -> tuple[float, float]:
-    """The depths the colour map spans: the 2nd to 98th percentile of the finite depths
-    off the far clip plane (so that sky and a few far pixels do not wash the scene out),
-    widened to round values (a tenth of the span, 1-2-5) and kept within ``near``..``far``."""
+def depth_percentiles(depth: npt.NDArray[np.floating], far: float) -> tuple[float, float] | None:
+    """The 2nd and 98th percentiles of the finite depths off the far clip plane, which
+    ``depth_colour_range`` widens (None: no such depth)."""
     values = np.asarray(depth, dtype=np.float64)
     values = values[np.isfinite(values) & ~at_far_clip(values, far)]
     if values.size == 0:
+        return None
+    return percentile(values, 2.0), percentile(values, 98.0)
+
+
+def depth_colour_range(
+    depth: npt.NDArray[np.floating],
+    near: float,
+    far: float,
+    used: tuple[float, float] | None = None,
+) -> tuple[float, float]:
+    """The depths the colour map spans: the 2nd to 98th percentile of the finite depths
+    off the far clip plane (so that sky and a few far pixels do not wash the scene out),
+    widened to round values (a tenth of the span, 1-2-5) and kept within ``near``..``far``
+    (``used``: those percentiles, when ``depth_percentiles`` already gave them)."""
+    used = used if used is not None else depth_percentiles(depth, far)
+    if used is None:
         hi = far if math.isfinite(far) else near + 1.0
         return float(near), float(hi)
-    lo, hi = percentile(values, 2.0), percentile(values, 98.0)
+    lo, hi = used
     step = nice_step(hi - lo, 10) if hi > lo else nice_step(max(abs(hi), 1e-3), 10)
     lo = math.floor(lo / step + 1e-9) * step
     hi = math.ceil(hi / step - 1e-9) * step
@@ -78,6 +92,8 @@ def depth_colour_range(
         hi = lo + step
     lo, hi = max(lo, near), min(hi, far)
     if hi <= lo:  # near/far closer than one step
+        values = np.asarray(depth, dtype=np.float64)
+        values = values[np.isfinite(values) & ~at_far_clip(values, far)]
         lo, hi = float(values.min()), float(values.max()) + 1e-6
     return round(lo, 9), round(hi, 9)
 
@@ -92,9 +108,11 @@ def depth_figure(
     far: float,
     *,
     display: int = 480,
+    percentiles: tuple[float, float] | None = None,
 ) -> Figure:
     """depth.png with a vertical colour bar from ``lo`` (bottom, warm) to ``hi`` (top,
-    dark blue), ticks in metres, and swatches for +inf and -inf."""
+    dark blue), ticks in metres, and swatches for +inf and -inf; the caption gives the
+    ``percentiles`` (2nd, 98th) that ``lo`` and ``hi`` were widened from."""
     scale = min(display / width, 360 / height, 4.0)
     w, h = width * scale, height * scale
     bar_x, bar_w = w + 16, 16
@@ -138,16 +156,63 @@ def depth_figure(
     svg.text(14, legend_y, f"nothing within {metres(far)} (+inf, or the far clip plane)", size=10)
     svg.add("rect", x=0, y=legend_y + 5, width=10, height=10, fill="#000")
     svg.text(14, legend_y + 14, f"nearer than {metres(near)} (-inf)", size=10)
-    facts = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
+    facts: dict[str, Any] = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
+    if percentiles is not None:
+        p2, p98 = percentiles
+        facts.update(p2_m=p2, p98_m=p98)
+        used = (
+            f"the valid depths' 2nd and 98th percentiles, {p2:.3f} m and {p98:.3f} m, "
+            "widened to round values within the clip range"
+        )
+    else:
+        used = "no valid depth: the clip range"
     caption = (
         f"depth.png: metres along the optical axis, {metres(lo)} (yellow) to {metres(hi)} "
-        "(dark blue), the 2nd to 98th percentile of the valid depths; nearer and further "
-        "pixels take the end colours"
+        f"(dark blue): {used}; nearer and further pixels take the end colours"
     )
     return Figure("depth", caption, str(svg), facts)
 
 
 # ---- lidar from above ----------------------------------------------------------------------
+def _return_pixels(
+    view: ScanView, returns: FloatArray | None, k: float, display: int
+) -> npt.NDArray[np.bool_]:
+    """The figure's pixels (``display`` square) a return is drawn on, and their
+    neighbours: what a ring's label must not cover."""
+    taken = np.zeros((display + 1, display + 1), dtype=bool)
+    if returns is None or not len(returns):
+        return taken
+    xy = np.asarray(returns, dtype=np.float64)[:, :2]
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    px = np.rint(view.px(xy) * k).astype(np.int64)
+    for dx in (-2, -1, 0, 1, 2):
+        for dy in (-2, -1, 0, 1, 2):
+            cols, rows = px[:, 0] + dx, px[:, 1] + dy
+            inside = (cols >= 0) & (cols <= display) & (rows >= 0) & (rows <= display)
+            taken[rows[inside], cols[inside]] = True
+    return taken
+
+
+def _ring_label_spot(
+    view: ScanView, radius: float, k: float, display: int, taken: npt.NDArray[np.bool_]
+) -> tuple[float, float] | None:
+    """Where on the ring of ``radius`` its label goes: the first angle, from the
+    forward-right diagonal round the ring, whose label box is inside the picture and
+    covers no return (None: no such place)."""
+    c = view.centre * k
+    r = radius * view.scale * k
+    width = len(metres(radius)) * 6.5
+    for step in range(24):
+        a = math.radians(45.0 + 15.0 * (step // 2 + step % 2) * (1 if step % 2 else -1))
+        x, y = c + r * math.cos(a), c - r * math.sin(a)
+        left, top, right, bottom = x + 1, y - 14, x + 3 + width, y + 1
+        if left < 0 or top < 0 or right > display or bottom > display:
+            continue
+        if not taken[int(top) : int(bottom) + 1, int(left) : int(right) + 1].any():
+            return x, y
+    return None
+
+
 def occluded_sectors(
     azimuth: FloatArray, blocked: npt.NDArray[np.bool_], *, full_circle: bool
 ) -> list[tuple[float, float]]:
@@ -179,21 +244,23 @@ def scan_figure(
     self_hits: int,
     *,
     display: int = 480,
+    returns: FloatArray | None = None,
 ) -> Figure:
-    """scan.png with each range ring labelled in metres where it crosses the forward-right
-    diagonal, and a legend: beam colours, hits on the robot, self-occluded sectors."""
+    """scan.png with each range ring labelled in metres on the ring, where no return is
+    under the label (``returns``: the points' x, y in the sensor's frame; the
+    forward-right diagonal first, then round the ring), and a legend: beam colours, hits
+    on the robot, self-occluded sectors."""
     k = display / view.size
     legend_h = 20 + 16 * (2 + bool(sectors))
     svg = Svg(display, display + legend_h)
     svg.image(png, 0, 0, display, display)
-    c = view.centre * k
+    taken = _return_pixels(view, returns, k, display)
     for radius in view.rings:
-        r = radius * view.scale * k
-        x, y = c + r * math.sqrt(0.5), c - r * math.sqrt(0.5)
-        if 0 <= x <= display - 8 and y >= 10:
+        spot = _ring_label_spot(view, radius, k, display, taken)
+        if spot is not None:
             svg.text(
-                x + 2,
-                y - 2,
+                spot[0] + 2,
+                spot[1] - 2,
                 metres(radius),
                 size=10,
                 class_="ring",

@@ -330,6 +330,7 @@ def _staged(request: _Request, ready: _Ready, started: float) -> PreviewResult:
             findings_error=findings_error,
             notes=ready.notes,
             fail_on=request.fail_on,
+            placement=run.placement,
         )
         write_preview(
             result,
@@ -369,11 +370,30 @@ def _render(
         draw_imus(run, previews)
         drawings = [d for _, d in results if d is not None]
         robot_boxes = []
+        lowest: tuple[float, str] = (0.0, "")
         for body in world.robot_bodies:
-            for _, lo, hi in world.aabbs(body):
+            for index, lo, hi in world.aabbs(body):
                 if float(np.max(hi - lo)) > 0.005:
                     robot_boxes.append((lo, hi))
+                    if float(lo[2]) < lowest[0]:
+                        lowest = (float(lo[2]), world.robot_links.get((body, index), "?"))
+    run.placement = placement_note(*lowest)
     return run, previews, drawings, robot_boxes
+
+
+BELOW_GROUND_M = 0.01  # pybullet's boxes carry a small margin
+
+
+def placement_note(lowest_z: float, link: str) -> str | None:
+    """The line the page shows when the robot, placed with its root link at z = 0, has
+    parts below the ground (``lowest_z``: the lowest point, on ``link``)."""
+    if lowest_z > -BELOW_GROUND_M:
+        return None
+    return (
+        f"The robot is placed with its root link at z = 0, and parts reach "
+        f"{-lowest_z * 1000:.0f}\u00a0mm below the ground (lowest: {link!r}). In Gazebo it "
+        "would stand on them: heights above the floor here are that much lower."
+    )
 
 
 def _furnish(world: World, request: _Request, ready: _Ready) -> None:

@@ -1,5 +1,8 @@
 """A tiny numpy canvas for the top-down pictures, and the depth colour map.
 
+Dots and lines are stamped with numpy (hundreds of thousands of returns at once);
+polygons are filled by Pillow's ImageDraw within their bounding box.
+
 Coordinates are pixels, x to the right and y down, as floats; shapes outside the canvas
 are clipped. Nothing here knows about robots.
 """
@@ -151,24 +154,24 @@ class Canvas:
         self._stamp(xs[ok], ys[ok], colour, width / 2.0)
 
     def polygon(self, points: Points, fill: Colour | None, outline: Colour | None = None) -> None:
-        """A filled polygon (even-odd rule) with an optional outline."""
+        """A filled polygon (Pillow's scan conversion, within its bounding box) with an
+        optional outline."""
         pts = np.asarray(points, dtype=np.float64)
         if len(pts) < 3 or not np.isfinite(pts).all():
             return
         if fill is not None:
+            from PIL import Image, ImageDraw
+
             x_lo = max(0, int(np.floor(pts[:, 0].min())))
             x_hi = min(self.width - 1, int(np.ceil(pts[:, 0].max())))
             y_lo = max(0, int(np.floor(pts[:, 1].min())))
             y_hi = min(self.height - 1, int(np.ceil(pts[:, 1].max())))
             if x_lo <= x_hi and y_lo <= y_hi:
-                gx, gy = np.meshgrid(np.arange(x_lo, x_hi + 1), np.arange(y_lo, y_hi + 1))
-                inside = np.zeros(gx.shape, dtype=bool)
-                for (ax, ay), (bx, by) in zip(pts, np.roll(pts, -1, axis=0), strict=True):
-                    crosses = (ay > gy) != (by > gy)
-                    with np.errstate(divide="ignore", invalid="ignore"):
-                        xcross = ax + (gy - ay) * (bx - ax) / (by - ay)
-                    inside ^= crosses & (gx < xcross)
-                self._pixels()[gy[inside] * self.width + gx[inside]] = fill
+                mask = Image.new("L", (x_hi - x_lo + 1, y_hi - y_lo + 1), 0)
+                corners = [(float(x) - x_lo, float(y) - y_lo) for x, y in pts]
+                ImageDraw.Draw(mask).polygon(corners, fill=1)
+                rows, cols = np.nonzero(np.asarray(mask))
+                self._pixels()[(rows + y_lo) * self.width + cols + x_lo] = fill
         if outline is not None:
             self.lines(pts, np.roll(pts, -1, axis=0), outline)
 

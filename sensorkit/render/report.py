@@ -99,6 +99,7 @@ def summary_dict(result: PreviewResult) -> dict[str, Any]:
             "validate": {"findings": findings, "error": result.findings_error},
             "pictures": {f.key: f.facts for f in result.figures},
             "notes": result.notes,
+            "placement": result.placement,
         }
     )
     return out
@@ -131,7 +132,7 @@ def write_summary(result: PreviewResult) -> None:
 # ---- index.html ----------------------------------------------------------------------
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:24px;color:#222;background:#fafafa;max-width:1400px}
-h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:28px 0 8px;border-bottom:1px solid #ddd}
+h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:18px 0 6px;border-bottom:1px solid #ddd}
 h3{font-size:15px;margin:16px 0 6px}
 table{border-collapse:collapse;margin:6px 0;font-size:13px;background:#fff}
 td,th{border:1px solid #ddd;padding:4px 8px;text-align:left;vertical-align:top}
@@ -142,7 +143,7 @@ th{background:#f0f0f0} .meta{color:#555;font-size:13px}
 .imgs{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .imgs figure{margin:0;background:#fff;border:1px solid #ddd;padding:6px}
 .imgs img{max-width:640px;image-rendering:pixelated;display:block}
-figcaption{font-size:12px;color:#555;margin-top:4px}
+figcaption{font-size:12px;color:#555;margin-top:4px;max-width:640px}
 .swatch{display:inline-block;width:12px;height:12px;border-radius:2px;margin-right:6px;vertical-align:middle}
 code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict{font-size:17px;font-weight:700;padding:10px 14px;margin:10px 0 4px;border-radius:4px;border:2px solid}
@@ -152,7 +153,23 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .verdict ul{font-size:13px;font-weight:400;margin:6px 0 0;padding-left:20px}
 .rviz{border-color:#e600c8 !important}
 .findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
+.sensors{display:grid;grid-template-columns:repeat(auto-fill,minmax(620px,1fr));gap:10px 18px}
+.sensors .imgs img{max-width:280px} .sensors figure.rviz img{max-width:600px} .sensors figure.picture svg{max-width:330px !important;max-height:300px}
+figure[data-figure=closeup] svg{max-width:520px !important;max-height:280px} .sensors figcaption{max-width:330px}
+.top-list{list-style:none;padding-left:0} .top-list li{margin:2px 0}
+.finding summary,.verdict li{white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
+.finding[open] summary{white-space:normal}
+.top{display:flex;gap:18px;align-items:flex-start} .top-findings{flex:1 1 0;min-width:320px}
+details summary{cursor:pointer;font-size:13px;color:#333;margin:4px 0}
+details summary h2{display:inline;border:0}
 """
+
+
+def _text(text: str) -> str:
+    """``text`` escaped, each number joined to its unit by a non-breaking space."""
+    from sensorkit.render.svg import glue_units
+
+    return html.escape(glue_units(text))
 
 
 def _img(path: Path, alt: str, width: int | None = None) -> str:
@@ -173,29 +190,63 @@ def _fmt(value: Any) -> str:
     return html.escape(str(value))
 
 
+def _amount(value: Any, unit: str, decimals: int | None = None) -> str:
+    """A number with its unit, as ``svg.quantity`` writes it (escaped; empty for None)."""
+    from sensorkit.render.svg import quantity
+
+    if not isinstance(value, (int, float)):
+        return "" if value is None else _fmt(value)
+    return html.escape(quantity(float(value), unit, decimals))
+
+
+def _vec(values: Any, unit: str) -> str:
+    from sensorkit.render.svg import vector
+
+    if not isinstance(values, (list, tuple)):
+        return _fmt(values)
+    return html.escape(vector(list(values), unit))
+
+
 def _sensor_html(s: SensorPreview, base: Path) -> str:
     e = html.escape
     colour = s.info.get("colour")
     swatch = f'<span class="swatch" style="background:{colour}"></span>' if colour else ""
     parts = [
+        '<section class="sensor">',
         f'<h3 id="{e(s.name)}">{swatch}{e(s.name)} <span class="meta">{e(s.type)} on {e(str(s.link))}</span> {_status(s.status)}{_counts(s)}</h3>',
         _sensor_findings_html(s),
         _rviz_html(s),
     ]
     if s.skipped:
-        parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p>")
+        parts.append(f"<p class='meta'>Not rendered: {e(s.skipped)}</p></section>")
         return "\n".join(parts)
     figures = _figures_html(s)
     if figures:
         parts.append('<div class="imgs">' + "".join(figures) + "</div>")
-    parts.append(_checks_html(s))
     facts = [*_frame_facts(s), *_camera_facts(s), *_scan_facts(s), *_file_facts(s, base)]
     parts.append(
-        "<table>" + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts) + "</table>"
+        f"<details class='checks'><summary>{_checks_summary(s)}</summary>{_checks_html(s)}<table>"
+        + "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in facts)
+        + "</table>"
     )
     if s.notes:
-        parts.append("<ul class='meta'>" + "".join(f"<li>{e(n)}</li>" for n in s.notes) + "</ul>")
+        parts.append(
+            "<ul class='meta'>" + "".join(f"<li>{_text(n)}</li>" for n in s.notes) + "</ul>"
+        )
+    parts.append("</details></section>")
     return "\n".join(parts)
+
+
+def _checks_summary(s: SensorPreview) -> str:
+    """``checks: 4 ok, 1 warn (self_occlusion) · facts and files``: the collapsed line."""
+    e = html.escape
+    counts = []
+    for status in ("fail", "warn", "ok", "skipped"):
+        these = [c.name for c in s.checks if c.status == status]
+        if these:
+            named = f" ({e(', '.join(these))})" if status in ("fail", "warn") else ""
+            counts.append(f"{len(these)} {_status(status)}{named}")
+    return f"checks: {', '.join(counts) or 'none'} &middot; facts and files"
 
 
 def _figures_html(s: SensorPreview) -> list[str]:
@@ -223,8 +274,8 @@ def _checks_html(s: SensorPreview) -> str:
     """The sensor's checks, one a row."""
     e = html.escape
     rows = "".join(
-        f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_fmt(c.value) if c.value is not None else ''} {e(c.unit)}</td>"
-        f"<td>{_fmt(c.limit) if c.limit is not None else ''}</td><td>{e(c.message)}</td></tr>"
+        f"<tr><td>{e(c.name)}</td><td>{_status(c.status)}</td><td>{_amount(c.value, c.unit)}</td>"
+        f"<td>{_amount(c.limit, c.unit)}</td><td>{_text(c.message)}</td></tr>"
         for c in s.checks
     )
     return f"<table><tr><th>check</th><th>status</th><th>value</th><th>limit</th><th>what it means</th></tr>{rows}</table>"
@@ -241,7 +292,10 @@ def _frame_facts(s: SensorPreview) -> _Facts:
     if frames:
         pose = frames.get("render_pose", {})
         facts.append(
-            ("render pose (xyz, rpy)", f"{_fmt(pose.get('xyz'))}, {_fmt(pose.get('rpy'))}")
+            (
+                "render pose (xyz, rpy)",
+                f"{_vec(pose.get('xyz'), 'm')}, {_vec(pose.get('rpy'), 'rad')}",
+            )
         )
         facts.append(
             (
@@ -263,11 +317,11 @@ def _camera_facts(s: SensorPreview) -> _Facts:
     return [
         (
             "camera_info K",
-            f"fx {_fmt(intr['fx'])}, fy {_fmt(intr['fy'])}, cx {_fmt(intr['cx'])}, cy {_fmt(intr['cy'])} ({html.escape(str(intr['convention']))})",
+            f"fx {_amount(intr['fx'], 'px')}, fy {_amount(intr['fy'], 'px')}, cx {_amount(intr['cx'], 'px')}, cy {_amount(intr['cy'], 'px')} ({html.escape(str(intr['convention']))})",
         ),
         (
             "rendered",
-            f"fx {_fmt(r['fx'])}, fy {_fmt(r['fy'])}, principal point ({_fmt(r['cx'])}, {_fmt(r['cy'])}) 0-based; clip {_fmt(r['near'])}..{_fmt(r['far'])} m",
+            f"fx {_amount(r['fx'], 'px')}, fy {_amount(r['fy'], 'px')}, principal point {_vec((r['cx'], r['cy']), 'px')} 0-based; clip {_amount(r['near'], 'm')} to {_amount(r['far'], 'm')}",
         ),
     ]
 
@@ -280,7 +334,7 @@ def _scan_facts(s: SensorPreview) -> _Facts:
     facts = [
         (
             "scan",
-            f"{scan['samples']} beams, {_fmt(scan['angle_min'])}..{_fmt(scan['angle_max'])} rad, step {_fmt(scan['angle_increment'])}, range {_fmt(scan['range_min'])}..{_fmt(scan['range_max'])} m",
+            f"{scan['samples']} beams, {_amount(scan['angle_min'], 'rad')} to {_amount(scan['angle_max'], 'rad')}, step {_amount(scan['angle_increment'], 'rad', 3)}, range {_amount(scan['range_min'], 'm')} to {_amount(scan['range_max'], 'm')}",
         )
     ]
     if "vertical" in s.info:
@@ -288,7 +342,7 @@ def _scan_facts(s: SensorPreview) -> _Facts:
         facts.append(
             (
                 "vertical",
-                f"{v['samples']} rows, {_fmt(v['angle_min'])}..{_fmt(v['angle_max'])} rad",
+                f"{v['samples']} rows, {_amount(v['angle_min'], 'rad')} to {_amount(v['angle_max'], 'rad')}",
             )
         )
     return facts
@@ -329,7 +383,7 @@ def _sensor_findings_html(s: SensorPreview) -> str:
     e = html.escape
     rows = "".join(
         f"<li>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
-        f"<span class='meta'>{e(f'{f.file}:{f.line}' if f.line else f.file or '')}</span> {e(f.message)}"
+        f"<span class='meta'>{e(f'{f.file}:{f.line}' if f.line else f.file or '')}</span> {_text(f.message)}"
         + (f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else "")
         + "</li>"
         for f in s.findings
@@ -350,7 +404,7 @@ def _rviz_html(s: SensorPreview) -> str:
     )
     return (
         f"<div class='imgs'><figure class='rviz' id='rviz-{e(s.name)}'>"
-        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{e(caption)}</figcaption></figure></div>"
+        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{_text(caption)}</figcaption></figure></div>"
     )
 
 
@@ -364,7 +418,7 @@ def _verdict_html(result: PreviewResult) -> str:
         if len(v.reasons) > len(shown)
         else ""
     )
-    reasons = "".join(f"<li>{e(r)}</li>" for r in shown) + more
+    reasons = "".join(f"<li>{_text(r)}</li>" for r in shown) + more
     return (
         f"<div id='verdict' class='verdict {kind}'>{e(v.text)}"
         + (f"<ul>{reasons}</ul>" if reasons and kind != "pass" else "")
@@ -383,25 +437,34 @@ def _findings_html(result: PreviewResult) -> str:
     rows = []
     for f in sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key())):
         where = f"{f.file}:{f.line}" if f.line else (f.file or "")
+        short = f"{f.file.rsplit('/', 1)[-1]}:{f.line}" if f.file and f.line else where
+        about = f.sensor or f.link or f.joint or f.frame or ""
         fix = f"<br><span class='meta'>fix: {e(f.fix)}</span>" if f.fix else ""
         rows.append(
-            f"<tr><td>{e(f.rule)}</td><td>{_status(f.severity.label)}</td><td>{e(where)}</td><td>{e(f.message)}{fix}</td></tr>"
+            f"<li><details class='finding'><summary>{_status(f.severity.label)} <b>{e(f.rule)}</b> "
+            f"{e(about)} <span class='meta'>{e(short)}</span> {_text(f.message)}</summary>"
+            f"<div class='meta'>{e(where)}</div>{_text(f.message)}{fix}</details></li>"
         )
-    return (
-        "<table><tr><th>rule</th><th>severity</th><th>where</th><th>finding</th></tr>"
-        + "".join(rows)
-        + "</table>"
-    )
+    return "<ul class='findings top-list'>" + "".join(rows) + "</ul>"
 
 
 def _pictures_html(result: PreviewResult) -> str:
-    """The robot close up, then each stereo pair (sensorkit.render.pictures)."""
+    """Each stereo pair (sensorkit.render.mount_pictures); the robot close up stands
+    beside the overview."""
     out = []
-    for title, prefix in (("The robot close up", "closeup"), ("Stereo pairs", "stereo:")):
+    for title, prefix in (("Stereo pairs", "stereo:"),):
         shown = [f.html() for f in result.figures if f.key.startswith(prefix)]
         if shown:
             out.append(f"<h2>{title}</h2><div class='imgs'>{''.join(shown)}</div>")
     return "\n".join(out)
+
+
+def _overview_html(result: PreviewResult) -> str:
+    """The overview figure (ticks, frame names, colour key), or the bare picture."""
+    figure = next((f for f in result.figures if f.key == "overview"), None)
+    if figure is not None:
+        return figure.html()
+    return f"<figure>{_img(result.files['overview'], 'overview')}</figure>"
 
 
 def write_index(result: PreviewResult) -> None:
@@ -419,7 +482,7 @@ def write_index(result: PreviewResult) -> None:
         if "colour" not in s.info
     )
     joints = ", ".join(f"{e(k)}={v:g}" for k, v in result.joints.items()) or "all at zero"
-    notes = "".join(f"<li>{e(n)}</li>" for n in result.notes)
+    notes = "".join(f"<li>{_text(n)}</li>" for n in result.notes)
     page = f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sensorkit preview: {e(result.robot)}</title>
 <style>{_CSS}</style></head><body>
@@ -427,17 +490,17 @@ def write_index(result: PreviewResult) -> None:
 {_verdict_html(result)}
 <p class="meta">{e(str(result.source))} &middot; target {e(result.target)} ({e(result.target_reason)}) &middot; scene {e(result.scene)}
 &middot; joints {joints} &middot; sensorkit {e(__version__)} &middot; {result.seconds:.2f} s</p>
-<h2 id="findings">validate's findings</h2>
+{f"<p class='warning' id='placement'>{e(result.placement)}</p>" if result.placement else ""}
+<div class="top"><div class="top-findings"><h2 id="findings">validate's findings</h2>
 {_findings_html(result)}
-<h2>Overview</h2>
-<div class="imgs"><figure>{_img(result.files["overview"], "overview")}
-<figcaption>Top-down, +x right, +y up, 1 m grid. Solid: where each sensor looks. Magenta, when the frame its data is stamped with differs: that frame's forward axis (dashed) and the data as RViz will place it.</figcaption></figure>
-<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
+<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table>
+{"".join(f.html() for f in result.figures if f.key == "closeup")}</div>
+<div><h2>Overview</h2>{_overview_html(result)}</div></div>
 {_pictures_html(result)}
 <h2>Sensors</h2>
-{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}
-<h2>Conventions</h2>
-<table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table>
+<div class="sensors">{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}</div>
+<details><summary><h2>Conventions</h2></summary>
+<table>{"".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in CONVENTIONS.items())}</table></details>
 {f"<h2>Notes</h2><ul class='meta'>{notes}</ul>" if notes else ""}
 <p class="meta">Files: <a href="summary.json">summary.json</a> &middot; <a href="overview.png">overview.png</a></p>
 </body></html>

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from sensorkit.base.findings import Severity
-from sensorkit.render.checks import Check, worst
+from sensorkit.render.checks import Check
 
 if TYPE_CHECKING:
     from sensorkit.base.findings import Finding
@@ -47,7 +47,11 @@ class SensorPreview:
 
     @property
     def status(self) -> str:
-        return "skipped" if self.skipped else worst(self.checks)
+        """``status_of`` its checks and findings (``skipped`` when not rendered and no
+        finding is a warning or an error)."""
+        from sensorkit.render.gate import status_of
+
+        return status_of([] if self.skipped else self.checks, self.findings)
 
     def add_figure(self, figure: Figure) -> None:
         """Show ``figure`` on the sensor's part of index.html; its numbers go to summary.json."""
@@ -72,11 +76,15 @@ class PreviewResult:
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
     figures: list[Figure] = field(default_factory=list)  # the robot close up, stereo pairs
+    placement: str | None = None  # a line when parts of the robot are below the ground
 
     @property
     def status(self) -> str:
-        """The worst check's status (the findings are not in it; see ``verdict``)."""
-        return worst([c for s in self.sensors for c in s.checks])
+        """``status_of`` every check and every finding (pass or fail: see ``verdict``)."""
+        from sensorkit.render.gate import status_of
+
+        checks = [c for s in self.sensors for c in s.checks]
+        return status_of(checks, self.findings or [])
 
     @property
     def verdict(self) -> Verdict:

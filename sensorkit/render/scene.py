@@ -30,12 +30,13 @@ if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
     from sensorkit.render.textures import Texture
 
-__all__ = ["Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
+__all__ = ["MARKER_RGBA", "Scene", "Shape", "box_mesh", "default_scene", "scene_shapes_from_robot"]
 
 Array = npt.NDArray[np.float64]
 
 GROUND = "ground"
 MARKER = "marker"
+MARKER_RGBA = (0.9, 0.667, 0.0, 1.0)  # amber: magenta is kept for where RViz puts data
 
 
 @dataclass
@@ -206,7 +207,9 @@ def box_mesh(
     half: tuple[float, float, float], uv_per_m: float
 ) -> tuple[list[list[float]], list[int], list[list[float]], list[list[float]]]:
     """Vertices, triangle indices, uvs and normals of a box whose texture repeats every
-    ``1 / uv_per_m`` metres on every face (pybullet's own box maps one texel per face)."""
+    ``1 / uv_per_m`` metres on every face (pybullet's own box maps one texel per face).
+    The middle of each face takes the middle of the texture (uv 0.5): a face no wider
+    than ``1 / uv_per_m`` shows one copy, with no seam."""
     vertices: list[list[float]] = []
     uvs: list[list[float]] = []
     normals: list[list[float]] = []
@@ -224,7 +227,7 @@ def box_mesh(
                 p[b] = u * half[b]
                 p[c] = v * half[c]
                 vertices.append(p)
-                uvs.append([u * half[b] * uv_per_m, v * half[c] * uv_per_m])
+                uvs.append([0.5 + u * half[b] * uv_per_m, 0.5 + v * half[c] * uv_per_m])
                 n = [0.0, 0.0, 0.0]
                 n[axis] = sign
                 normals.append(n)
@@ -268,13 +271,14 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
         ("wall_+y", (0.0, half + thick / 2), (half + thick, thick / 2, height / 2)),
         ("wall_-y", (0.0, -half - thick / 2), (half + thick, thick / 2, height / 2)),
     ]
+    # one copy of a wall's texture spans the whole wall: a camera never sees it repeat
+    # (a 512 px texture: 80 texels a metre in the 6.4 m wall of the smallest room)
+    once = 1.0 / (2.0 * (half + thick))
     for i, (name, (x, y), size) in enumerate(walls):
         key = f"wall{i}"
-        seeds[key] = (100 + i, 256)
+        seeds[key] = (100 + i, 512)
         shapes.append(
-            Shape(
-                name, "box", transform((x, y, height / 2)), size, "wall", (1, 1, 1, 1), key, 0.5 / s
-            )
+            Shape(name, "box", transform((x, y, height / 2)), size, "wall", (1, 1, 1, 1), key, once)
         )
     crate = (0.3 * s, 0.3 * s, 0.4 * s)
     for i, (sx, sy) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
@@ -297,7 +301,7 @@ def default_scene(reach: float, *, textured: bool = True) -> Scene:
                         transform(p),
                         (radius,),
                         MARKER,
-                        (1.0, 0.1, 0.9, 1.0),
+                        MARKER_RGBA,
                     )
                 )
     textures: dict[str, Texture] = {}

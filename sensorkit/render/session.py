@@ -86,6 +86,7 @@ class Session:
         self.poses = poses
         self.target = target
         self.out_dir = out_dir
+        self.placement: str | None = None  # a line when parts are below the ground
         self.conv = convert(robot)
         self.markers: list[tuple[Shape, int, int]] = []
         for (body, link), shapes in world.shape_of.items():

@@ -4,7 +4,8 @@ A figure is an inline SVG for index.html (PNG pixels where there are many dots, 
 every label, tick and axis, so text stays sharp and needs no font library) and ``facts``,
 the numbers it draws (also written to summary.json). ``Svg`` builds the document as
 escaped text; ``num``, ``metres`` and ``hex_colour`` write numbers and colours the way
-every picture shows them; ``nice_step`` and ``ticks`` pick round values for scales.
+every picture shows them, ``quantity`` and ``vector`` the way index.html's tables do
+(lengths in mm, angles in degrees, fixed decimals, a non-breaking space before the unit); ``nice_step`` and ``ticks`` pick round values for scales.
 """
 
 from __future__ import annotations
@@ -18,7 +19,19 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Figure", "Svg", "hex_colour", "metres", "nice_step", "num", "ticks"]
+__all__ = [
+    "Figure",
+    "Svg",
+    "glue_units",
+    "hex_colour",
+    "label_box",
+    "metres",
+    "nice_step",
+    "num",
+    "quantity",
+    "ticks",
+    "vector",
+]
 
 FloatArray = npt.NDArray[np.float64]
 _FONT = "font-family:system-ui,sans-serif"
@@ -36,7 +49,7 @@ class Figure:
     def html(self) -> str:
         return (
             f'<figure class="picture" data-figure="{html.escape(self.key)}">{self.svg}'
-            f"<figcaption>{html.escape(self.caption)}</figcaption></figure>"
+            f"<figcaption>{html.escape(glue_units(self.caption))}</figcaption></figure>"
         )
 
 
@@ -52,6 +65,50 @@ def metres(v: float) -> str:
     return f"{'0' if text == '-0' else text} m"
 
 
+NBSP = "\u00a0"  # between a number and its unit: a line never breaks there
+# unit given -> (factor, unit shown, decimals): lengths in mm, angles in degrees
+_SHOWN: dict[str, tuple[float, str, int]] = {
+    "m": (1000.0, NBSP + "mm", 1),
+    "mm": (1.0, NBSP + "mm", 1),
+    "rad": (180.0 / math.pi, "\u00b0", 2),
+    "deg": (1.0, "\u00b0", 2),
+    "px": (1.0, NBSP + "px", 2),
+    "%": (1.0, NBSP + "%", 1),
+}
+
+
+_UNIT_AFTER_NUMBER = r"(\d) (mm|m|cm|px|deg|degrees|rad|s|ms|%)(?![\w])"
+
+
+def glue_units(text: str) -> str:
+    """``text`` with a non-breaking space between each number and the unit after it
+    (``2.75 m``, ``0.35 px``), so that a line never ends between them."""
+    import re
+
+    return re.sub(_UNIT_AFTER_NUMBER, "\\1" + NBSP + "\\2", text)
+
+
+def _fixed(v: float, decimals: int) -> str:
+    if not math.isfinite(v):
+        return str(v)
+    text = f"{v:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text  # no "-0.0"
+
+
+def quantity(value: float, unit: str, decimals: int | None = None) -> str:
+    """``2.3\u00a0mm`` for (0.0023, "m"), ``11.46\u00b0`` for (0.2, "rad"), ``0.35\u00a0px``:
+    lengths in mm and angles in degrees, with fixed decimals (``decimals`` overrides);
+    another unit is kept, with 3 decimals."""
+    factor, shown, places = _SHOWN.get(unit, (1.0, NBSP + unit if unit else "", 3))
+    return _fixed(value * factor, places if decimals is None else decimals) + shown
+
+
+def vector(values: list[float] | tuple[float, ...], unit: str) -> str:
+    """``(250.0, 0.0, 100.0)\u00a0mm``: a vector in one unit, as ``quantity`` writes it."""
+    factor, shown, places = _SHOWN.get(unit, (1.0, NBSP + unit if unit else "", 3))
+    return "(" + ", ".join(_fixed(float(v) * factor, places) for v in values) + ")" + shown
+
+
 class Svg:
     """An SVG document built as text; every string is escaped."""
 
@@ -59,6 +116,7 @@ class Svg:
         self.width = width
         self.height = height
         self.parts: list[str] = []
+        self.boxes: list[tuple[float, float, float, float]] = []  # text laid out so far
 
     def add(self, tag: str, text: str | None = None, **attrs: Any) -> None:
         def value(v: Any) -> str:
@@ -89,7 +147,25 @@ class Svg:
     def text(
         self, x: float, y: float, s: str, *, size: float = 11, anchor: str = "start", **attrs: Any
     ) -> None:
+        """``s`` at (``x``, ``y``), or, when that would cover text already laid out, at
+        the nearest free place a line above or below or beside it (``label_box``)."""
+        bold = str(attrs.get("font_weight", "")) == "bold"
+        x, y = self._free_place(x, y, label_box(x, y, s, size, anchor, bold=bold))
+        self.boxes.append(label_box(x, y, s, size, anchor, bold=bold))
         self.add("text", s, x=x, y=y, font_size=size, text_anchor=anchor, style=_FONT, **attrs)
+
+    def _free_place(
+        self, x: float, y: float, box: tuple[float, float, float, float]
+    ) -> tuple[float, float]:
+        w, h = box[2] - box[0], box[3] - box[1]
+        steps = [(0.0, 0.0)]
+        for k in (1, 2, 3):
+            steps += [(0.0, -k * h), (0.0, k * h), (k * (w / 2 + 2), 0.0), (-k * (w / 2 + 2), 0.0)]
+        for dx, dy in steps:
+            moved = (box[0] + dx, box[1] + dy, box[2] + dx, box[3] + dy)
+            if not any(_overlap(moved, other) for other in self.boxes):
+                return x + dx, y + dy
+        return x, y
 
     def line(
         self,
@@ -117,6 +193,20 @@ class Svg:
             + "".join(self.parts)
             + "</svg>"
         )
+
+
+def label_box(
+    x: float, y: float, s: str, size: float, anchor: str = "start", *, bold: bool = False
+) -> tuple[float, float, float, float]:
+    """(left, top, right, bottom) that text ``s`` at baseline (``x``, ``y``) stays within,
+    a little generously: 0.62 em a character (0.68 bold), 1.25 em tall."""
+    w = len(s) * size * (0.68 if bold else 0.62)
+    left = x - w / 2 if anchor == "middle" else x - w if anchor == "end" else x
+    return (left, y - size, left + w, y + 0.25 * size)
+
+
+def _overlap(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> bool:
+    return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
 
 
 def hex_colour(colour: tuple[int, int, int] | npt.NDArray[np.uint8]) -> str:

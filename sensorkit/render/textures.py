@@ -64,19 +64,23 @@ def _finish(
 
 
 def feature_texture(seed: int, size: int = 256) -> npt.NDArray[np.uint8]:
-    """A square RGB texture with many corners of different contrast and scale."""
+    """A square RGB texture with many corners of different contrast and scale. Shapes
+    are sized within a 256 px patch: a larger texture (a whole wall) holds more of them,
+    no bigger."""
     rng = np.random.default_rng(seed)
-    checks = _checks(size, size // 8)
+    unit = min(size, 256)
+    per = (size // unit) ** 2  # as many shapes per texel as in a 256 px texture
+    checks = _checks(size, unit // 8)
     base = rng.integers(90, 200, 3).astype(np.int16)
     img = _two_tone(checks, base * 110 // 100, base * 75 // 100)
-    for _ in range(40):
-        w, h = rng.integers(size // 20, size // 4, 2)
+    for _ in range(40 * per):
+        w, h = rng.integers(unit // 20, unit // 4, 2)
         x0, y0 = rng.integers(0, size - w), rng.integers(0, size - h)
         row = np.empty((w, 3), dtype=np.int16)  # one row of the colour, then every row:
         row[:] = rng.integers(0, 256, 3)  # numpy fills a block with one colour slowly
         img[y0 : y0 + h, x0 : x0 + w] = row
-    for _ in range(14):
-        r = rng.uniform(size / 40, size / 10)
+    for _ in range(14 * per):
+        r = rng.uniform(unit / 40, unit / 10)
         cx, cy = rng.uniform(0, size, 2)
         _disc(img, cx, cy, r, rng.integers(0, 256, 3).astype(np.int16))
     return _finish(img, rng, 10)

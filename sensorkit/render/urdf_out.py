@@ -208,7 +208,9 @@ def _assign(
     bases = [root]
     for link in reversed(order):
         kids = [
-            (size[c][0], size[c][1] + q_of.get(c, 0), c) for c in children.get(link, []) if c in size
+            (size[c][0], size[c][1] + q_of.get(c, 0), c)
+            for c in children.get(link, [])
+            if c in size
         ]
         kids.sort(key=lambda k: (k[0], k[1]), reverse=True)
         links, q = 1, 0
