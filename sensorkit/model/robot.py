@@ -17,6 +17,7 @@ from sensorkit.model.poses import Poses
 from sensorkit.model.tree import Tree
 
 if TYPE_CHECKING:
+    from sensorkit.model.sdf_read import SdfModel
     from sensorkit.model.sensors import Plugin, Sensor
     from sensorkit.model.transforms import Pose
 
@@ -42,11 +43,15 @@ class Robot(Tree, Poses):
     _up: dict[str, tuple[str, int]] = field(default_factory=dict, repr=False)
     _roots: list[str] | None = field(default=None, repr=False)
     cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
+    # read from SDF: the model's frames, joints' own poses, nested models, includes
+    sdf: SdfModel | None = field(default=None, repr=False)
 
     @property
     def macros_only(self) -> bool:
         """A xacro that expands to no link, joint or sensor: it only defines macros or
         properties for robots to include (a partial given explicitly)."""
+        if self.sdf is not None:
+            return False
         return self.document.expanded and not self.links and not self.joints and not self.sensors
 
 
