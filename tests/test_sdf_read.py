@@ -127,3 +127,117 @@ def test_the_suite_holds_the_cases_the_check_needs() -> None:
         "include",
         "world",
     } <= names
+
+
+def _load(path: Path, monkeypatch: pytest.MonkeyPatch) -> list:  # type: ignore[type-arg]
+    monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", str(MODELS))
+    loaded = load_robot(path)
+    assert not loaded.findings
+    return loaded.robots
+
+
+def test_a_joint_origin_is_the_child_link_in_the_parent_link(monkeypatch: pytest.MonkeyPatch) -> None:
+    (robot,) = _load(SDF_DIR / "joint_relative.sdf", monkeypatch)
+    sm = robot.sdf
+    for name in ("elbow", "wrist"):
+        joint = robot.joint_map[name]
+        want = compose(sm.pose_of(joint.parent), joint.origin.pose())
+        assert math.dist(want[9:], sm.pose_of(joint.child)[9:]) < 1e-12
+        assert _angle(want, sm.pose_of(joint.child)) < 1e-12
+    # the Robot's world poses are in the root link's frame, composed from those origins
+    hand = robot.world_pose("hand")
+    want = compose(_inverse(sm.pose_of("base")), sm.pose_of("hand"))
+    assert math.dist(hand[9:], want[9:]) < 1e-12
+    # the joint's own frame is kept beside: elbow is 0.2 0.1 0.4 from base
+    elbow_in_base = compose(_inverse(sm.pose_of("base")), sm.pose_of("elbow"))
+    assert elbow_in_base[9:] == pytest.approx((0.2, 0.1, 0.4))
+
+
+def _inverse(p: Pose) -> Pose:
+    from sensorkit.model.sdf_frames import inverse
+
+    return inverse(p)
+
+
+def test_axes_are_in_the_child_link_frame(monkeypatch: pytest.MonkeyPatch) -> None:
+    (robot,) = _load(SDF_DIR / "relative_link.sdf", monkeypatch)
+    # wheel is rolled -pi/2 from base; the axis is written as base's y: the wheel's z
+    assert robot.joint_map["axle"].axis == pytest.approx((0.0, 0.0, 1.0))
+    (old,) = _load(SDF_DIR / "v16_model.sdf", monkeypatch)
+    # 1.6 use_parent_model_frame: y of the model, in head's frame (rolled, pitched, yawed)
+    sm = old.sdf
+    R = sm.pose_of("head")
+    want = (R[3], R[4], R[5])  # the model's y seen from head: R^T e_y, row 1 of R
+    assert old.joint_map["neck"].axis == pytest.approx(want)
+
+
+def test_nested_names_are_scoped_and_sensors_keep_their_tags(monkeypatch: pytest.MonkeyPatch) -> None:
+    (nested,) = _load(SDF_DIR / "nested.sdf", monkeypatch)
+    assert [lk.name for lk in nested.links] == ["base", "inner::arm", "inner::deep::finger", "sensor_mount", "tipped"]
+    assert nested.joint_map["to_inner"].child == "inner::arm"
+    assert set(nested.sdf.models) == {"inner", "inner::deep"}
+    (robot,) = _load(SDF_DIR / "sensor_relative.sdf", monkeypatch)
+    by_name = {s.name: s for s in robot.sensors}
+    assert {s.reference for s in robot.sensors} == {"head"}
+    cam = by_name["front_cam"]
+    assert cam.kind == "camera" and cam.topic == "front/image"
+    assert cam.camera is not None and cam.camera.optical_frame_id == "front_optical"
+    assert by_name["lidar"].lidar is not None and by_name["lidar"].lidar.samples == 360
+    assert by_name["imu"].kind == "imu" and by_name["gps"].type == "navsat"
+    assert [p.filename for p in robot.model_plugins] == ["gz-sim-joint-state-publisher-system"]
+
+
+def test_included_elements_are_located_in_their_own_file(monkeypatch: pytest.MonkeyPatch) -> None:
+    (robot,) = _load(SDF_DIR / "include.sdf", monkeypatch)
+    # model.config names the 1.8 file; its model is nested under each include's <name>
+    assert [lk.name for lk in robot.links] == ["base", "head::head_link", "spare::head_link"]
+    sensor = robot.sensors[0]
+    assert sensor.source.file.endswith("models/sk_sensor_head/model_18.sdf")
+    assert sensor.source.line == 6
+    assert robot.link_map["base"].source.file.endswith("include.sdf")
+    assert robot.link_map["base"].source.line == 4
+    assert [inc.uri for inc in robot.sdf.includes] == ["model://sk_sensor_head"] * 2
+
+
+def test_a_world_gives_each_model_with_its_world_pose(monkeypatch: pytest.MonkeyPatch) -> None:
+    rover, mast = _load(SDF_DIR / "world.sdf", monkeypatch)
+    assert (rover.name, mast.name) == ("rover", "mast")
+    assert rover.sdf.world_pose is not None and mast.sdf.world_pose is not None
+
+
+def test_an_unresolved_include_is_kept_with_why(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("GZ_SIM_RESOURCE_PATH", raising=False)
+    path = tmp_path / "m.sdf"
+    path.write_text(
+        '<sdf version="1.8"><model name="m"><link name="a"/>'
+        "<include><uri>model://nowhere_model</uri></include></model></sdf>"
+    )
+    (robot,) = load_robot(path).robots
+    (inc,) = robot.sdf.includes
+    assert inc.path is None and "not found" in inc.why and inc.searched
+
+
+def test_bad_sdf_is_a_finding_or_one_line(tmp_path: Path) -> None:
+    broken = tmp_path / "broken.sdf"
+    broken.write_text('<sdf version="1.9"><model name="m">\n<link name="a">\n</model></sdf>')
+    loaded = load_robot(broken)
+    assert loaded.robot is None and [f.rule for f in loaded.findings] == ["SK101"]
+    assert loaded.findings[0].source.line == 3
+    empty = tmp_path / "empty.sdf"
+    empty.write_text('<sdf version="1.9"></sdf>')
+    with pytest.raises(InputError, match="no <model> or <world>"):
+        load_robot(empty)
+    urdf = tmp_path / "robot.sdf"
+    urdf.write_text('<robot name="r"/>')
+    with pytest.raises(InputError, match="not <sdf>"):
+        load_robot(urdf)
+
+
+def test_the_cli_reads_sdf_without_a_traceback(tmp_path: Path) -> None:
+    broken = tmp_path / "broken.sdf"
+    broken.write_text('<sdf version="1.9"><model name="m"><link name="a"></model></sdf>')
+    res = subprocess.run(
+        [sys.executable, "-m", "sensorkit", "validate", str(broken)], capture_output=True, text=True, timeout=120, check=False
+    )
+    assert "Traceback" not in res.stderr
+    assert "SK101" in res.stdout + res.stderr
