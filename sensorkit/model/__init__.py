@@ -44,9 +44,14 @@ def load_robot(
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
+    sdf: bool = False,
 ) -> Loaded:
-    """Load and model a URDF/xacro file, or an SDF file (``.sdf``, ``.world``: see
-    :mod:`sensorkit.model.sdf_read`). Raises InputError for unreadable/non-robot input.
+    """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
+
+    With ``sdf``, an SDF file (``.sdf``, ``.world``) is read too (see
+    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``. Without
+    it, SDF is refused as before (InputError naming ``<sdf>``): the commands take it once
+    their rules know SDF.
 
     ``overlay`` maps absolute paths to bytes read instead of those files (stdin, ``--fix``).
     ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
@@ -54,7 +59,7 @@ def load_robot(
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     from sensorkit.loading.sdf_files import is_sdf_path
 
-    if is_sdf_path(path):
+    if sdf and is_sdf_path(path):
         if untrusted is not None:
             resolver.confine_to(path)  # includes are read inside the workspace only
         return _load_sdf(path, resolver, overlay)

@@ -76,7 +76,9 @@ def _link(item: Element, doc: Document) -> Link:
     return Link(item.name, el, doc, inertial, tuple(meshes))
 
 
-def _axis(sm: SdfModel, item: Element, joint: str, child_link: str) -> tuple[tuple[float, float, float] | None, str | None]:
+def _axis(
+    sm: SdfModel, item: Element, joint: str, child_link: str
+) -> tuple[tuple[float, float, float] | None, str | None]:
     """The joint's ``<axis><xyz>`` in the child link's frame. It is written in the joint's
     frame unless ``expressed_in`` names another (gazebosim/sdformat@sdformat12_12.8.0:
     src/JointAxis.cc:347-362); before 1.7, ``use_parent_model_frame`` is the model's
@@ -147,7 +149,11 @@ def _sensor_pose(sm: SdfModel, item: Element, doc: Document) -> Origin | None:
     P_frame, P_link = sm.pose_of(frame), sm.pose_of(item.name)
     if P_frame is None or P_link is None:
         return None
-    return exact_origin(between(P_link, compose(P_frame, raw)), pose_el if pose_el is not None else item.element, doc)
+    return exact_origin(
+        between(P_link, compose(P_frame, raw)),
+        pose_el if pose_el is not None else item.element,
+        doc,
+    )
 
 
 def build_sdf_robot(doc: Document, sm: SdfModel) -> Robot:
@@ -170,6 +176,7 @@ def build_sdf_robot(doc: Document, sm: SdfModel) -> Robot:
             sensor.problems.append("pose relative to a frame that does not resolve")
         robot.sensors.append(sensor)
     for _owner, el in sm.plugins:
-        robot.model_plugins.append(Plugin(el.get("filename", ""), el.get("name", ""), el, doc.locate(el)))
+        robot.model_plugins.append(
+            Plugin(el.get("filename", ""), el.get("name", ""), el, doc.locate(el))
+        )
     return robot
-
