@@ -163,6 +163,8 @@ def test_a_joint_origin_is_the_child_link_in_the_parent_link(
     hand = robot.world_pose("hand")
     want = compose(_inverse(sm.pose_of("base")), sm.pose_of("hand"))
     assert math.dist(hand[9:], want[9:]) < 1e-12
+    # a joint whose parent is a frame hangs from the link the frame is attached to
+    assert (robot.joint_map["clip_joint"].parent, robot.joint_map["clip_joint"].child) == ("hand", "clip")
     # the joint's own frame is kept beside: elbow is 0.2 0.1 0.4 from base
     elbow_in_base = compose(_inverse(sm.pose_of("base")), sm.pose_of("elbow"))
     assert elbow_in_base[9:] == pytest.approx((0.2, 0.1, 0.4))
@@ -226,6 +228,8 @@ def test_a_world_gives_each_model_with_its_world_pose(monkeypatch: pytest.Monkey
     rover, mast = _load(SDF_DIR / "world.sdf", monkeypatch)
     assert (rover.name, mast.name) == ("rover", "mast")
     assert rover.sdf.world_pose is not None and mast.sdf.world_pose is not None
+    # a joint to the world is no Robot joint: the model's root hangs from nothing
+    assert rover.joints == [] and rover.roots() == ["chassis"]
 
 
 def test_an_unresolved_include_is_kept_with_why(
