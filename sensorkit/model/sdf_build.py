@@ -49,7 +49,7 @@ def _inertial(el: etree._Element, doc: Document) -> Inertial:
     mass_text = text_of(el, "mass")
     mass, why = parse_float(mass_text)
     if mass_text is None:
-        mass = 1.0  # sdf/1.9/inertial.sdf: <mass> defaults to 1.0
+        mass = 1.0  # gazebosim/sdformat@sdformat12_12.8.0:sdf/1.9/inertial.sdf:8
     elif why:
         problems.append(f"mass {why}")
     inertia: dict[str, float | None] = {}
@@ -58,7 +58,7 @@ def _inertial(el: etree._Element, doc: Document) -> Inertial:
         value, why = parse_float(text)
         if why:
             problems.append(f"{key} {why}")
-        default = 1.0 if key in ("ixx", "iyy", "izz") else 0.0  # inertia.sdf defaults
+        default = 1.0 if key in ("ixx", "iyy", "izz") else 0.0  # inertial.sdf:54-90
         inertia[key] = value if text is not None else default
     raw, _, pose_el, _ = read_pose(el, (1, 9))
     return Inertial(mass, inertia, exact_origin(raw, pose_el, doc), el, doc, tuple(problems))
@@ -82,7 +82,7 @@ def _axis(
     """The joint's ``<axis><xyz>`` in the child link's frame. It is written in the joint's
     frame unless ``expressed_in`` names another (gazebosim/sdformat@sdformat12_12.8.0:
     src/JointAxis.cc:347-362); before 1.7, ``use_parent_model_frame`` is the model's
-    (sdf/1.7/1_6.convert:11-25)."""
+    (sdf/1.7/1_6.convert:11-27)."""
     axis_el = child(item.element, "axis")
     xyz_el = child(axis_el, "xyz")
     if xyz_el is None:
@@ -140,7 +140,7 @@ def _joint(sm: SdfModel, item: Element, doc: Document) -> Joint | None:
 def _sensor_pose(sm: SdfModel, item: Element, doc: Document) -> Origin | None:
     """The sensor's pose in its link's frame: its ``<pose>`` is in its link unless it
     names another frame (gazebosim/sdformat@sdformat12_12.8.0:src/Sensor.cc:486-493, the
-    link its default; src/SemanticPose.cc:108-128)."""
+    link its default; src/SemanticPose.cc:107-128)."""
     from sensorkit.model.sdf_read import read_pose
     from sensorkit.model.transforms import compose
 

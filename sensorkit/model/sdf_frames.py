@@ -68,7 +68,7 @@ class FrameGraph:
 
     def add(self, vertex: Vertex) -> None:
         # The first of a name counts; sdformat reports the others as DUPLICATE_NAME
-        # (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:637-644).
+        # (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:636-645).
         if vertex.name in self.vertices or vertex.name == TOP:
             self.duplicates.append(vertex)
         else:

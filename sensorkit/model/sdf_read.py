@@ -11,7 +11,7 @@ models of their own: their links, joints and frames join the top model's, named 
 Versions: SDF before 1.7 has no ``relative_to``. libsdformat converts such a file before
 reading it, and the conversion renames ``//pose/@frame`` to ``//pose/@relative_to`` and
 ``use_parent_model_frame`` to ``xyz/@expressed_in="__model__"``
-(gazebosim/sdformat@sdformat12_12.8.0:sdf/1.7/1_6.convert:3-38): so do we. Every model
+(gazebosim/sdformat@sdformat12_12.8.0:sdf/1.7/1_6.convert:3-42): so do we. Every model
 keeps the version of the file it was read from (an included file may be of another).
 Not read: ``placement_frame`` and ``//include/@merge`` (SDF 1.9).
 """
@@ -254,8 +254,10 @@ def _load_include(
 def _include(
     ctx: _Ctx, sm: SdfModel, inc: etree._Element, scope: str, version: tuple[int, ...]
 ) -> None:
-    """A nested model from an ``<include>``: its ``<name>`` and ``<pose>`` override the
-    included model's (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:513-521)."""
+    """A nested model from an ``<include>``: its ``<name>`` and ``<pose>`` (with its
+    attributes) replace the included model's (gazebosim/sdformat@sdformat12_12.8.0:
+    src/parser.cc:1676-1700). The included file keeps its own version: libsdformat reads
+    and converts each file on its own."""
     loaded = _load_include(ctx, inc, sm)
     if loaded is None:
         return
@@ -266,6 +268,8 @@ def _include(
     sm.graph.vertices[full].attached_to = _canonical(model, full)
     sm.graph.vertices[full].element = model
     sm.models[full] = model
+    # an include's own <plugin>s join the included model's (sdf/1.9/model.sdf:53-66)
+    sm.plugins.extend((full, p) for p in inc if p.tag == "plugin")
     ctx.stack.append(str(sm.includes[-1].path))
     try:
         _walk_model(ctx, sm, model, full, inner)
