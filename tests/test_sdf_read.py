@@ -154,6 +154,7 @@ def test_the_suite_holds_the_cases_the_check_needs() -> None:
         "include",
         "world",
         "v111_model",
+        "placement",
     } <= names
 
 

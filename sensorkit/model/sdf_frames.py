@@ -111,6 +111,33 @@ class FrameGraph:
             memo[v] = pose
         return memo.get(name)
 
+    def pose_in_scope(self, name: str, scope: str) -> Pose | None:
+        """Pose of ``name`` in the frame of the model ``scope`` it belongs to, walking its
+        chain up to that frame only (no memo: used while the graph is still built)."""
+        out, cur, seen = IDENTITY, name, set()
+        while cur != scope:
+            vertex = self.vertices.get(cur)
+            if vertex is None or cur in seen:
+                return None
+            seen.add(cur)
+            out = compose(vertex.raw, out)
+            cur = vertex.relative_to
+        return out
+
+    def place(self, model: str, frame: str | None) -> bool:
+        """Make the model vertex ``model``'s raw pose that of its placement ``frame``
+        (a name in the model's scope): X_RM = X_RPf * X_MPf^-1
+        (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:248-274).
+        False when the frame does not resolve (the pose is left as written)."""
+        vertex = self.vertices.get(model)
+        if not frame or vertex is None:
+            return True
+        X_MPf = self.pose_in_scope(scoped(model, frame), model)
+        if X_MPf is None:
+            return False
+        vertex.raw = compose(vertex.raw, inverse(X_MPf))
+        return True
+
     def in_frame(self, name: str, frame: str) -> Pose | None:
         """Pose of vertex ``name`` in vertex ``frame`` (None if either is unresolved)."""
         a, b = self.pose(frame), self.pose(name)

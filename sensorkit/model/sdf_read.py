@@ -13,7 +13,7 @@ reading it, and the conversion renames ``//pose/@frame`` to ``//pose/@relative_t
 ``use_parent_model_frame`` to ``xyz/@expressed_in="__model__"``
 (gazebosim/sdformat@sdformat12_12.8.0:sdf/1.7/1_6.convert:3-42): so do we. Every model
 keeps the version of the file it was read from (an included file may be of another).
-Not read: ``placement_frame`` and ``//include/@merge`` (SDF 1.9).
+Not read: ``//include/@merge`` (SDF 1.9): a merged include is read as a nested model.
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from sensorkit.loading.document import Document
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.sdf_files import add_file, parse_sdf, resolve_model_uri
 from sensorkit.model.parse import child, parse_vec, text_of
-from sensorkit.model.sdf_frames import TOP, FrameGraph, Vertex, scoped
-from sensorkit.model.transforms import IDENTITY, Pose, pose
+from sensorkit.model.sdf_frames import TOP, FrameGraph, Vertex, inverse, scoped
+from sensorkit.model.transforms import IDENTITY, Pose, compose, pose
 
 MAX_INCLUDE_DEPTH = 32
 
@@ -214,6 +214,7 @@ def _walk_model(
             _vertex(sm, c, "model", full, scope, scope, version, _canonical(c, full))
             sm.models[full] = c
             _walk_model(ctx, sm, c, full, version)
+            _place(sm, full, _placement(c, None, version), c)
         elif tag == "include":
             _include(ctx, sm, c, scope, version)
         elif tag == "plugin":
@@ -275,6 +276,23 @@ def _include(
         _walk_model(ctx, sm, model, full, inner)
     finally:
         ctx.stack.pop()
+    _place(sm, full, _placement(model, inc, inner), inc)
+
+
+def _placement(
+    model: etree._Element, inc: etree._Element | None, version: tuple[int, ...]
+) -> str | None:
+    """A model's placement frame (SDF >= 1.8): an include's ``<placement_frame>`` sets
+    the model's ``@placement_frame`` (gazebosim/sdformat@sdformat12_12.8.0:
+    src/parser.cc:1726-1761)."""
+    if inc is not None and text_of(inc, "placement_frame"):
+        return text_of(inc, "placement_frame")
+    return model.get("placement_frame") if version >= (1, 8) else None
+
+
+def _place(sm: SdfModel, vertex: str, frame: str | None, el: etree._Element) -> None:
+    if not sm.graph.place(vertex, frame):
+        sm.pose_problems.append((f"placement_frame {frame!r} names no frame of the model", el))
 
 
 def read_models(
@@ -337,6 +355,14 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
             continue
         owner = c if c.tag == "model" or child(c, "pose") is not None else sm.element
         _vertex(holder, owner, "model", sm.name, TOP, TOP, version if owner is c else sm.version)
+        frame = _placement(sm.element, c if c.tag == "include" else None, sm.version)
+        if frame:  # the model's frame is the world graph's vertex; X_MPf is in its graph
+            X_MPf = sm.graph.pose(scoped(TOP, frame))
+            vertex = graph.vertices.get(sm.name)
+            if X_MPf is None or vertex is None:
+                sm.pose_problems.append((f"placement_frame {frame!r} names no frame", c))
+            else:
+                vertex.raw = compose(vertex.raw, inverse(X_MPf))
         models.append(sm)
     for sm in models:  # world poses may name a frame inside a model: "model::link"
         for name in list(sm.graph.vertices):
