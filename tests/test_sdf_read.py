@@ -283,3 +283,28 @@ def test_without_sdf_the_loader_still_refuses_sdf() -> None:
     # The commands keep refusing SDF (one line naming <sdf>, exit 2) until their rules know it.
     with pytest.raises(InputError, match="<sdf>"):
         load_robot(SDF_DIR / "plain_links.sdf")
+
+
+def test_untrusted_reads_no_include_outside_the_workspace(tmp_path: Path) -> None:
+    from sensorkit.loading.untrusted import Untrusted
+
+    outside = tmp_path / "elsewhere" / "model.sdf"
+    outside.parent.mkdir()
+    outside.write_text('<sdf version="1.8"><model name="x"><link name="secret"/></model></sdf>')
+    ws = tmp_path / "ws" / "robot"
+    ws.mkdir(parents=True)
+    path = ws / "robot.sdf"
+    path.write_text(
+        f'<sdf version="1.8"><model name="m"><link name="a"/>'
+        f"<include><uri>file://{outside}</uri></include></model></sdf>"
+    )
+    (trusted,) = load_robot(path, sdf=True).robots
+    assert [lk.name for lk in trusted.links] == ["a", "x::secret"]
+    (confined,) = load_robot(path, sdf=True, untrusted=Untrusted()).robots
+    assert [lk.name for lk in confined.links] == ["a"]
+    (inc,) = confined.sdf.includes
+    assert inc.path is None and "--untrusted" in inc.why
+    # nor does it say whether anything is there
+    path.write_text(path.read_text().replace(str(outside), str(outside.parent / "nothing.sdf")))
+    (missing,) = load_robot(path, sdf=True, untrusted=Untrusted()).robots
+    assert missing.sdf.includes[0].why == inc.why

@@ -15,6 +15,9 @@ marked ``expanded``, so that ``Document.locate`` names the file each element cam
 3. the folders beside the including model's own folder (a ``models/`` folder holding
    several models), as ``PARENT/NAME/REST``.
 
+Under ``--untrusted`` (a confined resolver) only places inside the workspace and the
+resolved packages are looked at, and nothing is said of what lies outside.
+
 A folder found is a model folder: the file is the one its ``model.config`` names
 (the ``<sdf>`` of the highest ``version``), else ``model.sdf``.
 """
@@ -43,6 +46,7 @@ from sensorkit.loading.document import (
 )
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver, valid_package_name
+from sensorkit.loading.uris import OUTSIDE
 
 SDF_SUFFIXES = (".sdf", ".world")
 RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
@@ -152,6 +156,8 @@ def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> M
         if "://" in uri:
             return ModelUri(None, "only model:// and file:// URIs and paths can be read")
         path = Path(uri) if os.path.isabs(uri) else including.parent / uri
+        if not resolver.allows(path):  # says nothing of what is there
+            return ModelUri(None, OUTSIDE)
         got = model_file(path)
         return ModelUri(got, "" if got else "no model there", (str(path),))
     name, _, rest = uri[len("model://") :].partition("/")
@@ -163,6 +169,7 @@ def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> M
     model_dir = including.resolve().parent
     for folder in (model_dir.parent, model_dir):
         candidates.append(folder / name / rest if rest else folder / name)
+    candidates = [c for c in candidates if resolver.allows(c)]  # --untrusted: inside only
     for cand in candidates:
         got = model_file(cand)
         if got is not None:

@@ -29,6 +29,7 @@ from sensorkit.base.findings import Finding
 from sensorkit.loading.document import Document
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.sdf_files import add_file, parse_sdf, resolve_model_uri
+from sensorkit.loading.uris import OUTSIDE
 from sensorkit.model.parse import child, parse_vec, text_of
 from sensorkit.model.sdf_frames import TOP, FrameGraph, Vertex, inverse, scoped
 from sensorkit.model.transforms import IDENTITY, Pose, compose, pose
@@ -233,8 +234,8 @@ def _load_include(
     owner.includes.append(record)
     if got.path is None:
         return None
-    if not ctx.resolver.allows(got.path):
-        record.path, record.why = None, "outside the workspace; not read with --untrusted"
+    if not ctx.resolver.allows(got.path):  # a model folder's file named elsewhere
+        record.path, record.why = None, OUTSIDE
         return None
     key = str(got.path.resolve())
     if key in ctx.stack or len(ctx.stack) > MAX_INCLUDE_DEPTH:
