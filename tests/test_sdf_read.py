@@ -308,3 +308,32 @@ def test_untrusted_reads_no_include_outside_the_workspace(tmp_path: Path) -> Non
     path.write_text(path.read_text().replace(str(outside), str(outside.parent / "nothing.sdf")))
     (missing,) = load_robot(path, sdf=True, untrusted=Untrusted()).robots
     assert missing.sdf.includes[0].why == inc.why
+
+
+def test_broken_sdf_is_read_as_written_without_raising(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Mistakes libsdformat refuses (it stops at the first, the unreadable pose) are kept
+    # as written for the rules: unreadable poses, frames that name nothing or loop,
+    # placement frames naming nothing, includes that do not resolve or include
+    # themselves, joints without a child.
+    (robot,) = _load(SDF_DIR / "broken" / "bad.sdf", monkeypatch)
+    sm = robot.sdf
+    assert [p for p, _ in sm.pose_problems] == [
+        "pose '1 2 x' is not 6 numbers",
+        "placement_frame 'zzz' names no frame of the model",
+        "placement_frame 'nowhere' names no frame",
+    ]
+    assert sm.pose_of("b") is None  # relative_to="ghost"
+    assert sm.pose_of("c") is None  # f1 and f2 are attached to each other
+    assert [v.name for v in sm.graph.duplicates] == ["c", ""]
+    assert [(i.uri, i.why) for i in sm.includes] == [
+        ("model://sk_selfie", ""),
+        ("model://sk_selfie", "the include comes back to a file that includes it"),
+        ("http://x/y", "only model:// and file:// URIs and paths can be read"),
+        ("", "the <include> has no <uri>"),
+    ]
+    joints = {j.name: j for j in robot.joints}
+    assert (joints["j"].parent, joints["j"].child) == ("a", None)
+    assert joints["k"].axis_problem == "axis expressed in a frame that does not resolve"
+    assert [s.problems for s in robot.sensors] == [
+        ["pose relative to a frame that does not resolve"]
+    ] * 2

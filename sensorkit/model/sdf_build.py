@@ -113,17 +113,23 @@ def _axis(
 def _joint(sm: SdfModel, item: Element, doc: Document) -> Joint | None:
     """The Robot joint of an SDF joint, or None for one to ``world``."""
     el = item.element
-    parent_text = text_of(el, "parent") or ""
+    parent_text, child_text = text_of(el, "parent"), text_of(el, "child")
     if parent_text == "world":
         return None
-    parent = sm.graph.link_of(scoped(item.scope, parent_text)) or scoped(item.scope, parent_text)
-    kid = sm.graph.link_of(scoped(item.scope, text_of(el, "child") or ""))
-    kid = kid or scoped(item.scope, text_of(el, "child") or "")
-    a, b = sm.pose_of(parent), sm.pose_of(kid)
+    parent = kid = None  # None: not written, as the URDF reader has it
+    if parent_text:
+        parent = scoped(item.scope, parent_text)
+        parent = sm.graph.link_of(parent) or parent
+    if child_text:
+        kid = scoped(item.scope, child_text)
+        kid = sm.graph.link_of(kid) or kid
+    a = sm.pose_of(parent) if parent is not None else None
+    b = sm.pose_of(kid) if kid is not None else None
     rel = between(a, b) if a is not None and b is not None else IDENTITY
     origin = exact_origin(rel, child(el, "pose") if child(el, "pose") is not None else el, doc)
     joint = Joint(item.name, el.get("type", ""), parent, kid, origin, el, doc)
-    joint.axis, joint.axis_problem = _axis(sm, item, item.name, kid)
+    if kid is not None:
+        joint.axis, joint.axis_problem = _axis(sm, item, item.name, kid)
     limit_el = child(child(el, "axis"), "limit")
     if limit_el is not None:
         limit: dict[str, float | None] = {}

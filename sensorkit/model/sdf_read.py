@@ -229,6 +229,9 @@ def _load_include(
     include is kept in ``owner.includes`` with why)."""
     uri = text_of(inc, "uri") or ""
     including = Path(ctx.stack[-1])
+    if not uri:
+        owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>"))
+        return None
     got = resolve_model_uri(uri, including, ctx.resolver)
     record = Include(uri, inc, got.path, got.why, got.searched)
     owner.includes.append(record)
@@ -315,6 +318,9 @@ def read_models(
         if el.tag == "model":
             sm = SdfModel(el.get("name", ""), el, version)
             _walk_model(ctx, sm, el, TOP, version)
+            frame = _placement(el, None, version)  # places the model in its parent only
+            if frame and sm.graph.pose(scoped(TOP, frame)) is None:
+                sm.pose_problems.append((f"placement_frame {frame!r} names no frame", el))
             out.models.append(sm)
         elif el.tag == "world":
             out.models.extend(_read_world(ctx, el, version))
