@@ -3,7 +3,9 @@ and sensors read from a URDF, with the tree questions and the poses it answers.
 
 Its parts' records (Link, Joint, ...) are in :mod:`sensorkit.model.parts`, the reader in
 :mod:`sensorkit.model.urdf`, the answers in its bases :class:`~sensorkit.model.tree.Tree`
-and :class:`~sensorkit.model.poses.Poses`.
+and :class:`~sensorkit.model.poses.Poses`. A model read from SDF
+(:mod:`sensorkit.model.sdf_build`) fills the same records, and keeps what only SDF says
+(its frames, joints' own poses, nested models, includes) in ``sdf``.
 """
 
 from __future__ import annotations
