@@ -226,7 +226,12 @@ def test_nested_names_are_scoped_and_sensors_keep_their_tags(
     assert cam.camera is not None and cam.camera.optical_frame_id == "front_optical"
     assert by_name["lidar"].lidar is not None and by_name["lidar"].lidar.samples == 360
     assert by_name["imu"].kind == "imu" and by_name["gps"].type == "navsat"
-    assert [p.filename for p in robot.model_plugins] == ["gz-sim-joint-state-publisher-system"]
+    # plugins of the model and of its links are the model's; a sensor's are the sensor's
+    assert [p.filename for p in robot.model_plugins] == [
+        "sk-link-helper",
+        "gz-sim-joint-state-publisher-system",
+    ]
+    assert [p.filename for p in by_name["imu"].plugins] == ["sk-imu-helper"]
 
 
 def test_included_elements_are_located_in_their_own_file(monkeypatch: pytest.MonkeyPatch) -> None:
