@@ -19,10 +19,20 @@ if TYPE_CHECKING:
 
 @dataclass
 class Loaded:
-    """A robot, or the findings (SK101..SK103) that say why it could not be read."""
+    """A robot, or the findings (SK101..SK103) that say why it could not be read.
+
+    An SDF world holds several models: ``robots`` is each of them, in document order, and
+    ``robot`` the first (None when the world has none). Otherwise ``robots`` is
+    ``[robot]``, or empty when there is none.
+    """
 
     robot: Robot | None
     findings: list[Finding] = field(default_factory=list)
+    robots: list[Robot] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        if not self.robots and self.robot is not None:
+            self.robots = [self.robot]
 
 
 def load_robot(
@@ -34,13 +44,25 @@ def load_robot(
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
+    sdf: bool = False,
 ) -> Loaded:
     """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
+
+    With ``sdf``, an SDF file (``.sdf``, ``.world``) is read too (see
+    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``. Without
+    it, SDF is refused as before (InputError naming ``<sdf>``): the commands take it once
+    their rules know SDF.
 
     ``overlay`` maps absolute paths to bytes read instead of those files (stdin, ``--fix``).
     ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
     """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
+    from sensorkit.loading.sdf_files import is_sdf_path
+
+    if sdf and is_sdf_path(path):
+        if untrusted is not None:
+            resolver.confine_to(path)  # includes are read inside the workspace only
+        return _load_sdf(path, resolver, overlay)
     result = load_description(
         path,
         args=args,
@@ -53,6 +75,17 @@ def load_robot(
     if result.document is None:
         return Loaded(None, result.findings)
     return Loaded(build_robot(result.document), result.findings)
+
+
+def _load_sdf(path: Path, resolver: PackageResolver, overlay: Mapping[str, bytes] | None) -> Loaded:
+    from sensorkit.model.sdf_build import build_sdf_robot
+    from sensorkit.model.sdf_read import read_models
+
+    read = read_models(path, resolver, overlay)
+    if read.document is None:
+        return Loaded(None, read.findings)
+    robots = [build_sdf_robot(read.document, sm) for sm in read.models]
+    return Loaded(robots[0] if robots else None, read.findings, robots)
 
 
 __all__ = ["Loaded", "Robot", "build_robot", "load_robot"]

@@ -3,7 +3,9 @@ and sensors read from a URDF, with the tree questions and the poses it answers.
 
 Its parts' records (Link, Joint, ...) are in :mod:`sensorkit.model.parts`, the reader in
 :mod:`sensorkit.model.urdf`, the answers in its bases :class:`~sensorkit.model.tree.Tree`
-and :class:`~sensorkit.model.poses.Poses`.
+and :class:`~sensorkit.model.poses.Poses`. A model read from SDF
+(:mod:`sensorkit.model.sdf_build`) fills the same records, and keeps what only SDF says
+(its frames, joints' own poses, nested models, includes) in ``sdf``.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from sensorkit.model.poses import Poses
 from sensorkit.model.tree import Tree
 
 if TYPE_CHECKING:
+    from sensorkit.model.sdf_read import SdfModel
     from sensorkit.model.sensors import Plugin, Sensor
     from sensorkit.model.transforms import Pose
 
@@ -42,11 +45,15 @@ class Robot(Tree, Poses):
     _up: dict[str, tuple[str, int]] = field(default_factory=dict, repr=False)
     _roots: list[str] | None = field(default=None, repr=False)
     cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # derived data, by user
+    # read from SDF: the model's frames, joints' own poses, nested models, includes
+    sdf: SdfModel | None = field(default=None, repr=False)
 
     @property
     def macros_only(self) -> bool:
         """A xacro that expands to no link, joint or sensor: it only defines macros or
         properties for robots to include (a partial given explicitly)."""
+        if self.sdf is not None:
+            return False
         return self.document.expanded and not self.links and not self.joints and not self.sensors
 
 

@@ -1,0 +1,179 @@
+"""SDF files on disk: strict parsing of an ``<sdf>`` file, the file a ``model://`` URI
+names, and the source marks that let one Document locate elements of several files.
+
+An SDF description is read without any expansion: lines are the file's own. When a model
+``<include>``s another file, every element of every file read is stamped with
+``LOC_ATTR`` ("FILE_INDEX:LINE", as xacro's expansion stamps them) and the Document is
+marked ``expanded``, so that ``Document.locate`` names the file each element came from.
+
+``model://NAME/REST`` is looked up, first hit wins, in:
+
+1. each folder of ``GZ_SIM_RESOURCE_PATH`` (then the older ``IGN_GAZEBO_RESOURCE_PATH``
+   and libsdformat's own ``SDF_PATH``), as ``FOLDER/NAME/REST``;
+2. the package ``NAME`` as the resolver finds it (``--package-path``, the environment,
+   the workspace), as ``PACKAGE/REST``;
+3. the folders beside the including model's own folder (a ``models/`` folder holding
+   several models), as ``PARENT/NAME/REST``.
+
+Under ``--untrusted`` (a confined resolver) only places inside the workspace and the
+resolved packages are looked at, and nothing is said of what lies outside.
+
+A folder found is a model folder: the file is the one its ``model.config`` names
+(the ``<sdf>`` of the highest ``version``), else ``model.sdf``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from sensorkit.base.errors import InputError
+from sensorkit.base.findings import Finding
+from sensorkit.loading.document import (
+    Document,
+    OverLimit,
+    _limit_finding,
+    _xml_finding,
+    display_path,
+    drop_default_namespace,
+    parse_bounded,
+    read_input,
+)
+from sensorkit.loading.marks import LOC_ATTR, forbid_entities
+from sensorkit.loading.packages import PackageResolver, valid_package_name
+from sensorkit.loading.uris import OUTSIDE
+
+SDF_SUFFIXES = (".sdf", ".world")
+RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
+
+
+def is_sdf_path(path: Path) -> bool:
+    """Whether ``path`` is read as SDF (by its name: ``.sdf``, ``.world``)."""
+    return path.name.lower().endswith(SDF_SUFFIXES)
+
+
+def parse_sdf(
+    path: Path, overlay: Mapping[str, bytes] | None = None
+) -> tuple[etree._Element | None, list[Finding]]:
+    """The ``<sdf>`` root of ``path`` (namespace dropped) or SK101 findings.
+
+    Raises InputError for an unreadable file or one whose root is not ``<sdf>``.
+    """
+    key = os.path.abspath(path)
+    data = overlay[key] if overlay and key in overlay else read_input(path)
+    where = display_path(path)
+    if not data.strip():
+        return None, [_xml_finding(where, "the file is empty", 1, 1)]
+    reason = forbid_entities(data)
+    if reason:
+        return None, [_xml_finding(where, reason, 1, 1)]
+    try:
+        root = parse_bounded(data)
+    except etree.XMLSyntaxError as exc:
+        line, col = exc.position if exc.position else (exc.lineno, exc.offset)
+        return None, [_xml_finding(where, str(exc.msg), line, col)]
+    except OverLimit as exc:
+        return None, [_limit_finding("SK101", where, str(exc), exc.line)]
+    tag = etree.QName(root).localname if isinstance(root.tag, str) else "?"
+    if tag != "sdf":
+        msg = f"{where}: root element is <{tag}>, not <sdf>: not an SDF description"
+        raise InputError(msg)
+    return drop_default_namespace(root), []
+
+
+def stamp(root: etree._Element, index: int) -> None:
+    """Mark every element under ``root`` with its file ``index`` and line (LOC_ATTR)."""
+    for el in root.iter():
+        if isinstance(el.tag, str) and el.sourceline is not None:
+            el.set(LOC_ATTR, f"{index}:{el.sourceline}")
+
+
+def add_file(doc: Document, root: etree._Element, path: Path) -> None:
+    """Make ``doc`` locate elements of ``root`` (read from ``path``) in that file."""
+    if not doc.expanded:
+        doc.files = [str(doc.path)]
+        stamp(doc.root, 0)
+        doc.expanded = True
+    doc.files.append(str(path))
+    stamp(root, len(doc.files) - 1)
+
+
+@dataclass(frozen=True)
+class ModelUri:
+    """Where a ``model://`` URI leads: a file, or why not (with the places searched)."""
+
+    path: Path | None
+    why: str = ""
+    searched: tuple[str, ...] = ()
+
+
+def _resource_dirs() -> list[Path]:
+    out: list[Path] = []
+    for var in RESOURCE_VARS:
+        for part in os.environ.get(var, "").split(os.pathsep):
+            if part:
+                out.append(Path(part))
+    return out
+
+
+def model_file(found: Path) -> Path | None:
+    """The SDF file of a model folder (model.config's newest ``<sdf>``, else model.sdf),
+    or ``found`` itself when it is a file."""
+    if found.is_file():
+        return found
+    if not found.is_dir():
+        return None
+    config = found / "model.config"
+    best: tuple[tuple[int, ...], str] | None = None
+    if config.is_file():
+        try:
+            text = config.read_bytes()[:262144].decode("utf-8", "replace")
+        except OSError:
+            text = ""
+        for m in re.finditer(r"<sdf(\s[^>]*)?>\s*([^<\s]+)\s*</sdf>", text):
+            ver = re.search(r"version\s*=\s*[\"']([0-9.]+)", m.group(1) or "")
+            key = tuple(int(p) for p in ver.group(1).split(".") if p) if ver else ()
+            if best is None or key > best[0]:
+                best = (key, m.group(2))
+    if best is not None and (found / best[1]).is_file():
+        return found / best[1]
+    if (found / "model.sdf").is_file():
+        return found / "model.sdf"
+    return None
+
+
+def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> ModelUri:
+    """The file ``uri`` (``model://``, ``file://``, or a path) names, from the file
+    ``including`` it; see the module's docstring for the order."""
+    if uri.startswith("file://"):
+        uri = uri[len("file://") :]
+    if not uri.startswith("model://"):
+        if "://" in uri:
+            return ModelUri(None, "only model:// and file:// URIs and paths can be read")
+        path = Path(uri) if os.path.isabs(uri) else including.parent / uri
+        if not resolver.allows(path):  # says nothing of what is there
+            return ModelUri(None, OUTSIDE)
+        got = model_file(path)
+        return ModelUri(got, "" if got else "no model there", (str(path),))
+    name, _, rest = uri[len("model://") :].partition("/")
+    candidates = [d / name / rest if rest else d / name for d in _resource_dirs()]
+    if valid_package_name(name):
+        pkg = resolver.find(name)
+        if pkg is not None:
+            candidates.append(pkg / rest if rest else pkg)
+    model_dir = including.resolve().parent
+    for folder in (model_dir.parent, model_dir):
+        candidates.append(folder / name / rest if rest else folder / name)
+    candidates = [c for c in candidates if resolver.allows(c)]  # --untrusted: inside only
+    for cand in candidates:
+        got = model_file(cand)
+        if got is not None:
+            return ModelUri(got)
+    searched = tuple(str(c) for c in candidates)
+    why = "not found in GZ_SIM_RESOURCE_PATH, the packages, or beside the including model"
+    return ModelUri(None, why, searched)
