@@ -166,7 +166,7 @@ _ADDITIVE = frozenset({"SK105", "SK201", "SK202", "SK204", "SK205", "SK206", "SK
 _ELEMENTS = ("links", "joints", "gazebo", "sensors", "model_plugins", "strays")
 _TREE = ("link_map", "joint_map", "parent_joint", "child_joints")
 _ROBOT_FIELDS = frozenset(
-    {"name", "document", *_ELEMENTS, *_TREE, "_T_world", "_up", "_roots", "cache"}
+    {"name", "document", *_ELEMENTS, *_TREE, "_T_world", "_up", "_roots", "cache", "sdf"}
 )
 
 
@@ -207,6 +207,8 @@ def extend_robot(before: Robot, part: Robot) -> Robot | None:
     is not a leaf subtree (see ``_leaf_subtree``) or the model has grown fields unknown here.
     """
     if {f.name for f in dataclasses.fields(Robot)} != _ROBOT_FIELDS:
+        return None
+    if before.sdf is not None or part.sdf is not None:  # add-* edits URDF/xacro only
         return None
     if not _leaf_subtree(before, part):
         return None
