@@ -42,7 +42,10 @@ def test_readme_says_how_to_run_and_install_sensorkit() -> None:
     readme = (ROOT / "README.md").read_text()
     setup = readme.split("## Set up", 1)[1].split("\n## ", 1)[0]
     # the set-up stays two commands: the try-it line and the test run
-    assert "```sh\npython3 -m venv .venv && .venv/bin/pip install . && .venv/bin/sensorkit validate" in setup
+    assert (
+        "```sh\npython3 -m venv .venv && .venv/bin/pip install . && .venv/bin/sensorkit validate"
+        in setup
+    )
     assert "```sh\nbash tests/run\n```" in setup
     assert ". .venv/bin/activate" in setup and "`.venv/bin/sensorkit`" in setup
     sh = "".join(_readme_blocks("sh"))
