@@ -4,9 +4,18 @@ the pre-commit hook, one error style, and refusals that name the next step."""
 from __future__ import annotations
 
 import re
+import shlex
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
 
+import pytest
 import yaml
-from conftest import ROOT
+from conftest import ROOT, run_cli
+
+ROBOTS = Path(__file__).resolve().parent / "edit_robots"
 
 # pre-commit's manifest schema (pre_commit/clientlib.py MANIFEST_HOOK_DICT): required keys.
 PRE_COMMIT_REQUIRED = ("id", "name", "entry", "language")
@@ -54,3 +63,144 @@ def test_readme_says_how_to_run_and_install_sensorkit() -> None:
     assert jobs, "README has no GitHub Actions job running the hook"
     steps = jobs[0]["jobs"]["sensors"]["steps"]
     assert any("sensorkit-validate" in step.get("run", "") for step in steps)
+
+
+# --------------------------------------------------------------------------- one error style
+
+
+def _rover(tmp_path: Path) -> Path:
+    path = tmp_path / "rover.urdf"
+    shutil.copyfile(ROBOTS / "rover.urdf", path)
+    return path
+
+
+def _one_line(res: subprocess.CompletedProcess[str]) -> str:
+    assert res.returncode == 2, (res.stdout, res.stderr)
+    assert "Traceback" not in res.stderr and len(res.stderr.strip().splitlines()) == 1, res.stderr
+    return res.stderr.strip()
+
+
+@pytest.mark.parametrize(
+    "cmd",
+    [["export", "{robot}", "--out", "{ro}/x"], ["render", "preview", "{robot}", "-o", "{ro}/prev"],
+     ["new", "{spec}", "-o", "{ro}/pkg"], ["export", "{robot}", "--out", "{ro}/x/y"]],
+)  # fmt: skip
+def test_a_read_only_out_folder_is_not_writable(tmp_path: Path, cmd: list[str]) -> None:
+    robot = _rover(tmp_path)
+    spec = tmp_path / "robot.yaml"
+    spec.write_text("name: bot\n")
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    try:
+        argv = [c.format(robot=robot, ro=ro, spec=spec) for c in cmd]
+        line = _one_line(run_cli(*argv, cwd=tmp_path))
+        assert line.startswith(f"sensorkit: {ro} is not writable"), line
+        assert "Errno" not in line and ".new-" not in line
+        assert list(ro.iterdir()) == []
+    finally:
+        ro.chmod(0o755)
+    # near miss: the same folder writable
+    res = run_cli(*argv, cwd=tmp_path)
+    assert res.returncode in (0, 1), res.stderr
+
+
+def test_add_given_a_folder_says_it_is_a_folder(tmp_path: Path) -> None:
+    folder = tmp_path / "urdf"
+    folder.mkdir()
+    (folder / "sub").mkdir()  # a folder with subfolders has several hard links
+    line = _one_line(run_cli("add-camera", str(folder), "--name", "cam", "--parent", "base_link"))
+    assert line.startswith(f"sensorkit: {folder} is a folder"), line
+    assert "hard link" not in line
+
+
+def test_validate_a_robot_yaml_points_to_new_and_new_a_urdf_to_validate(tmp_path: Path) -> None:
+    spec = tmp_path / "robot.yaml"
+    spec.write_text("name: bot\nsensors: []\n")
+    for cmd in (
+        ["validate"],
+        ["topics"],
+        ["frames"],
+        ["add-imu", "--name", "i", "--parent", "base_link"],
+    ):
+        line = _one_line(run_cli(cmd[0], "robot.yaml", *cmd[1:], cwd=tmp_path))
+        assert (
+            line == "sensorkit: robot.yaml: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+        ), line
+    robot = _rover(tmp_path)
+    line = _one_line(run_cli("new", "rover.urdf", "-o", "out", cwd=tmp_path))
+    assert line.startswith("sensorkit: rover.urdf: not a robot YAML: `sensorkit new` takes a robot YAML; "
+                           "URDF/xacro go to `sensorkit validate`"), line  # fmt: skip
+    assert not (tmp_path / "out").exists()
+    robot.rename(tmp_path / "robot.txt")  # the content, not the name, tells
+    line = _one_line(run_cli("new", "robot.txt", "-o", "out", cwd=tmp_path))
+    assert "URDF/xacro go to `sensorkit validate`" in line
+
+
+def test_a_closed_pipe_ends_quietly() -> None:
+    # the reader is gone before sensorkit has started: its first write meets a closed pipe
+    script = (
+        f"{shlex.quote(sys.executable)} -m sensorkit rules | true; echo status=${{PIPESTATUS[0]}}"
+    )
+    res = subprocess.run(
+        ["bash", "-c", script], capture_output=True, text=True, timeout=60, check=False
+    )
+    assert res.stderr == "", res.stderr
+    assert res.stdout.strip() in ("status=0", "status=141"), res.stdout
+    # near miss: a reader that reads it all gets it all, status 0
+    script = f"{shlex.quote(sys.executable)} -m sensorkit rules | head -1; echo status=${{PIPESTATUS[0]}}"
+    res = subprocess.run(
+        ["bash", "-c", script], capture_output=True, text=True, timeout=60, check=False
+    )
+    assert res.stdout.startswith("SK101") and res.stdout.strip().splitlines()[-1] in (
+        "status=0",
+        "status=141",
+    )
+
+
+def test_summaries_say_one_in_the_singular(tmp_path: Path) -> None:
+    bad = ROOT / "tests" / "robots" / "acceptance" / "sk502_bad.urdf"
+    res = run_cli("validate", str(bad))
+    assert res.stdout.splitlines()[-1].startswith("1 error, 0 warnings, 0 info in 1 file"), (
+        res.stdout
+    )
+    robot = _rover(tmp_path)
+    res = run_cli("add-camera", str(robot), "--name", "cam", "--parent", "base_link")
+    assert res.returncode == 0, res.stderr
+    res = run_cli("validate", str(robot))
+    assert "(1 sensor checked)" in res.stdout, res.stdout
+    res = run_cli("export", str(robot), "-o", str(tmp_path / "exp"))
+    assert " for 1 sensor of " in res.stderr and "1 sensors" not in res.stderr, res.stderr
+
+
+def test_an_option_where_a_value_belongs_is_a_missing_value(tmp_path: Path) -> None:
+    robot = _rover(tmp_path)
+    before = robot.read_bytes()
+    argv = ["add-camera", str(robot), "--name", "cam", "--parent", "base_link"]
+    line = _one_line(run_cli(*argv, "--xyz", "0.2", "0", "--diff"))
+    assert line == "sensorkit: --xyz needs 3 values; got '--diff', an option", line
+    line = _one_line(run_cli(*argv, "--rpy", "0", "-q", "0"))
+    assert line == "sensorkit: --rpy needs 3 values; got '-q', an option", line
+    assert robot.read_bytes() == before
+    # near miss: a negative number is a value
+    res = run_cli(*argv, "--xyz", "0.2", "-0.1", "0", "--diff")
+    assert res.returncode == 0 and res.stdout.startswith("---"), res.stderr
+
+
+def test_every_option_of_several_values_is_known_to_the_check() -> None:
+    import typer
+
+    from sensorkit.cli import SEVERAL_VALUES, app
+
+    group = typer.main.get_command(app)  # every command: this process is not `sensorkit X`
+    seen: dict[str, int] = {}
+
+    def walk(cmd: Any) -> None:
+        for p in cmd.params:
+            if p.param_type_name == "option" and p.nargs > 1:
+                seen.update(dict.fromkeys(p.opts, p.nargs))
+        for sub in getattr(cmd, "commands", {}).values():
+            walk(sub)
+
+    walk(group)
+    assert seen and seen == SEVERAL_VALUES

@@ -98,16 +98,59 @@ def xacro_args_as_options(argv: list[str]) -> list[str]:
     return out
 
 
+# Options that take several values (click's nargs), by flag: a test holds this table to
+# the registered commands.
+SEVERAL_VALUES = {"--xyz": 3, "--rpy": 3, "--size": 3}
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def option_eats_option(argv: list[str]) -> str | None:
+    """The one-line error for an option of several values whose values run into the next
+    option (``--xyz 0.2 0 --diff``): click would take ``--diff`` as a value and call it
+    "not a valid float"; the user left a value out. None when every value is a value
+    (``-0.5`` is a number, not an option)."""
+    for i, token in enumerate(argv):
+        if token == "--":
+            return None
+        n = SEVERAL_VALUES.get(token)
+        if n is None:
+            continue
+        for got in argv[i + 1 : i + 1 + n]:
+            if got.startswith("-") and len(got) > 1 and not _is_number(got):
+                return f"{token} needs {n} values; got {got!r}, an option"
+    return None
+
+
 def main() -> None:
     """Console entry point.
 
     A command that has finished all its writes may call ``leave_quickly()``: its exit then
     skips the interpreter's teardown (freeing a large model costs a tenth of a second for
     nothing). Output streams are flushed first; nothing else is pending by then.
+
+    A reader that stops early (``sensorkit rules | head -1``) ends the process quietly as
+    it ends ``cat`` or ``grep``: SIGPIPE keeps its default action (Python ignores it and
+    raises BrokenPipeError instead, which would print "Broken pipe" and exit 2), so the
+    shell reports status 141 and prints nothing.
     """
     global _program  # noqa: PLW0603 (one process-wide switch)
     _program = True
+    import signal  # imported by the interpreter already: no start-up cost
+
+    if hasattr(signal, "SIGPIPE"):  # not on Windows
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     sys.argv[1:] = xacro_args_as_options(sys.argv[1:])
+    eaten = option_eats_option(sys.argv[1:])
+    if eaten:
+        sys.stderr.write(f"sensorkit: {eaten}\n")
+        raise SystemExit(2)
     try:
         app()
     except SystemExit as exc:

@@ -8,7 +8,7 @@ from typing import Any
 
 from sensorkit import __version__
 from sensorkit.base.findings import Finding, Severity
-from sensorkit.base.quote import clip, shorten
+from sensorkit.base.quote import clip, plural, shorten
 from sensorkit.lint.engine import Report
 from sensorkit.lint.rules import RULES
 
@@ -63,7 +63,7 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
                 if f.fix:
                     lines.append(f"      fix: {f.fix}")
         if not fr.findings:
-            lines.append(f"  ok: no findings ({fr.sensor_count} sensors checked)")
+            lines.append(f"  ok: no findings ({plural(fr.sensor_count, 'sensor')} checked)")
         for err in fr.internal_errors:
             lines.append(f"  internal error: {shorten(err)}")
     if quiet:
@@ -72,13 +72,12 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
     failed = sum(1 for fr in report.files if fr.error)
     skipped = len(report.skipped)
     checked = len(report.files) - failed - skipped
-    summary = f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {checked} files"
+    counts = f"{plural(s['error'], 'error')}, {plural(s['warning'], 'warning')}, {s['info']} info"
+    summary = f"{counts} in {plural(checked, 'file')}"
     if skipped:
-        summary += f"; {skipped} macro-only {'file' if skipped == 1 else 'files'} skipped"
+        summary += f"; {plural(skipped, 'macro-only file')} skipped"
     if failed:  # never a clean-looking summary when a file could not be checked at all
-        summary += (
-            f"; {failed} {'file' if failed == 1 else 'files'} could not be checked (see above)"
-        )
+        summary += f"; {plural(failed, 'file')} could not be checked (see above)"
     lines.append(summary)
     return "\n".join(lines) + "\n"
 

@@ -207,6 +207,9 @@ def read_input(path: Path) -> bytes:
             msg = f"{display_path(path)}: is a folder, not a URDF or xacro file"
             raise InputError(msg)
         size = path.stat().st_size
+        if path.suffix.lower() in (".yaml", ".yml"):
+            msg = f"{display_path(path)}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+            raise InputError(msg)
         if size > MAX_FILE_BYTES:
             msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
             raise InputError(msg)
