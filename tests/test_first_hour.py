@@ -3,6 +3,7 @@ the pre-commit hook, one error style, and refusals that name the next step."""
 
 from __future__ import annotations
 
+import json
 import re
 import shlex
 import shutil
@@ -204,3 +205,73 @@ def test_every_option_of_several_values_is_known_to_the_check() -> None:
 
     walk(group)
     assert seen and seen == SEVERAL_VALUES
+
+
+# --------------------------------------------------------------------------- fixable marks
+
+ACCEPTANCE = ROOT / "tests" / "robots" / "acceptance"
+
+
+def _copy(tmp_path: Path, *names: str) -> list[str]:
+    for name in names:
+        shutil.copyfile(ACCEPTANCE / name, tmp_path / name)
+    return list(names)
+
+
+def test_fixable_findings_are_marked_and_counted(tmp_path: Path) -> None:
+    files = _copy(tmp_path, "sk502_bad.urdf", "sk301_bad.urdf", "sk605_bad.urdf")
+    res = run_cli("validate", *files, cwd=tmp_path)
+    lines = res.stdout.splitlines()
+    marked = [line for line in lines if "[*]" in line]
+    assert len(marked) == 1 and ": SK502 [*] error: " in marked[0], res.stdout
+    assert any(": SK301 error: " in line for line in lines)  # unsafe: not marked
+    assert any(": SK605 error: " in line for line in lines)  # no fixer: not marked
+    assert lines[-1].endswith("; 1 fixable with `--fix` (1 more with `--unsafe-fixes`)"), lines[-1]
+    data = json.loads(run_cli("validate", "-f", "json", *files, cwd=tmp_path).stdout)
+    how = {f["rule"]: f["fixable"] for f in data["findings"]}
+    assert how["SK502"] == "safe" and how["SK301"] == "unsafe" and how["SK605"] is None
+    # the same with worker processes
+    res2 = run_cli("validate", "-j", "2", *files, cwd=tmp_path)
+    assert res2.stdout == res.stdout
+    # near miss: nothing fixable, no count
+    res = run_cli("validate", "sk605_bad.urdf", cwd=tmp_path)
+    assert "[*]" not in res.stdout and "fixable" not in res.stdout
+
+
+def test_every_fixer_rule_is_known_to_validate() -> None:
+    from sensorkit.cli.validate import FIXABLE_RULES
+    from sensorkit.fix import FIXERS
+
+    assert set(FIXERS) == FIXABLE_RULES
+
+
+def test_fix_says_why_each_finding_was_left(tmp_path: Path) -> None:
+    files = _copy(tmp_path, "sk502_bad.urdf", "sk301_bad.urdf", "sk605_bad.urdf")
+    res = run_cli("validate", "--fix", *files, cwd=tmp_path)
+    err = res.stderr
+    assert "fixed sk502_bad.urdf:37 SK502" in err
+    assert (
+        "not fixed sk301_bad.urdf:18 SK301: an unsafe fix" in err and "needs --unsafe-fixes" in err
+    )
+    left = [
+        line for line in err.splitlines() if line.startswith("sensorkit: not fixed sk605_bad.urdf")
+    ]
+    rules = sorted(line.split()[4].rstrip(":") for line in left)
+    assert "SK605" in rules and all("no automatic fix for this rule" in line for line in left), err
+    remaining = [line for line in res.stdout.splitlines() if re.match(r"\s+\S+:\d+: SK\d+", line)]
+    assert len(err.split("sensorkit: not fixed ")) - 1 == len(remaining), (res.stdout, err)
+
+
+def test_diff_exits_by_whether_it_would_change_a_file(tmp_path: Path) -> None:
+    _copy(tmp_path, "sk502_bad.urdf", "sk605_bad.urdf", "sk502_fixed.urdf")
+    before = (tmp_path / "sk502_bad.urdf").read_bytes()
+    res = run_cli("validate", "--diff", "sk502_bad.urdf", cwd=tmp_path)
+    assert res.returncode == 1 and res.stdout.startswith("--- a/sk502_bad.urdf"), res.stderr
+    assert (tmp_path / "sk502_bad.urdf").read_bytes() == before
+    # errors, but nothing --diff would change: 0
+    res = run_cli("validate", "--diff", "sk605_bad.urdf", cwd=tmp_path)
+    assert res.returncode == 0 and res.stdout == "", res.stderr
+    res = run_cli("validate", "--diff", "sk502_fixed.urdf", cwd=tmp_path)
+    assert res.returncode == 0 and res.stdout == ""
+    res = run_cli("validate", "--diff", "--exit-zero", "sk502_bad.urdf", cwd=tmp_path)
+    assert res.returncode == 0 and res.stdout.startswith("---")
