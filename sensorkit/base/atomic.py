@@ -175,7 +175,8 @@ def check_editable(path: Path) -> None:
     if not folder.st_mode & stat.S_IWUSR:
         msg = (
             f"{path}: its folder {real.parent} is read-only (mode "
-            f"{stat.S_IMODE(folder.st_mode):o}); nothing was written"
+            f"{stat.S_IMODE(folder.st_mode):o}); nothing was written: make it writable "
+            "(chmod u+w)"
         )
         raise UsageError(msg)
     try:
@@ -183,7 +184,10 @@ def check_editable(path: Path) -> None:
     except FileNotFoundError:
         return
     if not st.st_mode & stat.S_IWUSR:
-        msg = f"{path}: is read-only (mode {stat.S_IMODE(st.st_mode):o}); nothing was written"
+        msg = (
+            f"{path}: is read-only (mode {stat.S_IMODE(st.st_mode):o}); nothing was written: "
+            "make it writable (chmod u+w)"
+        )
         raise UsageError(msg)
     if st.st_nlink > 1:
         msg = (
