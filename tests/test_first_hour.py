@@ -275,3 +275,103 @@ def test_diff_exits_by_whether_it_would_change_a_file(tmp_path: Path) -> None:
     assert res.returncode == 0 and res.stdout == ""
     res = run_cli("validate", "--diff", "--exit-zero", "sk502_bad.urdf", cwd=tmp_path)
     assert res.returncode == 0 and res.stdout.startswith("---")
+
+
+# --------------------------------------------------------------------------- add-* refusals
+
+ONE_LINK = '<robot name="x"><link name="base_link"/></robot>\n'
+NO_LINKS = '<robot name="x"><joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>\n'
+
+
+@pytest.mark.parametrize(
+    ("robot", "extra", "says"),
+    [
+        ("rover", ["--parent", "base_lnk"], "closest: base_link: pass --parent base_link"),
+        ("no_links", ["--parent", "a"], "the robot has no links: add the link to mount on first"),
+        ("rover", ["--name", "base"], "pass another --name (e.g. base_2)"),
+        ("rover", ["--width", "0"], "SK403 sensor 'cam': image width 0 is not positive; write a positive"),
+        ("rover", ["--param", "widht=640"], "has no parameter 'widht' (it takes: update_rate, width, height, hfov, format, near, far, noise_stddev, mass, size, namespace, sim, gz_version); check the spelling, or leave it out"),
+        ("rover", ["-o", "nodir/out.urdf"], "nodir: no such folder; create it first"),
+        ("not_xml", [], "not well-formed XML"),
+    ],
+)  # fmt: skip
+def test_add_refusals_name_the_next_step(
+    tmp_path: Path, robot: str, extra: list[str], says: str
+) -> None:
+    path = tmp_path / "robot.urdf"
+    if robot == "rover":
+        shutil.copyfile(ROBOTS / "rover.urdf", path)
+    else:
+        path.write_text({"no_links": NO_LINKS, "not_xml": "hello\n"}[robot])
+    before = path.read_bytes()
+    argv = ["add-camera", "robot.urdf", "--name", "cam", "--parent", "base_link"]
+    for i in range(0, len(extra), 2):  # an option given again replaces the default one
+        if extra[i] in argv:
+            j = argv.index(extra[i])
+            argv[j : j + 2] = extra[i : i + 2]
+        else:
+            argv += extra[i : i + 2]
+    line = _one_line(run_cli(*argv, cwd=tmp_path))
+    assert says in line, line
+    assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == [
+        "robot.urdf"
+    ]
+
+
+def test_add_refusal_for_the_wrong_sim_names_the_sim(tmp_path: Path) -> None:
+    shutil.copyfile(ROBOTS / "rover.urdf", tmp_path / "robot.urdf")
+    (tmp_path / "sensorkit.toml").write_text('target = "harmonic"\n')
+    argv = ["add-camera", "robot.urdf", "--name", "cam", "--parent", "base_link", "--diff"]
+    res = run_cli(*argv, "--sim", "classic", cwd=tmp_path)
+    assert res.returncode == 2
+    assert (
+        "the robot is checked for target harmonic: pass --sim gz, or leave --sim out" in res.stderr
+    )
+    assert "remove it" not in res.stderr  # the plugin is the add's own text, not the user's
+    # near miss: the sim that fits
+    res = run_cli(*argv, "--sim", "gz", cwd=tmp_path)
+    assert res.returncode == 0 and res.stdout.startswith("---"), res.stderr
+
+
+def test_add_to_a_read_only_file_says_to_make_it_writable(tmp_path: Path) -> None:
+    path = _rover(tmp_path)
+    path.chmod(0o444)
+    line = _one_line(run_cli("add-imu", str(path), "--name", "imu", "--parent", "base_link"))
+    assert "is read-only" in line and "make it writable (chmod u+w)" in line
+
+
+def test_add_to_a_file_that_does_not_load_says_validate(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(
+        '<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<link name="base_link"/><xacro:nope/></robot>\n'
+    )
+    line = _one_line(
+        run_cli(
+            "add-imu", "robot.urdf.xacro", "--name", "imu", "--parent", "base_link", cwd=tmp_path
+        )
+    )
+    assert "does not load" in line and "`sensorkit validate robot.urdf.xacro` shows it" in line, (
+        line
+    )
+
+
+def test_add_into_a_package_sharing_its_robot_yaml_warns_first(tmp_path: Path) -> None:
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "robot.yaml").write_text("name: bot\nsensors: []\n")
+    res = run_cli("new", "robot.yaml", "-o", "bot_description", "-q", cwd=src)
+    assert res.returncode == 0, res.stderr
+    shutil.copytree(src / "bot_description", src / "bot_copy")
+    argv = ["add-camera", "bot_copy/urdf/bot.urdf.xacro", "--name", "cam", "--parent", "base_link"]
+    res = run_cli(*argv, cwd=src)
+    assert res.returncode == 0, res.stderr
+    first = next(line for line in res.stderr.splitlines() if "sim=" not in line)
+    assert first.startswith("sensorkit: warning: robot.yaml also generates bot_description:"), (
+        res.stderr
+    )
+    assert "copy robot.yaml into bot_copy" in first
+    # near miss: a package with its own robot.yaml shares nothing
+    shutil.copyfile(src / "robot.yaml", src / "bot_copy" / "robot.yaml")
+    res = run_cli(*[a if a != "cam" else "cam2" for a in argv], cwd=src)
+    assert res.returncode == 0 and "warning:" not in res.stderr, res.stderr

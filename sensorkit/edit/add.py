@@ -107,6 +107,9 @@ def _check_request(req: AddRequest) -> None:
     if not req.parent or req.parent != req.parent.strip():
         msg = f"--parent {req.parent!r}: give the name of an existing link"
         raise UsageError(msg)
+    if req.output is None and req.path.is_dir():
+        msg = f"{req.path} is a folder; name the URDF or xacro file in it to edit"
+        raise UsageError(msg)
     if req.target.is_dir():
         msg = f"{display_path(req.target)}: is a folder; -o takes a file name"
         raise UsageError(msg)
@@ -561,6 +564,7 @@ def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
     if dry_run:
         return plan_add(req)
     target = req.target
+    _check_request(req)  # before the lock: -o into a folder that does not exist
     check_editable(target)
     macros = target.parent / SENSORS_DIR
     # The folders of the robot's package too (bridge, README, robot YAML beside it).
