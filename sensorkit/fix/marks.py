@@ -11,7 +11,7 @@ would add an error (rare: it is validated in memory first) is still marked.
 
 from __future__ import annotations
 
-from sensorkit.fix.apply import _candidates, _Files, edit_scope
+from sensorkit.fix.apply import Files, _candidates, edit_scope
 from sensorkit.lint.engine import FileReport, Options
 
 __all__ = ["fixability"]
@@ -21,7 +21,7 @@ def fixability(report: FileReport, options: Options) -> dict[int, str]:
     """The indexes in ``report.findings`` of the fixable findings -> ``safe``/``unsafe``."""
     if report.robot is None or report.target is None or not report.findings:
         return {}
-    files = _Files({}, dict(options.overlay))
+    files = Files({}, dict(options.overlay))
     fixes, _notes = _candidates(report, options, files, True, edit_scope(report.path), None)
     index = {id(f): i for i, f in enumerate(report.findings)}
     out: dict[int, str] = {}
