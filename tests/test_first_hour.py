@@ -10,7 +10,6 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
 
 import pytest
 import yaml
@@ -188,23 +187,24 @@ def test_an_option_where_a_value_belongs_is_a_missing_value(tmp_path: Path) -> N
     assert res.returncode == 0 and res.stdout.startswith("---"), res.stderr
 
 
-def test_every_option_of_several_values_is_known_to_the_check() -> None:
-    import typer
-
-    from sensorkit.cli import SEVERAL_VALUES, app
-
-    group = typer.main.get_command(app)  # every command: this process is not `sensorkit X`
-    seen: dict[str, int] = {}
-
-    def walk(cmd: Any) -> None:
-        for p in cmd.params:
-            if p.param_type_name == "option" and p.nargs > 1:
-                seen.update(dict.fromkeys(p.opts, p.nargs))
-        for sub in getattr(cmd, "commands", {}).values():
-            walk(sub)
-
-    walk(group)
-    assert seen and seen == SEVERAL_VALUES
+def test_an_option_where_one_value_belongs_is_a_missing_value(tmp_path: Path) -> None:
+    robot = _rover(tmp_path)
+    before = robot.read_bytes()
+    line = _one_line(run_cli("validate", "--target", "--fix", str(robot)))
+    assert line == "sensorkit: --target needs a value; got '--fix', an option", line
+    assert robot.read_bytes() == before
+    line = _one_line(run_cli("export", str(robot), "-o", "--force"))
+    assert line == "sensorkit: -o needs a value; got '--force', an option", line
+    # near misses: flags side by side, a number, stdin
+    res = run_cli(
+        "validate", "-q", "--exit-zero", "--timeout", "30", "--fail-on", "warning", str(robot)
+    )
+    assert res.returncode == 0, res.stderr
+    res = subprocess.run(
+        [sys.executable, "-m", "sensorkit", "validate", "--stdin-filename", "x.urdf", "-", "--exit-zero"],
+        input=before.decode(), capture_output=True, text=True, timeout=60, check=False,
+    )  # fmt: skip
+    assert res.returncode == 0, res.stderr
 
 
 # --------------------------------------------------------------------------- fixable marks
@@ -375,3 +375,33 @@ def test_add_into_a_package_sharing_its_robot_yaml_warns_first(tmp_path: Path) -
     shutil.copyfile(src / "robot.yaml", src / "bot_copy" / "robot.yaml")
     res = run_cli(*[a if a != "cam" else "cam2" for a in argv], cwd=src)
     assert res.returncode == 0 and "warning:" not in res.stderr, res.stderr
+
+
+def test_validate_a_launch_file_or_an_image_is_one_line(tmp_path: Path) -> None:
+    (tmp_path / "sim.launch.py").write_text("from launch import LaunchDescription\n")
+    (tmp_path / "photo.png").write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
+    line = _one_line(run_cli("validate", "sim.launch.py", cwd=tmp_path))
+    assert (
+        line
+        == "sensorkit: sim.launch.py: not a URDF/xacro: launch files go to `--launch` (validate, topics)"
+    )
+    line = _one_line(run_cli("validate", "photo.png", cwd=tmp_path))
+    assert line.startswith("sensorkit: photo.png: not a URDF/xacro (it is not XML"), line
+    # near miss: a broken .urdf stays a finding (SK101), exit 1
+    (tmp_path / "junk.urdf").write_text("junk\n")
+    res = run_cli("validate", "junk.urdf", cwd=tmp_path)
+    assert res.returncode == 1 and "SK101" in res.stdout
+
+
+def test_a_read_only_folder_of_an_edited_file_is_not_writable(tmp_path: Path) -> None:
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    shutil.copyfile(ROBOTS / "rover.urdf", folder / "r.urdf")
+    folder.chmod(0o555)
+    try:
+        line = _one_line(
+            run_cli("add-imu", "ro/r.urdf", "--name", "imu", "--parent", "base_link", cwd=tmp_path)
+        )
+    finally:
+        folder.chmod(0o755)
+    assert "is not writable" in line and "make it writable (chmod u+w)" in line, line

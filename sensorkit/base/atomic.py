@@ -174,7 +174,7 @@ def check_editable(path: Path) -> None:
         return
     if not folder.st_mode & stat.S_IWUSR:
         msg = (
-            f"{path}: its folder {real.parent} is read-only (mode "
+            f"{path}: its folder {real.parent} is not writable (read-only, mode "
             f"{stat.S_IMODE(folder.st_mode):o}); nothing was written: make it writable "
             "(chmod u+w)"
         )
