@@ -405,3 +405,14 @@ def test_a_read_only_folder_of_an_edited_file_is_not_writable(tmp_path: Path) ->
     finally:
         folder.chmod(0o755)
     assert "is not writable" in line and "make it writable (chmod u+w)" in line, line
+
+
+def test_config_given_a_folder_says_it_is_a_folder(tmp_path: Path) -> None:
+    _rover(tmp_path)
+    (tmp_path / "conf").mkdir()
+    line = _one_line(run_cli("validate", "rover.urdf", "--config", "conf", cwd=tmp_path))
+    assert (
+        line == "sensorkit: --config conf is a folder; name its sensorkit.toml or pyproject.toml"
+    ), line
+    line = _one_line(run_cli("validate", "rover.urdf", "--config", "nope.toml", cwd=tmp_path))
+    assert line == "sensorkit: --config nope.toml: no such file", line
