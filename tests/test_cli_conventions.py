@@ -265,11 +265,11 @@ def test_quiet_prints_only_findings(tmp_path: Path) -> None:
     shutil.copyfile(ROBOTS / "rover.urdf", good)
     (tmp_path / "sensorkit.toml").write_text('target = "classic"\n')
     loud = _sk("validate", str(good), str(BAD), cwd=tmp_path)
-    assert "errors," in loud.stdout and "ok: no findings" in loud.stdout
+    assert "1 error, 0 warnings," in loud.stdout and "ok: no findings" in loud.stdout
     assert "from sensorkit.toml" in loud.stderr
     res = _sk("validate", "-q", str(good), str(BAD), cwd=tmp_path)
     assert res.returncode == 1 and res.stderr == ""
-    assert "SK502" in res.stdout and "rover.urdf" not in res.stdout and "errors," not in res.stdout
+    assert "SK502" in res.stdout and "rover.urdf" not in res.stdout and "warnings," not in res.stdout
     res = _sk("validate", "--quiet", str(good), cwd=tmp_path)  # near miss: clean, so silent
     assert (res.returncode, res.stdout, res.stderr) == (0, "", "")
     # a file that cannot be read is still said, and still exit 2
@@ -310,7 +310,8 @@ def test_fail_on_never_from_the_shared_settings_file(tmp_path: Path) -> None:
     res = _sk("validate", "--fail-on", "never", str(BAD))
     assert res.returncode == 0 and "SK502" in res.stdout
     res = _sk("validate", "--fail-on", "never", "--diff", str(copy))  # the fix path too
-    assert res.returncode == 0 and res.stdout.startswith("---")
+    # runs; --diff's status says whether it would change a file (issue 27), not findings
+    assert res.returncode == 1 and res.stdout.startswith("---")
     # a file that cannot be checked still fails
     assert _sk("validate", "--fail-on", "never", str(tmp_path / "missing.urdf")).returncode == 2
     res = _sk("validate", "--fail-on", "sometimes", str(BAD))
@@ -333,7 +334,7 @@ def test_macro_only_files_given_explicitly_make_no_noise(tmp_path: Path) -> None
     res = _sk("validate", "wheel.xacro", "props.urdf.xacro", "rover.urdf", cwd=tmp_path)
     assert res.returncode == 0, res.stdout + res.stderr
     assert "SK203" not in res.stdout and "wheel.xacro" not in res.stdout
-    assert res.stdout.splitlines()[-1] == "0 errors, 0 warnings, 0 info in 1 files; 2 macro-only files skipped"
+    assert res.stdout.splitlines()[-1] == "0 errors, 0 warnings, 0 info in 1 file; 2 macro-only files skipped"
     res = _sk("validate", "-q", "wheel.xacro", cwd=tmp_path)
     assert (res.returncode, res.stdout, res.stderr) == (0, "", "")
     data = json.loads(_sk("validate", "-f", "json", "wheel.xacro", "rover.urdf", cwd=tmp_path).stdout)

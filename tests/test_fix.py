@@ -713,7 +713,7 @@ def test_diff_writes_nothing_and_patch_applies_it(here: Path) -> None:
     assert path.read_text() == text
     assert out.startswith("--- a/rover.urdf\n+++ b/rover.urdf\n@@ ")
     assert "would fix 12 findings (0 would remain)" in err
-    assert code == 0
+    assert code == 1  # it would change a file (issue 27: --diff exits as ruff check --diff)
     (here / "patched").mkdir()
     patched = write(here / "patched", "rover.urdf", text)
     run = subprocess.run(
@@ -739,7 +739,7 @@ def test_diff_of_two_files_sharing_an_include(here: Path) -> None:
         here, "b.urdf.xacro", _top("sensors/camera.urdf.xacro").replace('"rover"', '"rover_b"')
     )
     code, out, err = cli("validate", "--diff", "--target", "classic", a, b)
-    assert code == 0
+    assert code == 1  # it would change a file
     assert out.count("+++ b/sensors/camera.urdf.xacro") == 1 and "+++ b/a.urdf" not in out
     assert cam.read_text() == CAMERA_XACRO
     assert "would fix 1 finding (0 would remain)" in err

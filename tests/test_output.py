@@ -60,7 +60,7 @@ def test_github_annotations() -> None:
 
 def test_text_groups_by_sensor_with_fix() -> None:
     out = cli("validate", str(BAD)).stdout
-    assert "sensor front_camera:" in out and "fix: " in out and "SK502 error" in out
+    assert "sensor front_camera:" in out and "fix: " in out and "SK502 [*] error" in out
 
 
 def test_exit_codes_fail_on_select_ignore(tmp_path: Path) -> None:

@@ -22,6 +22,7 @@ from sensorkit.base.errors import UsageError, WriteFailed
 __all__ = [
     "check_editable",
     "check_replaceable",
+    "check_writable_out",
     "editing",
     "medium_failed",
     "staged_folder",
@@ -164,14 +165,18 @@ def check_editable(path: Path) -> None:
     target is edited and the link stays a link.
     """
     real = Path(os.path.realpath(path))
+    if real.is_dir():
+        msg = f"{path} is a folder; name the URDF or xacro file in it to edit"
+        raise UsageError(msg)
     try:
         folder = real.parent.stat()
     except FileNotFoundError:
         return
     if not folder.st_mode & stat.S_IWUSR:
         msg = (
-            f"{path}: its folder {real.parent} is read-only (mode "
-            f"{stat.S_IMODE(folder.st_mode):o}); nothing was written"
+            f"{path}: its folder {real.parent} is not writable (read-only, mode "
+            f"{stat.S_IMODE(folder.st_mode):o}); nothing was written: make it writable "
+            "(chmod u+w)"
         )
         raise UsageError(msg)
     try:
@@ -179,7 +184,10 @@ def check_editable(path: Path) -> None:
     except FileNotFoundError:
         return
     if not st.st_mode & stat.S_IWUSR:
-        msg = f"{path}: is read-only (mode {stat.S_IMODE(st.st_mode):o}); nothing was written"
+        msg = (
+            f"{path}: is read-only (mode {stat.S_IMODE(st.st_mode):o}); nothing was written: "
+            "make it writable (chmod u+w)"
+        )
         raise UsageError(msg)
     if st.st_nlink > 1:
         msg = (
@@ -285,7 +293,11 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
     """
     if out.is_symlink():
         out = Path(os.path.realpath(out))
-    out.parent.mkdir(parents=True, exist_ok=True)
+    check_writable_out(out)
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+    except PermissionError:
+        raise UsageError(_not_writable(_existing_ancestor(out.parent))) from None
     with editing(out):  # two writers of one folder take turns (new, export, render preview)
         tidy_beside(out)
         try:
@@ -295,6 +307,37 @@ def staged_folder(out: Path, *, publish: bool = True) -> Iterator[Path]:
             if failed is None:
                 raise
             raise failed from None
+
+
+def _existing_ancestor(path: Path) -> Path:
+    while not path.exists() and path.parent != path:
+        path = path.parent
+    return path
+
+
+def _not_writable(folder: Path) -> str:
+    try:
+        mode = f" (mode {stat.S_IMODE(folder.stat().st_mode):o})"
+    except OSError:
+        mode = ""
+    return f"{folder} is not writable{mode}; nothing was written"
+
+
+def check_writable_out(out: Path) -> None:
+    """Refuse an output folder ``out`` that cannot be written, naming the folder at fault
+    in one line (UsageError "FOLDER is not writable"): ``out`` itself when it exists, else
+    the nearest existing folder above it, which the staging folder or ``mkdir`` needs.
+    As for :func:`check_editable`, a folder without its owner's write permission counts
+    as not writable even to root (what ``chmod a-w`` means)."""
+    folders = [out] if out.is_dir() else []
+    folders.append(_existing_ancestor(out.parent))
+    for folder in folders:
+        try:
+            mode = folder.stat().st_mode
+        except OSError:
+            continue
+        if not mode & stat.S_IWUSR or not os.access(folder, os.W_OK):
+            raise UsageError(_not_writable(folder))
 
 
 def tidy_beside(out: Path) -> None:
@@ -323,7 +366,10 @@ def tidy_beside(out: Path) -> None:
 
 
 def _staged(out: Path, publish: bool) -> Iterator[Path]:
-    temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-{os.getpid()}-", dir=out.parent))
+    try:
+        temp = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-{os.getpid()}-", dir=out.parent))
+    except PermissionError:
+        raise UsageError(_not_writable(out.parent)) from None
     try:
         yield temp
         umask = _umask()

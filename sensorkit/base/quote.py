@@ -50,3 +50,9 @@ def shorten(message: str) -> str:
     # Cut a huge message first: the pattern below costs up to QUOTE_LIMIT steps a character.
     out = _LONG.sub(lambda m: clip(m.group(0)), clip(message, 10 * MESSAGE_LIMIT))
     return clip(out, MESSAGE_LIMIT)
+
+
+def plural(n: int, word: str, words: str | None = None) -> str:
+    """``n`` and the noun in the number it takes: ``1 error``, ``0 errors``, ``2 files``
+    (``words``: an irregular plural)."""
+    return f"{n} {word}" if n == 1 else f"{n} {words or word + 's'}"

@@ -98,16 +98,95 @@ def xacro_args_as_options(argv: list[str]) -> list[str]:
     return out
 
 
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _is_option(token: str) -> bool:
+    """``--x``/``-x``: not ``-`` (stdin) and not a negative number."""
+    return token.startswith("-") and len(token) > 1 and not _is_number(token)
+
+
+def _value_counts(argv: list[str]) -> dict[str, int]:
+    """The options of the command ``argv`` names that take values, with how many."""
+    import typer.main
+
+    cmd: object = typer.main.get_command(app)
+    for token in argv:
+        sub = getattr(cmd, "commands", {}).get(token)
+        if sub is None:
+            break
+        cmd = sub
+    counts: dict[str, int] = {}
+    for p in getattr(cmd, "params", []):
+        if p.param_type_name == "option" and not p.is_flag and not p.count:
+            counts.update(dict.fromkeys(p.opts, p.nargs))
+    return counts
+
+
+def _suspect(argv: list[str]) -> bool:
+    """An option followed by another, with nothing or only numbers between (the values of
+    ``--xyz``, ``--rpy``, ``--size``): what needs the command's options looked up."""
+    last = None
+    for i, token in enumerate(argv):
+        if _is_option(token):
+            if last is not None and all(_is_number(t) for t in argv[last + 1 : i]):
+                return True
+            last = i
+        elif not _is_number(token):
+            last = None
+    return False
+
+
+def option_eats_option(argv: list[str]) -> str | None:
+    """The one-line error for an option whose value is the next option (``--target --fix``,
+    ``--xyz 0.2 0 --diff``): click would take ``--fix`` as the value and call it an unknown
+    target, or "not a valid float"; the user left a value out. None when every value is a
+    value (``-0.5`` is a number, ``-`` is stdin). The command's options are looked up only
+    when an option is followed by one."""
+    if "--" in argv:
+        argv = argv[: argv.index("--")]
+    if not _suspect(argv):
+        return None
+    counts = _value_counts(argv)
+    for i, token in enumerate(argv):
+        n = counts.get(token)
+        if not n:
+            continue
+        for got in argv[i + 1 : i + 1 + n]:
+            if _is_option(got):
+                need = "a value" if n == 1 else f"{n} values"
+                return f"{token} needs {need}; got {got!r}, an option"
+    return None
+
+
 def main() -> None:
     """Console entry point.
 
     A command that has finished all its writes may call ``leave_quickly()``: its exit then
     skips the interpreter's teardown (freeing a large model costs a tenth of a second for
     nothing). Output streams are flushed first; nothing else is pending by then.
+
+    A reader that stops early (``sensorkit rules | head -1``) ends the process quietly as
+    it ends ``cat`` or ``grep``: SIGPIPE keeps its default action (Python ignores it and
+    raises BrokenPipeError instead, which would print "Broken pipe" and exit 2), so the
+    shell reports status 141 and prints nothing.
     """
     global _program  # noqa: PLW0603 (one process-wide switch)
     _program = True
+    import signal  # imported by the interpreter already: no start-up cost
+
+    if hasattr(signal, "SIGPIPE"):  # not on Windows
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     sys.argv[1:] = xacro_args_as_options(sys.argv[1:])
+    eaten = option_eats_option(sys.argv[1:])
+    if eaten:
+        sys.stderr.write(f"sensorkit: {eaten}\n")
+        raise SystemExit(2)
     try:
         app()
     except SystemExit as exc:

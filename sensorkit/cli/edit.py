@@ -190,7 +190,8 @@ def _say_done(result: AddResult, *, diff: bool, quiet: bool) -> None:
     if result.simulator:
         note(f"sensorkit: {result.simulator}", quiet)
     for said in result.notes:
-        note(f"sensorkit: note: {said}", quiet)
+        kind = "" if said.startswith("warning: ") else "note: "
+        note(f"sensorkit: {kind}{said}", quiet)
     if diff:
         typer.echo(result.diff, nl=False)
         return

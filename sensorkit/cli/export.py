@@ -13,6 +13,7 @@ from typing import Annotated
 
 import typer
 
+from sensorkit.base.quote import plural
 from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
 from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
 
@@ -132,7 +133,7 @@ def export(
     for skipped in plan.skipped:  # why the exit status is 1: said with -q too
         typer.echo(f"sensorkit: not written: {skipped}", err=True)
     note(
-        f"sensorkit: wrote {len(written)} files for {len(info.sensors)} sensors of "
+        f"sensorkit: wrote {plural(len(written), 'file')} for {plural(len(info.sensors), 'sensor')} of "
         f"{info.robot.name} into {out} (target {info.target}, {info.target_reason})",
         reading.quiet,
     )

@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from sensorkit.base.quote import plural
 from sensorkit.cli.common import RobotFlags, handle_errors, settings, target_simulator, use_color
 from sensorkit.cli.common import note as say
 from sensorkit.cli.options import OUTPUT, ColorOpt, Command, ConfigOpt, QuietOpt, examples
@@ -75,7 +76,7 @@ def new(
         typer.echo((output / rel).as_posix())
     verb = "would write" if dry_run else "wrote"
     say(
-        f"sensorkit: {verb} package {result.spec.package} ({len(result.files)} files) in {output}",
+        f"sensorkit: {verb} package {result.spec.package} ({plural(len(result.files), 'file')}) in {output}",
         quiet,
     )
     if not dry_run:

@@ -258,6 +258,9 @@ def preview(
             if not scene.exists()
             else f"--scene {scene}: not a file"
         )
+    from sensorkit.base.atomic import check_writable_out
+
+    check_writable_out(out)  # before the render, not after it
     log = _progress(colored, quiet)
     # the model, the scene and a lidar's ray results: many small objects (collector_off)
     with collector_off():

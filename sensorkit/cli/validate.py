@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, NoReturn
+from typing import TYPE_CHECKING, Annotated, Any, NoReturn
 
 import typer
 
@@ -51,6 +52,21 @@ if TYPE_CHECKING:
 _KEPT: list[object] = []  # see validate(): models left for the process exit to drop
 
 FORMAT_HELP = "text (for people), json, sarif (2.1.0) or github (workflow annotations)"
+
+# The rules ``sensorkit.fix`` has a fixer for (a test holds this to its registry): a report
+# with none of them never imports the fix layer.
+FIXABLE_RULES = frozenset({"SK301", "SK303", "SK502", "SK503", "SK505", "SK601", "SK602"})
+
+
+def fixability(report: Any, options: Options) -> dict[int, str]:
+    """``Options.fixability`` for validate's text and JSON: which findings ``--fix`` would
+    fix (``sensorkit.fix.marks``), asked only of a report holding a fixable rule's finding.
+    Module level, so ``--jobs`` workers receive it by name."""
+    if not any(f.rule in FIXABLE_RULES for f in report.findings):
+        return {}
+    from sensorkit.fix.marks import fixability as marks
+
+    return marks(report, options)
 
 
 CAR = "examples/orbslam3_car/urdf/orbslam3_car.urdf.xacro"
@@ -221,6 +237,8 @@ def validate(
             files, flags, rules, overlay, target=target, timeout=timeout, bridge=bridge, quiet=quiet
         )
         inputs = _expand_folders(files, quiet=quiet)
+        if fmt in ("text", "json"):  # the [*] marks and the JSON "fixable" field
+            options = dataclasses.replace(options, fixability=fixability)
         if fix or diff or unsafe_fixes:
             from sensorkit.cli.fixing import run_fix
 

@@ -9,9 +9,37 @@ validator errors; ``package`` plans the robot package's other files; ``diff`` sh
 the change; ``add`` puts them together and publishes atomically.
 """
 
-from sensorkit.edit.add import add_sensor, apply_add, plan_add
-from sensorkit.edit.kinds import KINDS, SensorKind
-from sensorkit.edit.request import AddRequest, AddResult, PlannedWrite
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from sensorkit.edit.add import add_sensor, apply_add, plan_add
+    from sensorkit.edit.kinds import KINDS, SensorKind
+    from sensorkit.edit.request import AddRequest, AddResult, PlannedWrite
+
+# Loaded on first use (PEP 562): ``sensorkit.fix`` reads files with ``edit.layout`` alone,
+# and validate's [*] marks import it; the whole add machinery is not needed for that.
+_HOME = {
+    "add_sensor": "add",
+    "apply_add": "add",
+    "plan_add": "add",
+    "KINDS": "kinds",
+    "SensorKind": "kinds",
+    "AddRequest": "request",
+    "AddResult": "request",
+    "PlannedWrite": "request",
+}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOME.get(name)
+    if home is None:
+        msg = f"module {__name__!r} has no attribute {name!r}"
+        raise AttributeError(msg)
+    return getattr(importlib.import_module(f"sensorkit.edit.{home}"), name)
+
 
 __all__ = [
     "KINDS",

@@ -63,6 +63,7 @@ from sensorkit.loading.document import (
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:
+    from sensorkit.base.findings import Finding
     from sensorkit.loading.bridge import BridgeTopic
     from sensorkit.model import Loaded, Robot
 
@@ -106,11 +107,14 @@ def _check_request(req: AddRequest) -> None:
     if not req.parent or req.parent != req.parent.strip():
         msg = f"--parent {req.parent!r}: give the name of an existing link"
         raise UsageError(msg)
+    if req.output is None and req.path.is_dir():
+        msg = f"{req.path} is a folder; name the URDF or xacro file in it to edit"
+        raise UsageError(msg)
     if req.target.is_dir():
         msg = f"{display_path(req.target)}: is a folder; -o takes a file name"
         raise UsageError(msg)
     if not req.target.parent.is_dir():
-        msg = f"{display_path(req.target.parent)}: no such folder"
+        msg = f"{display_path(req.target.parent)}: no such folder; create it first, or give -o a path in an existing folder"
         raise UsageError(msg)
 
 
@@ -161,7 +165,10 @@ def _read_source(req: AddRequest) -> _Source:
     if robot is None:
         first = loaded.findings[0] if loaded.findings else None
         why = f"{first.rule} {first.message}" if first else "it could not be read"
-        msg = f"{where} does not load, so sensorkit cannot add to it: {why}"
+        msg = (
+            f"{where} does not load, so sensorkit cannot add to it: {why}; fix that first "
+            f"(`sensorkit validate {where}` shows it), then add again"
+        )
         raise EditRefused(msg)
     return _Source(where, data, root, layout, xacro_style, loaded, robot)
 
@@ -358,13 +365,31 @@ def _validate(
     return compare_added(src.robot, list(src.loaded.findings), part, options)
 
 
+def _next_step(req: AddRequest, first: Finding) -> str:
+    """What to do about the new error: the sensor's ``--sim`` when that is what the robot's
+    target cannot load (the finding's own fix would say to edit the plugin, which is the
+    add's text, not the user's), else the finding's fix."""
+    sim = req.params.get("sim")
+    target = req.validation.target if req.validation is not None else "auto"
+    if sim and first.rule.startswith("SK6") and target != "auto":
+        from sensorkit.model.targets import is_gz
+
+        fits = "gz" if is_gz(target) else "classic"
+        if fits != sim:
+            return (
+                f"; the robot is checked for target {target}: pass --sim {fits}, or leave --sim out"
+            )
+    return f"; {first.fix}" if first.fix else ""
+
+
 def _verdict_notes(req: AddRequest, verdict: Verdict) -> list[str]:
     """Refuse an add that brings a new error; notes for new warnings and internal errors."""
     if verdict.new_errors:
         first = verdict.new_errors[0]
         more = len(verdict.new_errors) - 1
         tail = f" (and {more} more)" if more else ""
-        msg = f"adding '{req.name}' would introduce an error: {describe(first)}{tail}"
+        step = _next_step(req, first)
+        msg = f"adding '{req.name}' would introduce an error: {describe(first)}{tail}{step}; nothing was written"
         raise EditRefused(msg)
     return [f"new warning: {describe(f)}" for f in verdict.new_warnings] + [
         f"validator internal error: {e}" for e in verdict.internal_errors
@@ -444,7 +469,8 @@ def _check_unchanged(result: AddResult) -> None:
             raise InputError(msg) from None
         if current != result.original:
             msg = (
-                f"{display_path(result.target)} changed while sensorkit worked; nothing was written"
+                f"{display_path(result.target)} changed while sensorkit worked; nothing was "
+                "written: run the add again"
             )
             raise EditRefused(msg)
     for w in result.writes:
@@ -459,7 +485,7 @@ def _check_unchanged(result: AddResult) -> None:
             raise InputError(msg) from None
         if now != w.original:
             what = "appeared" if w.original is None else "changed"
-            msg = f"{display_path(w.path)} {what} while sensorkit worked; nothing was written"
+            msg = f"{display_path(w.path)} {what} while sensorkit worked; nothing was written: run the add again"
             raise EditRefused(msg)
 
 
@@ -538,6 +564,7 @@ def add_sensor(req: AddRequest, *, dry_run: bool = False) -> AddResult:
     if dry_run:
         return plan_add(req)
     target = req.target
+    _check_request(req)  # before the lock: -o into a folder that does not exist
     check_editable(target)
     macros = target.parent / SENSORS_DIR
     # The folders of the robot's package too (bridge, README, robot YAML beside it).

@@ -54,12 +54,26 @@ def names_in_use(robot: Robot) -> dict[str, tuple[str, Link | Joint | Sensor]]:
     return used
 
 
+def _free_name(name: str, used: dict[str, tuple[str, Link | Joint | Sensor]]) -> str:
+    """``NAME_2`` (or the next free number) as a suggestion for another ``--name``."""
+    n = 2
+    while any(u.startswith(f"{name}_{n}") for u in used):
+        n += 1
+    return f"{name}_{n}"
+
+
 def check_parent(robot: Robot, parent: str, where: str) -> None:
     """EditRefused naming the closest links when ``parent`` is not a link of the robot."""
     if parent in robot.link_map:
         return
     near = closest(parent, robot.link_map)
-    hint = f"; closest: {', '.join(near)}" if near else "; the robot has no links"
+    if near:
+        hint = f"; closest: {', '.join(near)}: pass --parent {near[0]}"
+    elif robot.link_map:
+        some = ", ".join(sorted(robot.link_map)[:5])
+        hint = f"; pass --parent with one of its links ({some}{', ...' if len(robot.link_map) > 5 else ''})"
+    else:
+        hint = "; the robot has no links: add the link to mount on first"
     msg = f"parent link '{parent}' not found in {where}{hint}"
     raise EditRefused(msg)
 
@@ -79,7 +93,10 @@ def check_names(
             kind, item = used[candidate]
             what = f"{kind} '{item.name}' ({item.source})"
             via = "" if candidate == name else f" (the macro would create '{candidate}')"
-            msg = f"name '{name}' is already used in {where}: {what}{via}"
+            msg = (
+                f"name '{name}' is already used in {where}: {what}{via}; pass another "
+                f"--name (e.g. {_free_name(name, used)})"
+            )
             raise EditRefused(msg)
 
 

@@ -74,7 +74,10 @@ def expand_fragment(
             outcome = expand(path, {}, resolver, timeout=timeout)
     if outcome.error_kind is not None or outcome.xml is None:
         message = " ".join(outcome.message.split()) or "no output"
-        msg = f"the {macro_name} macro does not expand with these settings: {message}"
+        msg = (
+            f"the {macro_name} macro does not expand with these settings: {message}; check "
+            "the values given to its options and --param"
+        )
         raise EditRefused(msg)
     root = etree.fromstring(outcome.xml.encode("utf-8"), strict_parser())
     _strip_locations(root)

@@ -91,7 +91,7 @@ def call_attributes(
     for key in params:
         if key in _RESERVED or key not in known:
             offered = ", ".join(n for n in known if n not in _RESERVED)
-            msg = f"{label} has no parameter {key!r} (it takes: {offered})"
+            msg = f"{label} has no parameter {key!r} (it takes: {offered}); check the spelling, or leave it out"
             raise UsageError(msg)
     for needed in _RESERVED:
         if needed not in known:
@@ -104,6 +104,7 @@ def call_attributes(
     attrs += [(n, params[n]) for n in known if n in params]
     missing = [p.name for p in info.params if p.default is None and p.name not in dict(attrs)]
     if missing:
-        msg = f"{label} needs {', '.join(missing)} (no default)"
+        given = " ".join(f"--param {m}=VALUE" for m in missing)
+        msg = f"{label} needs {', '.join(missing)} (no default): pass {given}"
         raise UsageError(msg)
     return attrs

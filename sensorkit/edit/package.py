@@ -173,7 +173,44 @@ def read_package(source: Path, data: bytes, *, untrusted: bool) -> PackageContex
             )
             return ctx
     ctx.spec_path, ctx.spec, ctx.spec_bytes = spec_path, spec, spec_path.read_bytes()
+    others = other_generators(pkg, spec_path, ctx.yaml_name)
+    if others:  # said first: the notes are printed in order, before what was added
+        names = ", ".join(display_path(o) for o in others)
+        ctx.notes.insert(
+            0,
+            f"warning: {shown} also generates {names}: the sensor added to it goes into "
+            f"that package too at its next `sensorkit new --force`; if this package is a "
+            f"copy, give it its own YAML (copy {ctx.yaml_name} into {display_path(pkg)})",
+        )
     return ctx
+
+
+def other_generators(pkg: Path, spec_path: Path, yaml_name: str) -> list[Path]:
+    """The other packages that generate from the robot YAML ``spec_path`` of package
+    ``pkg``: a YAML inside ``pkg`` is its own (a copied package copies it too), so there
+    are none; a YAML beside ``pkg`` (in its parent folder) is shared with every other
+    folder ``Q`` there that holds a ``package.xml``, no ``Q/YAML_NAME`` of its own (which
+    it would generate from instead) and a ``Q/urdf/*.urdf.xacro`` whose header says it was
+    ``written by `sensorkit new YAML_NAME```: ``sensorkit new --force`` of ``Q`` reads the
+    same YAML, so a sensor added here appears there as well."""
+    if spec_path.resolve().parent != pkg.resolve().parent:
+        return []
+    out: list[Path] = []
+    for other in sorted(pkg.parent.iterdir()):
+        if other.resolve() == pkg.resolve() or not (other / "package.xml").is_file():
+            continue
+        if (other / yaml_name).exists() or not (other / "urdf").is_dir():
+            continue
+        for robot in sorted((other / "urdf").glob("*.urdf.xacro")):
+            try:
+                head = robot.read_bytes()[:4096].decode("utf-8", "replace")
+            except OSError:  # another package's file: not a reason to refuse this add
+                continue
+            match = _HEADER.search(head)
+            if match is not None and match.group(1) == yaml_name:
+                out.append(other)
+                break
+    return out
 
 
 # ----------------------------------------------------------------------------- generated

@@ -20,10 +20,9 @@ from collections import Counter
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
-from xml.sax.saxutils import escape
 
 from sensorkit.base.findings import Finding
-from sensorkit.fix.source import Deferred, Edit, NotFixable, SourceFile, Tag
+from sensorkit.fix.source import Deferred, Edit, NotFixable, SourceFile, Tag, escape
 from sensorkit.loading.document import display_path
 from sensorkit.loading.xacro_expand import LOC_ATTR
 from sensorkit.model.parse import local

@@ -254,6 +254,18 @@ def _simulation(r: Reader, top: _Top, defaults: Mapping[str, str]) -> tuple[str,
     return sim, gz_version, namespace.strip("/")
 
 
+def _refuse_robot_description(text: str, path: Path, file: str) -> None:
+    """A URDF/xacro given where a robot YAML belongs (named ``.urdf``/``.xacro``, or text
+    that opens with ``<`` as XML does and YAML never starts a mapping): one line naming
+    the command that takes it."""
+    if path.name.endswith((".urdf", ".xacro")) or text.lstrip("\ufeff \t\r\n").startswith("<"):
+        msg = (
+            f"{file}: not a robot YAML: `sensorkit new` takes a robot YAML; "
+            "URDF/xacro go to `sensorkit validate` (and `sensorkit add-*` to add a sensor)"
+        )
+        raise InputError(msg)
+
+
 def parse_spec(
     text: str,
     path: Path,
@@ -267,6 +279,7 @@ def parse_spec(
         InputError: one line, ``FILE:LINE:COLUMN: where: what``.
     """
     file = display or str(path)
+    _refuse_robot_description(text, path, file)
     root = compose(path, text, file)
     if root is None:
         msg = f"{file}:1:1: the file is empty; expected a mapping with name, base and sensors"

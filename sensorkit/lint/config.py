@@ -140,6 +140,9 @@ def _table(path: Path) -> str:
 def load_config(start: Path | None = None, *, explicit: Path | None = None) -> Config:
     """The settings for a command on a file in ``start`` (or ``explicit``: ``--config``)."""
     if explicit is not None:
+        if explicit.is_dir():
+            msg = f"--config {explicit} is a folder; name its sensorkit.toml or pyproject.toml"
+            raise UsageError(msg)
         if not explicit.is_file():
             msg = f"--config {explicit}: no such file"
             raise UsageError(msg)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import gc
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -61,6 +61,10 @@ class Options:
     # Where xacro expansions are looked up and kept (sensorkit.loading.cache); None: no
     # cache. Never used under --untrusted.
     cache: ExpansionCache | None = None
+    # What --fix would do to each finding, worked out while the model is alive (the
+    # findings' indexes -> "safe" or "unsafe"): the CLI passes the fix layer's answer
+    # (``sensorkit.fix.marks``), which the lint layer cannot import. None: not asked.
+    fixability: Callable[[FileReport, Options], dict[int, str]] | None = None
 
     def __post_init__(self) -> None:
         if not self.timeout >= 1:
@@ -95,6 +99,7 @@ class FileReport:
     sensors_checked: int = 0  # kept when ``robot`` is dropped (validate_paths)
     macro_only: bool = False  # a xacro that only defines macros/properties: nothing to check
     launch_note: str | None = None  # "bridges from launch/sim.launch.py": the launch files read
+    fixable: dict[int, str] = field(default_factory=dict)  # index in findings -> safe/unsafe
 
     @property
     def display(self) -> str:
@@ -427,9 +432,7 @@ def _suppress(report: FileReport, overlay: dict[str, bytes] | None = None) -> No
     report.findings = kept
 
 
-def validate_one(
-    path: Path, options: Options, *, keep: list[object] | None = None
-) -> FileReport:
+def validate_one(path: Path, options: Options, *, keep: list[object] | None = None) -> FileReport:
     """``validate_file`` keeping only plain data: the model and XML tree are let go.
 
     ``sensorkit validate`` runs with the garbage collector disabled, so whatever reference
@@ -442,6 +445,8 @@ def validate_one(
     freeing it: tens of milliseconds on a 10,000-link robot.
     """
     report = validate_file(path, options)
+    if options.fixability is not None and report.robot is not None and report.findings:
+        report.fixable = options.fixability(report, options)
     if report.robot is not None:
         report.sensors_checked = len(report.robot.sensors)
         if keep is not None:

@@ -8,8 +8,8 @@ from typing import Any
 
 from sensorkit import __version__
 from sensorkit.base.findings import Finding, Severity
-from sensorkit.base.quote import clip, shorten
-from sensorkit.lint.engine import Report
+from sensorkit.base.quote import clip, plural, shorten
+from sensorkit.lint.engine import FileReport, Report
 from sensorkit.lint.rules import RULES
 
 FORMATS = ("text", "json", "sarif", "github")
@@ -52,6 +52,7 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
             head += f" (target {fr.target}; {fr.target_reason}"
             head += f"; {fr.launch_note})" if fr.launch_note else ")"
         lines.append(bold(head))
+        safe = {id(fr.findings[i]) for i, how in fr.fixable.items() if how == "safe"}
         groups: dict[str | None, list[Finding]] = defaultdict(list)
         for f in fr.findings:
             groups[f.sensor].append(f)
@@ -59,11 +60,12 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
         for key in order:
             lines.append(f"  {'sensor ' + clip(key) if key else 'robot'}:")
             for f in groups[key]:
-                lines.append(f"    {_loc(f)}: {f.rule} {sev(f.severity)}: {f.message}")
+                mark = " [*]" if id(f) in safe else ""
+                lines.append(f"    {_loc(f)}: {f.rule}{mark} {sev(f.severity)}: {f.message}")
                 if f.fix:
                     lines.append(f"      fix: {f.fix}")
         if not fr.findings:
-            lines.append(f"  ok: no findings ({fr.sensor_count} sensors checked)")
+            lines.append(f"  ok: no findings ({plural(fr.sensor_count, 'sensor')} checked)")
         for err in fr.internal_errors:
             lines.append(f"  internal error: {shorten(err)}")
     if quiet:
@@ -72,15 +74,25 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
     failed = sum(1 for fr in report.files if fr.error)
     skipped = len(report.skipped)
     checked = len(report.files) - failed - skipped
-    summary = f"{s['error']} errors, {s['warning']} warnings, {s['info']} info in {checked} files"
+    counts = f"{plural(s['error'], 'error')}, {plural(s['warning'], 'warning')}, {s['info']} info"
+    summary = f"{counts} in {plural(checked, 'file')}"
     if skipped:
-        summary += f"; {skipped} macro-only {'file' if skipped == 1 else 'files'} skipped"
+        summary += f"; {plural(skipped, 'macro-only file')} skipped"
     if failed:  # never a clean-looking summary when a file could not be checked at all
-        summary += (
-            f"; {failed} {'file' if failed == 1 else 'files'} could not be checked (see above)"
-        )
-    lines.append(summary)
+        summary += f"; {plural(failed, 'file')} could not be checked (see above)"
+    lines.append(summary + _fixable_note(report))
     return "\n".join(lines) + "\n"
+
+
+def _fixable_note(report: Report) -> str:
+    """``; N fixable with `--fix` (M more with `--unsafe-fixes`)``, as ruff counts them;
+    nothing when no finding has a fix."""
+    how = [v for fr in report.files for v in fr.fixable.values()]
+    safe, unsafe = how.count("safe"), how.count("unsafe")
+    if not safe and not unsafe:
+        return ""
+    more = f" ({unsafe} more with `--unsafe-fixes`)" if unsafe else ""
+    return f"; {safe} fixable with `--fix`{more}"
 
 
 def to_json(report: Report) -> dict[str, Any]:
@@ -91,11 +103,19 @@ def to_json(report: Report) -> dict[str, Any]:
         "files": [fr.display for fr in report.files],
         "target": targets.pop() if len(targets) == 1 else ("mixed" if targets else None),
         "targets": {fr.display: fr.target for fr in report.files},
-        "findings": [f.to_dict() for f in report.findings],
+        "findings": [
+            _finding_json(fr, i, f) for fr in report.files for i, f in enumerate(fr.findings)
+        ],
         "errors": [{"file": fr.display, "message": fr.error} for fr in report.files if fr.error],
         "macro_only": [fr.display for fr in report.skipped],
         "summary": report.summary(),
     }
+
+
+def _finding_json(fr: FileReport, index: int, f: Finding) -> dict[str, Any]:
+    """A finding's JSON, with ``fixable``: ``"safe"`` (``--fix`` fixes it), ``"unsafe"``
+    (with ``--unsafe-fixes``) or null (added in issue 27; fields are only ever added)."""
+    return {**f.to_dict(), "fixable": fr.fixable.get(index)}
 
 
 def format_json(report: Report) -> str:

@@ -200,6 +200,24 @@ def looks_like_xacro(path: Path, data: bytes) -> bool:
     return b"xacro" in data and bool(re.search(_XACRO_MARKERS, data))
 
 
+def _refuse_what_is_not_xml(path: Path, data: bytes) -> None:
+    """A file not named ``.urdf``/``.xacro`` whose first character is not ``<`` (XML's
+    first, after a byte order mark and white space) is not a robot description: one line
+    (a launch file, an image), not an SK101 finding. A ``.urdf``/``.xacro`` file stays a
+    broken robot, reported as a finding."""
+    if path.name.lower().endswith((".urdf", ".xacro")) or data[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        return
+    head = data[:1024].removeprefix(b"\xef\xbb\xbf").lstrip()
+    if not head or head.startswith(b"<"):
+        return
+    where = display_path(path)
+    if path.name.endswith(".py"):
+        msg = f"{where}: not a URDF/xacro: launch files go to `--launch` (validate, topics)"
+    else:
+        msg = f"{where}: not a URDF/xacro (it is not XML: it does not start with '<')"
+    raise InputError(msg)
+
+
 def read_input(path: Path) -> bytes:
     """The bytes of ``path`` or an InputError that names it and says why."""
     try:
@@ -207,10 +225,15 @@ def read_input(path: Path) -> bytes:
             msg = f"{display_path(path)}: is a folder, not a URDF or xacro file"
             raise InputError(msg)
         size = path.stat().st_size
+        if path.suffix.lower() in (".yaml", ".yml"):
+            msg = f"{display_path(path)}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+            raise InputError(msg)
         if size > MAX_FILE_BYTES:
             msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
             raise InputError(msg)
-        return path.read_bytes()
+        data = path.read_bytes()
+        _refuse_what_is_not_xml(path, data)
+        return data
     except FileNotFoundError:
         msg = f"{display_path(path)}: no such file"
         raise InputError(msg) from None

@@ -9,13 +9,12 @@ name -> ``<ros><remapping>``, ``<remap>`` -> ``<remapping>``, and the rate or
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import escape
 
 from lxml import etree
 
 from sensorkit.base.findings import Finding
 from sensorkit.fix.registry import Fix, FixContext, fixer, is_expr
-from sensorkit.fix.source import Deferred, NotFixable
+from sensorkit.fix.source import Deferred, NotFixable, escape
 from sensorkit.knowledge.gazebo_ros import (
     ROS1_CAMERA_RELATIVE,
     ROS1_RENAMES,
