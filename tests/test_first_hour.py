@@ -416,3 +416,34 @@ def test_config_given_a_folder_says_it_is_a_folder(tmp_path: Path) -> None:
     ), line
     line = _one_line(run_cli("validate", "rover.urdf", "--config", "nope.toml", cwd=tmp_path))
     assert line == "sensorkit: --config nope.toml: no such file", line
+
+
+@pytest.mark.parametrize(
+    ("args", "said"),
+    [
+        (["valdiate", "x.urdf"], "sensorkit: No such command 'valdiate'. Did you mean 'validate'? (see '"),
+        (["validate", "--targte", "classic", "{robot}"], "sensorkit: validate: No such option: --targte"),
+        (["validate"], "sensorkit: validate: Missing argument 'files' (see '"),
+        (["validate", "-j", "abc", "{robot}"], "sensorkit: validate: Invalid value for '--jobs' / '-j'"),
+        (["add-camera", "{robot}", "--sim", "gazebo"], "sensorkit: add-camera: Invalid value for '--sim'"),
+        (["render", "preview", "{robot}", "--nope"], "sensorkit: render preview: No such option: --nope"),
+    ],
+)  # fmt: skip
+def test_a_usage_error_is_one_line(tmp_path: Path, args: list[str], said: str) -> None:
+    """click's usage errors (an unknown command or option, a missing or bad value) are one
+    line on stderr, exit 2, naming the command and its help, as sensorkit's other errors:
+    not a usage line, a hint and a box of five lines."""
+    robot = _rover(tmp_path)
+    res = run_cli(*[a.format(robot=robot) for a in args], cwd=tmp_path)
+    line = _one_line(res)
+    assert said in line and res.stdout == "", line
+    command = args[0] if args[0] != "render" else "render preview"
+    assert line.endswith(f"sensorkit {command} -h')" if args[0] != "valdiate" else "sensorkit -h')")
+
+
+def test_a_command_group_without_its_command_still_prints_its_help() -> None:
+    """The near miss: `sensorkit render` (a group, no command) and `sensorkit` alone print
+    their help, as before, exit 2."""
+    for args, lists in ((["render"], "preview"), ([], "validate")):
+        res = run_cli(*args)
+        assert res.returncode == 2 and "Usage:" in res.stdout and lists in res.stdout, args

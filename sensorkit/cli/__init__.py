@@ -8,6 +8,7 @@ from __future__ import annotations
 import os
 import re
 import sys
+from typing import Any
 
 # sensorkit's numpy work is small (4x4 transforms, one image at a time): OpenBLAS's thread
 # pool only burns CPU at start-up. Set before anything imports numpy; the user's value wins.
@@ -188,14 +189,63 @@ def main() -> None:
         sys.stderr.write(f"sensorkit: {eaten}\n")
         raise SystemExit(2)
     try:
-        app()
+        code = run_app()
     except SystemExit as exc:
         if not _quick_exit:
             raise
         code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    if _quick_exit:
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(code)
+    raise SystemExit(code)
+
+
+def _click_exceptions() -> Any:
+    """The click exceptions typer raises: its own copy of click (typer >= 0.16 vendors it
+    as ``typer._click``), else click."""
+    try:
+        from typer._click import exceptions
+    except ImportError:  # an older typer, on click itself
+        from click import exceptions  # type: ignore[no-redef]
+    return exceptions
+
+
+def run_app() -> int:
+    """Run the command; its exit status. A usage error (an unknown option or command, a
+    bad or missing value) is one line on stderr, exit status 2, as every other error of
+    sensorkit's is (click draws a usage line, a hint and a box around the message: five
+    lines); running a group without a command still prints its help."""
+    exceptions = _click_exceptions()
+    try:
+        code = app(standalone_mode=False)
+    except exceptions.NoArgsIsHelpError as exc:
+        from typer import rich_utils
+
+        rich_utils.rich_format_error(exc)
+        return 2
+    except exceptions.ClickException as exc:
+        sys.stderr.write(usage_line(exc) + "\n")
+        return int(exc.exit_code)
+    except exceptions.Abort:
+        sys.stderr.write("sensorkit: aborted\n")
+        return 1
+    return code if isinstance(code, int) else 0
+
+
+def usage_line(exc: Any) -> str:
+    """``sensorkit: validate: Missing argument 'files' (see 'sensorkit validate -h')``"""
+    message = " ".join(exc.format_message().split()).rstrip(".")
+    ctx = getattr(exc, "ctx", None)
+    if ctx is None:
+        return f"sensorkit: {message}"
+    names = []
+    while ctx.parent is not None:  # the command's words below the program's
+        names.append(ctx.info_name)
+        ctx = ctx.parent
+    where = " ".join(reversed(names))
+    where = f"{where}: " if where else ""
+    return f"sensorkit: {where}{message} (see '{exc.ctx.command_path} -h')"
 
 
 _quick_exit = False
