@@ -11,8 +11,9 @@ the change; ``add`` puts them together and publishes atomically.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from sensorkit.base.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from sensorkit.edit.add import add_sensor, apply_add, plan_add
@@ -33,12 +34,7 @@ _HOME = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    home = _HOME.get(name)
-    if home is None:
-        msg = f"module {__name__!r} has no attribute {name!r}"
-        raise AttributeError(msg)
-    return getattr(importlib.import_module(f"sensorkit.edit.{home}"), name)
+__getattr__ = lazy_exports(__name__, _HOME, globals())
 
 
 __all__ = [

@@ -8,7 +8,9 @@ kind it checks for.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from sensorkit.base.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from sensorkit.exporters.bridge import bridge_yaml
@@ -61,16 +63,7 @@ _MODULE = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    module = _MODULE.get(name)
-    if module is None:
-        msg = f"module {__name__!r} has no attribute {name!r}"
-        raise AttributeError(msg)
-    import importlib
-
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
+__getattr__ = lazy_exports(__name__, _MODULE, globals())
 
 
 def __dir__() -> list[str]:
