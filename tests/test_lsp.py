@@ -293,17 +293,22 @@ def test_bad_initialization_options_are_logged_and_the_server_goes_on(ws: Path) 
         c.kill()
 
 
+def watched(c: Client, ws: Path) -> list[str]:
+    """Initialize as a client that watches files for the server; the globs it registers."""
+    watching = {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}}
+    c.initialize(ws, capabilities=watching)
+    asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
+    (reg,) = asked["params"]["registrations"]
+    assert reg["method"] == "workspace/didChangeWatchedFiles"
+    c.respond(asked["id"])
+    return [w["globPattern"] for w in reg["registerOptions"]["watchers"]]
+
+
 def test_an_include_changed_on_disk_is_read_again(ws: Path) -> None:
     c = Client(cwd=ws)
     try:
-        watching = {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}}
-        c.initialize(ws, capabilities=watching)
-        asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
-        (reg,) = asked["params"]["registrations"]
-        assert reg["method"] == "workspace/didChangeWatchedFiles"
-        globs = [w["globPattern"] for w in reg["registerOptions"]["watchers"]]
+        globs = watched(c, ws)
         assert "**/*.xacro" in globs and "**/sensorkit.toml" in globs
-        c.respond(asked["id"])
 
         pkg = _package(ws / "src" / "rover_description", "rover_description")
         cam = pkg / "urdf" / "sensors" / "camera.urdf.xacro"
@@ -326,12 +331,7 @@ def test_a_yaml_read_by_load_yaml_changed_on_disk_is_read_again(ws: Path) -> Non
     (the expansion records it): changed on disk, the robot is validated again."""
     c = Client(cwd=ws)
     try:
-        watching = {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}}
-        c.initialize(ws, capabilities=watching)
-        asked = c.wait(lambda m: m.get("method") == "client/registerCapability", 30)
-        (reg,) = asked["params"]["registrations"]
-        assert "**/*.yaml" in [w["globPattern"] for w in reg["registerOptions"]["watchers"]]
-        c.respond(asked["id"])
+        assert "**/*.yaml" in watched(c, ws)
 
         pkg = _package(ws / "src" / "rover_description", "rover_description")
         cam = pkg / "urdf" / "sensors" / "camera.urdf.xacro"
