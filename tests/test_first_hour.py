@@ -114,6 +114,21 @@ def test_add_given_a_folder_says_it_is_a_folder(tmp_path: Path) -> None:
     assert "hard link" not in line
 
 
+def test_add_into_sdf_refuses_in_one_line_naming_what_it_edits(tmp_path: Path) -> None:
+    sdf = '<sdf version="1.9"><model name="m"><link name="base_link"/></model></sdf>'
+    for name in ("model.sdf", "model.urdf"):  # by its name, and by its root
+        path = tmp_path / name
+        path.write_text(sdf)
+        line = _one_line(run_cli("add-camera", str(path), "--name", "cam", "--parent", "base_link"))
+        assert "is SDF" in line and "URDF and xacro" in line and "validate" in line, line
+        assert path.read_text() == sdf
+    # near miss: the same link in a URDF takes the camera
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text('<robot name="r"><link name="base_link"/></robot>')
+    res = run_cli("add-camera", str(urdf), "--name", "cam", "--parent", "base_link")
+    assert res.returncode == 0 and "cam" in urdf.read_text(), res.stderr
+
+
 def test_validate_a_robot_yaml_points_to_new_and_new_a_urdf_to_validate(tmp_path: Path) -> None:
     spec = tmp_path / "robot.yaml"
     spec.write_text("name: bot\nsensors: []\n")

@@ -56,10 +56,20 @@ def test_empty_or_binary_is_sk101(tmp_path: Path, content: bytes) -> None:
 
 
 def test_non_robot_root_is_a_one_line_error(tmp_path: Path) -> None:
-    p = write(tmp_path, "model.sdf", '<sdf version="1.9"><model name="m"/></sdf>')
+    # A .sdf file is read as SDF (issue 28); SDF in a file named .urdf is not, and says how
+    p = write(tmp_path, "model.urdf", '<sdf version="1.9"><model name="m"/></sdf>')
     res = cli("validate", str(p))
     assert res.returncode == 2 and "Traceback" not in res.stderr
-    assert res.stderr.count("\n") == 1 and "<sdf>" in res.stderr
+    assert res.stderr.count("\n") == 1 and "<sdf>" in res.stderr and ".sdf" in res.stderr
+    p = write(tmp_path, "launch.urdf", "<launch><node/></launch>")
+    res = cli("validate", str(p))
+    assert res.returncode == 2 and res.stderr.count("\n") == 1 and "<launch>" in res.stderr
+
+
+def test_an_sdf_file_is_validated(tmp_path: Path) -> None:
+    p = write(tmp_path, "model.sdf", '<sdf version="1.9"><model name="m"><link name="a"/></model></sdf>')
+    res = cli("validate", str(p))
+    assert res.returncode == 0 and "harmonic" in res.stdout and "SDF" in res.stdout
 
 
 def test_missing_file_and_folder_are_exit_2(tmp_path: Path) -> None:

@@ -134,6 +134,7 @@ def load(
         untrusted=untrusted,
         overlay=overlay,
         cache=cache,
+        sdf=True,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None

@@ -60,6 +60,7 @@ from sensorkit.loading.document import (
     read_input,
     strict_parser,
 )
+from sensorkit.loading.sdf_files import is_sdf_path
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:
@@ -152,6 +153,12 @@ def _read_source(req: AddRequest) -> _Source:
     where = display_path(source)
     data = read_input(source)
     root = _parse(data, where)
+    if is_sdf_path(source) or etree.QName(root).localname == "sdf":
+        msg = (
+            f"{where} is SDF: add-* edits URDF and xacro robot descriptions (<robot>) only; "
+            f"write the <sensor> into the SDF by hand (`sensorkit validate {where}` checks it)"
+        )
+        raise EditRefused(msg)
     layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
     if xacro_style:

@@ -100,6 +100,7 @@ class FileReport:
     macro_only: bool = False  # a xacro that only defines macros/properties: nothing to check
     launch_note: str | None = None  # "bridges from launch/sim.launch.py": the launch files read
     fixable: dict[int, str] = field(default_factory=dict)  # index in findings -> safe/unsafe
+    more_sensors: int = 0  # the sensors of an SDF world's models after the first (``robot``)
 
     @property
     def display(self) -> str:
@@ -107,7 +108,9 @@ class FileReport:
 
     @property
     def sensor_count(self) -> int:
-        return len(self.robot.sensors) if self.robot is not None else self.sensors_checked
+        if self.robot is not None:
+            return len(self.robot.sensors) + self.more_sensors
+        return self.sensors_checked + self.more_sensors
 
 
 @dataclass
@@ -341,7 +344,9 @@ def run_rules(robot: Robot, options: Options, resolver: PackageResolver | None =
     """Every selected rule on a loaded robot (``check_robot``, keeping what it computed)."""
     ctx, reason = make_context(robot, options)
     run = RuleRun(ctx, reason, None, set(), [], {}, [])
-    if options.wants("SK104") or options.wants("SK103"):
+    wanted = [info for info in RULES.values() if options.wants(info.id) and info.runs_on(robot)]
+    ids = {info.id for info in wanted}
+    if "SK104" in ids or "SK103" in ids:
         run.resolver = resolver or PackageResolver.from_options(
             list(options.package_paths),
             near=robot.document.path,
@@ -350,8 +355,8 @@ def run_rules(robot: Robot, options: Options, resolver: PackageResolver | None =
         ctx.missing_files, run.package_findings = find_missing_files(
             robot, run.resolver, seen_packages=run.seen_packages
         )
-    for info in RULES.values():
-        if info.func is not None and options.wants(info.id):
+    for info in wanted:
+        if info.func is not None:
             run.by_rule[info.id] = run_rule(ctx, info, run.internal_errors)
     return run
 
@@ -384,6 +389,7 @@ def load_as(path: Path, options: Options) -> Loaded:
         untrusted=options.untrusted,
         overlay=options.overlay or None,
         cache=options.cache,
+        sdf=True,
     )
 
 
@@ -410,6 +416,11 @@ def validate_loaded(path: Path, loaded: Loaded, options: Options) -> FileReport:
     else:
         report = check_robot(loaded.robot, options)
         report.findings = loaded.findings + report.findings
+        for other in loaded.robots[1:]:  # an SDF world's other models
+            more = check_robot(other, options)
+            report.findings += more.findings
+            report.internal_errors += more.internal_errors
+            report.more_sensors += len(other.sensors)
     report.findings = [f for f in report.findings if options.wants(f.rule)]
     _suppress(report, options.overlay)
     report.findings.sort(key=Finding.sort_key)

@@ -285,8 +285,8 @@ def _check_root(root: etree._Element, where: str) -> None:
     if local != "robot":
         if local == "sdf":
             msg = (
-                f"{where}: root element is <sdf>: this is an SDF model, and sensorkit "
-                "validates URDF/xacro robot descriptions (<robot>)"
+                f"{where}: root element is <sdf>: this is an SDF model in a file not named "
+                "as one: name it .sdf (or .world) and sensorkit reads it as SDF"
             )
         else:
             msg = f"{where}: root element is <{local or '?'}>, not <robot>: not a URDF robot description"

@@ -57,7 +57,22 @@ def preserved_fixed_joints(robot: Robot) -> set[str]:
 
 
 def convert(robot: Robot) -> Conversion:
-    """Compute lumping and dropping for ``robot`` (cycle-safe)."""
+    """Compute lumping and dropping for ``robot`` (cycle-safe).
+
+    A model read from SDF is not converted: the simulator reads its links as written, so
+    no link is lumped or dropped (lumping and dropping are parser_urdf.cc's, which only a
+    URDF goes through: gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:753-772 reads
+    an ``<sdf>`` document as it is and calls URDF2SDF only when that fails and the file is
+    URDF).
+    """
+    if robot.sdf is not None:
+        conv = Conversion()
+        for link in robot.links:
+            conv.target_of[link.name] = link.name
+            inertial = link.inertial
+            mass = inertial.mass if inertial is not None and inertial.mass is not None else 0.0
+            conv.mass_of[link.name] = mass
+        return conv
     conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
     preserved = conv.preserved_joints
     target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped

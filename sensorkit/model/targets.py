@@ -166,7 +166,8 @@ def detect_target(robot: Robot) -> tuple[str, str]:
     tags and nothing only ROS 2 has): SK611 then says so once, instead of one SK602 per
     tag; a ROS 2 file with a few ROS 1 tags stays ``classic`` and each tag is reported.
     Among gz versions: ``ignition_*`` names mean fortress, a sensor ``<frame_id>`` jetty,
-    anything else harmonic.
+    anything else harmonic. An SDF model with no evidence either way gives a gz target
+    (harmonic): SDF with gazebo_ros plugins is a Gazebo Classic model, and says so.
     """
     gz, classic, version = _evidence(robot)
     if len(gz) > len(classic):
@@ -176,6 +177,8 @@ def detect_target(robot: Robot) -> tuple[str, str]:
         if ev.is_ros1:
             return "ros1", f"auto: written for ROS 1 ({ev.describe()})"
         return "classic", f"auto: {classic[0]}"
+    if robot.sdf is not None:  # SDF is Gazebo Sim's own format; Classic's plugins say Classic
+        return version, "auto: an SDF model with no simulator-specific tags; assuming Gazebo Sim"
     return "classic", "auto: no simulator-specific tags; assuming ROS 2 with Gazebo Classic"
 
 

@@ -235,6 +235,7 @@ def _load(
         untrusted=untrusted,
         timeout=EXPANSION_TIMEOUT,
         cache=cache,
+        sdf=True,
     )
     if loaded.robot is None:
         first = loaded.findings[0] if loaded.findings else None

@@ -35,6 +35,16 @@ class RuleInfo:
     title: str
     existing: str
     func: RuleFunc | None = None
+    # The inputs the rule runs on: "urdf" (URDF/xacro), "sdf" (SDF models and worlds). A
+    # rule is URDF-only until it is shown to hold on SDF (a trigger and a near miss of its
+    # own in SDF): what URDF's conversion does (lumping, massless links dropped, `<gazebo
+    # reference>`) does not happen to an SDF model, and a rule that assumed it would be
+    # wrong there.
+    formats: tuple[str, ...] = ("urdf",)
+
+    def runs_on(self, robot: Robot) -> bool:
+        """Whether the rule checks ``robot`` (an SDF model only if it knows SDF)."""
+        return ("sdf" if robot.sdf is not None else "urdf") in self.formats
 
     @property
     def family(self) -> str:
@@ -45,23 +55,33 @@ RULES: dict[str, RuleInfo] = {}
 
 
 def rule(
-    id: str, severity: str, title: str, existing: str = "none"
+    id: str,
+    severity: str,
+    title: str,
+    existing: str = "none",
+    formats: tuple[str, ...] = ("urdf",),
 ) -> Callable[[RuleFunc], RuleFunc]:
-    """Register a rule function under its public id."""
+    """Register a rule function under its public id; ``formats``: see :class:`RuleInfo`."""
 
     def deco(func: RuleFunc) -> RuleFunc:
         if id in RULES and RULES[id].func is not None:
             msg = f"rule {id} registered twice"
             raise RuntimeError(msg)
-        RULES[id] = RuleInfo(id, severity, title, existing, func)
+        RULES[id] = RuleInfo(id, severity, title, existing, func, formats)
         return func
 
     return deco
 
 
-def declare(id: str, severity: str, title: str, existing: str = "none") -> None:
+def declare(
+    id: str,
+    severity: str,
+    title: str,
+    existing: str = "none",
+    formats: tuple[str, ...] = ("urdf",),
+) -> None:
     """Register a rule whose findings come from loading (SK101..SK103), not a function."""
-    RULES[id] = RuleInfo(id, severity, title, existing, None)
+    RULES[id] = RuleInfo(id, severity, title, existing, None, formats)
 
 
 def put_in_order(ids: Sequence[str]) -> None:

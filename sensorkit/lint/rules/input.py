@@ -10,12 +10,16 @@ from sensorkit.lint.rules.base import Context, declare, rule
 from sensorkit.model.parse import local
 from sensorkit.model.urdf import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN
 
-declare("SK101", "error", "XML is well-formed; report file:line:column", "all parsers")
+# SDF: parse_sdf reports SK101 (sensorkit.loading.sdf_files); a .sdf.xacro expands first
+declare(
+    "SK101", "error", "XML is well-formed; report file:line:column", "all parsers", ("urdf", "sdf")
+)
 declare(
     "SK102",
     "error",
     "xacro expands; report the include and macro stack, with line where possible",
     "xacro (no line)",
+    ("urdf", "sdf"),
 )
 declare(
     "SK103",
