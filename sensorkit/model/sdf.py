@@ -67,11 +67,11 @@ def convert(robot: Robot) -> Conversion:
     """
     if robot.sdf is not None:
         conv = Conversion()
-        for link in robot.links:
-            conv.target_of[link.name] = link.name
-            inertial = link.inertial
+        for part in robot.links:
+            conv.target_of[part.name] = part.name
+            inertial = part.inertial
             mass = inertial.mass if inertial is not None and inertial.mass is not None else 0.0
-            conv.mass_of[link.name] = mass
+            conv.mass_of[part.name] = mass
         return conv
     conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
     preserved = conv.preserved_joints
