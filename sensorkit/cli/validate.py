@@ -417,6 +417,7 @@ def rules(
                 "title": info.title,
                 "existing": info.existing,
                 "fixable": fixable(rid),
+                "formats": list(info.formats),
             }
             ex = EXAMPLES.get(rid)
             if wanted and ex is not None:

@@ -257,10 +257,19 @@ def render(report: Report, fmt: str, *, color: bool = False, quiet: bool = False
 
 def rule_table(fixable: Callable[[str], str]) -> str:
     """The Markdown rule table for the README, generated from the registry; ``fixable``
-    says how ``--fix`` fixes a rule (``sensorkit.fix.fixable``, from the layer above)."""
-    lines = ["| id | severity | checks | existing tool | `--fix` |", "|---|---|---|---|---|"]
+    says how ``--fix`` fixes a rule (``sensorkit.fix.fixable``, from the layer above).
+    The SDF column says whether the rule runs on SDF models (``only``: on SDF alone)."""
+    lines = [
+        "| id | severity | checks | existing tool | SDF | `--fix` |",
+        "|---|---|---|---|---|---|",
+    ]
     for rid in sorted(RULES):
         info = RULES[rid]
         fix = fixable(rid)
-        lines.append(f"| {rid} | {info.severity} | {info.title} | {info.existing} | {fix} |")
+        sdf = "yes" if "sdf" in info.formats else ""
+        if "urdf" not in info.formats:
+            sdf = "only"
+        lines.append(
+            f"| {rid} | {info.severity} | {info.title} | {info.existing} | {sdf} | {fix} |"
+        )
     return "\n".join(lines) + "\n"
