@@ -269,9 +269,15 @@ def _candidates(
     allowed: set[str] | None,
     only: Callable[[Finding], bool] | None = None,
 ) -> tuple[list[Fix], list[Note]]:
-    fx = FixContext(context_of(report, options), files)
     fixes: list[Fix] = []
     notes: list[Note] = []
+    if report.robot is not None and report.robot.sdf is not None:
+        # The fixers edit URDF and xacro text (joint origins, gazebo blocks, macro calls):
+        # none is written for SDF, so an SDF finding is never fixed or marked fixable.
+        sdf = "--fix edits URDF and xacro files; change the SDF by hand"
+        notes = [Note(f, "unfixable", sdf) for f in _wanted(report, options, only) if f.rule in FIXERS]
+        return fixes, notes
+    fx = FixContext(context_of(report, options), files)
     for f in _wanted(report, options, only):
         info = FIXERS.get(f.rule)
         if info is None:
