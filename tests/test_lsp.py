@@ -177,6 +177,20 @@ def test_hover_on_a_sensor_says_its_topics_and_intrinsics(ws: Path, client: Clie
     assert client.close() == 0
 
 
+def test_an_sdf_model_is_validated_as_it_is_typed(ws: Path, client: Client) -> None:
+    path = ws / "model.sdf"
+    good = '<sdf version="1.9">\n<model name="m">\n<link name="base_link"/>\n</model>\n</sdf>\n'
+    path.write_text(good)
+    client.open(path, version=1)
+    assert client.diagnostics(path, 1) == []
+    client.change(path, good.replace("</model>", "</modle>"), 2)
+    (d,) = only(client.diagnostics(path, 2), "SK101")
+    assert d["range"]["start"]["line"] == 3
+    client.change(path, good, 3)
+    assert client.diagnostics(path, 3) == []
+    assert client.close() == 0
+
+
 def test_a_bad_settings_file_is_a_diagnostic_not_a_crash(ws: Path, client: Client) -> None:
     (ws / "sensorkit.toml").write_text('target = "gazebo11"\n')
     path = ws / "rover.urdf"

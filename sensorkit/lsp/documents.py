@@ -28,7 +28,8 @@ from sensorkit.lsp.analysis import Analysis, analyse
 
 __all__ = ["ROBOT_SUFFIXES", "Documents", "Publish", "is_robot_file"]
 
-ROBOT_SUFFIXES = (".urdf", ".xacro")  # .urdf.xacro ends with .xacro
+# .urdf.xacro ends with .xacro; SDF models and worlds are read too (issue 28)
+ROBOT_SUFFIXES = (".urdf", ".xacro", ".sdf", ".world")
 SETTINGS_FILES = ("sensorkit.toml", "pyproject.toml")  # as sensorkit.lint.config finds them
 
 

@@ -142,6 +142,8 @@ def initialize(server: SensorkitServer, params: lsp.InitializeParams) -> None:
 WATCHED = (
     "**/*.urdf",
     "**/*.xacro",
+    "**/*.sdf",
+    "**/*.world",
     "**/*.yaml",
     "**/*.yml",
     "**/sensorkit.toml",
