@@ -6,7 +6,8 @@ An SDF description is read without any expansion: lines are the file's own. When
 ``LOC_ATTR`` ("FILE_INDEX:LINE", as xacro's expansion stamps them) and the Document is
 marked ``expanded``, so that ``Document.locate`` names the file each element came from.
 
-``model://NAME/REST`` is looked up, first hit wins, in:
+``model://NAME/REST``, ``package://NAME/REST`` and a relative ``NAME/REST`` that is not
+beside the including file are looked up, first hit wins, in:
 
 1. each folder of ``GZ_SIM_RESOURCE_PATH`` (then the older ``IGN_GAZEBO_RESOURCE_PATH``
    and libsdformat's own ``SDF_PATH``), as ``FOLDER/NAME/REST``;
@@ -49,6 +50,11 @@ from sensorkit.loading.packages import PackageResolver, valid_package_name
 from sensorkit.loading.uris import OUTSIDE
 
 SDF_SUFFIXES = (".sdf", ".world")
+# Schemes libsdformat strips before looking the rest up in SDF_PATH, which gz-sim fills
+# with GZ_SIM_RESOURCE_PATH's folders (gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:87-124;
+# gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:486-540): ``package://PKG/REST`` is
+# ``FOLDER/PKG/REST`` (gazebosim/ros_gz@2.1.1:ros_gz_sim/README.md:96-113).
+SEARCHED_SCHEMES = ("model://", "package://")
 RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
 
 
@@ -148,20 +154,24 @@ def model_file(found: Path) -> Path | None:
 
 
 def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> ModelUri:
-    """The file ``uri`` (``model://``, ``file://``, or a path) names, from the file
-    ``including`` it; see the module's docstring for the order."""
+    """The file ``uri`` (``model://``, ``package://``, ``file://``, or a path) names, from
+    the file ``including`` it; see the module's docstring for the order."""
     if uri.startswith("file://"):
         uri = uri[len("file://") :]
-    if not uri.startswith("model://"):
-        if "://" in uri:
-            return ModelUri(None, "only model:// and file:// URIs and paths can be read")
+    scheme = next((s for s in SEARCHED_SCHEMES if uri.startswith(s)), None)
+    if scheme is None and "://" in uri:
+        return ModelUri(None, "only model://, package:// and file:// URIs and paths can be read")
+    candidates: list[Path] = []
+    if scheme is None:
         path = Path(uri) if os.path.isabs(uri) else including.parent / uri
         if not resolver.allows(path):  # says nothing of what is there
             return ModelUri(None, OUTSIDE)
         got = model_file(path)
-        return ModelUri(got, "" if got else "no model there", (str(path),))
-    name, _, rest = uri[len("model://") :].partition("/")
-    candidates = [d / name / rest if rest else d / name for d in _resource_dirs()]
+        if got is not None or os.path.isabs(uri):
+            return ModelUri(got, "" if got else "no model there", (str(path),))
+        candidates.append(path)  # a relative name is looked up as model:// is (SDF.cc:119-124)
+    name, _, rest = uri[len(scheme or "") :].partition("/")
+    candidates += [d / name / rest if rest else d / name for d in _resource_dirs()]
     if valid_package_name(name):
         pkg = resolver.find(name)
         if pkg is not None:
