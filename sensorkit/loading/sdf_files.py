@@ -63,6 +63,12 @@ def is_sdf_path(path: Path) -> bool:
     return path.name.lower().endswith(SDF_SUFFIXES)
 
 
+def is_sdf_xacro(path: Path) -> bool:
+    """Whether ``path`` is SDF written with xacro (``.sdf.xacro``, ``.world.xacro``): it
+    is expanded first, and the result read as SDF."""
+    return path.name.lower().endswith(tuple(s + ".xacro" for s in SDF_SUFFIXES))
+
+
 def parse_sdf(
     path: Path, overlay: Mapping[str, bytes] | None = None
 ) -> tuple[etree._Element | None, list[Finding]]:

@@ -381,17 +381,25 @@ def _place(sm: SdfModel, vertex: str, frame: str | None, el: etree._Element) -> 
 
 
 def read_models(
-    path: Path, resolver: PackageResolver, overlay: Mapping[str, bytes] | None = None
+    path: Path,
+    resolver: PackageResolver,
+    overlay: Mapping[str, bytes] | None = None,
+    document: Document | None = None,
 ) -> SdfRead:
     """The models of the SDF file ``path``: its ``<model>``, or each model of its
-    ``<world>``. Raises InputError when the file is unreadable or holds neither."""
+    ``<world>``; from ``document`` when given (a ``.sdf.xacro``'s expansion, whose
+    elements keep their files and lines). Raises InputError when the file is unreadable
+    or holds neither."""
     from sensorkit.base.errors import InputError
     from sensorkit.loading.document import display_path
 
-    root, findings = parse_sdf(path, overlay)
-    if root is None:
-        return SdfRead(None, [], findings)
-    doc = Document(path=path, root=root)
+    if document is None:
+        root, findings = parse_sdf(path, overlay)
+        if root is None:
+            return SdfRead(None, [], findings)
+        doc = Document(path=path, root=root)
+    else:
+        doc, root = document, document.root
     ctx = _Ctx(doc, resolver.for_file(path), overlay, [str(path.resolve())])
     version = version_of(root)
     out = SdfRead(doc)
