@@ -13,8 +13,8 @@ from sensorkit.model.robot import Robot
 from sensorkit.model.urdf import build_robot
 
 if TYPE_CHECKING:
-    from sensorkit.loading.document import Document
     from sensorkit.loading.cache import ExpansionCache
+    from sensorkit.loading.document import Document
     from sensorkit.loading.untrusted import Untrusted
 
 
