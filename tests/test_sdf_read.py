@@ -67,11 +67,11 @@ def _for_libsdformat12(path: Path, tmp: Path) -> Path:
     return path
 
 
-def _tool(exe: Path, path: Path) -> dict[Key, Pose]:
+def _tool(exe: Path, path: Path, resources: Path = MODELS) -> dict[Key, Pose]:
     # gz-sim copies GZ_SIM_RESOURCE_PATH into SDF_PATH, where libsdformat looks up a bare
     # include URI such as <uri>sk_merge_mast</uri> (gazebosim/gz-sim@gz-sim8_8.9.0:
     # src/Util.cc:486-540; gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:119-137)
-    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(MODELS), "SDF_PATH": str(MODELS)}
+    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(resources), "SDF_PATH": str(resources)}
     res = subprocess.run(
         [str(exe), str(path)], capture_output=True, text=True, timeout=60, check=False, env=env
     )
@@ -143,6 +143,17 @@ def test_poses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Pat
         q = ours[key]
         assert math.dist(p[9:], q[9:]) <= 1e-9, (key, p[9:], q[9:])
         assert _angle(p, q) <= 1e-9, (key, _angle(p, q))
+
+
+def test_a_package_include_merged_in_a_world_agrees_with_libsdformat(sdf_poses: Path) -> None:
+    # ros_gz_project_template's layout: a world's model merges package://PKG/models/NAME;
+    # libsdformat finds it as FOLDER/PKG/models/NAME in SDF_PATH, we in the workspace
+    ws = SDF_DIR / "input" / "ws"
+    theirs = _tool(sdf_poses, ws / "sk_sdf_world" / "worlds" / "yard.sdf", ws)
+    ours = _ours(ws / "sk_sdf_world" / "worlds" / "yard.sdf")
+    assert sorted(ours) == sorted(theirs) and len(theirs) == 4
+    for key, p in theirs.items():
+        assert math.dist(p[9:], ours[key][9:]) <= 1e-9 and _angle(p, ours[key]) <= 1e-9
 
 
 def test_the_suite_holds_the_cases_the_check_needs() -> None:

@@ -50,7 +50,8 @@ def load_robot(
     """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
 
     With ``sdf``, an SDF file (``.sdf``, ``.world``) is read too (see
-    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``. Without
+    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``; a
+    ``.sdf.xacro`` is expanded by xacro first and its ``<sdf>`` read the same way. Without
     it, SDF is refused as before (InputError naming ``<sdf>``): the commands take it once
     their rules know SDF.
 
