@@ -17,6 +17,8 @@ A merged include (``//include/@merge``, SDF 1.9) is no nested model: its links, 
 frames, nested models and plugins join the including model unscoped, beside a frame
 ``_merged__NAME__model__`` that stands for the merged model's ``__model__``, as
 libsdformat inserts them (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:236-364).
+Not read: a merged include directly in a ``<world>`` (an error in libsdformat 12,
+parser.cc:221-229; merged into the world from sdformat 14) is read as a model of its own.
 """
 
 from __future__ import annotations
