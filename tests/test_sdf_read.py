@@ -67,8 +67,11 @@ def _for_libsdformat12(path: Path, tmp: Path) -> Path:
     return path
 
 
-def _tool(exe: Path, path: Path) -> dict[Key, Pose]:
-    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(MODELS)}
+def _tool(exe: Path, path: Path, resources: Path = MODELS) -> dict[Key, Pose]:
+    # gz-sim copies GZ_SIM_RESOURCE_PATH into SDF_PATH, where libsdformat looks up a bare
+    # include URI such as <uri>sk_merge_mast</uri> (gazebosim/gz-sim@gz-sim8_8.9.0:
+    # src/Util.cc:486-540; gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:119-137)
+    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(resources), "SDF_PATH": str(resources)}
     res = subprocess.run(
         [str(exe), str(path)], capture_output=True, text=True, timeout=60, check=False, env=env
     )
@@ -76,6 +79,8 @@ def _tool(exe: Path, path: Path) -> dict[Key, Pose]:
     assert res.returncode == 0 and not errors, errors or res.stderr
     out: dict[Key, Pose] = {}
     for line in res.stdout.splitlines():
+        if line.startswith("MASS"):
+            continue
         kind, model, frame, name, *nums = line.split()
         v = [float(n) for n in nums]
         out[(kind, model, frame, name)] = (*v[3:12], v[0], v[1], v[2])  # type: ignore[assignment]
@@ -140,6 +145,17 @@ def test_poses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Pat
         assert _angle(p, q) <= 1e-9, (key, _angle(p, q))
 
 
+def test_a_package_include_merged_in_a_world_agrees_with_libsdformat(sdf_poses: Path) -> None:
+    # ros_gz_project_template's layout: a world's model merges package://PKG/models/NAME;
+    # libsdformat finds it as FOLDER/PKG/models/NAME in SDF_PATH, we in the workspace
+    ws = SDF_DIR / "input" / "ws"
+    theirs = _tool(sdf_poses, ws / "sk_sdf_world" / "worlds" / "yard.sdf", ws)
+    ours = _ours(ws / "sk_sdf_world" / "worlds" / "yard.sdf")
+    assert sorted(ours) == sorted(theirs) and len(theirs) == 4
+    for key, p in theirs.items():
+        assert math.dist(p[9:], ours[key][9:]) <= 1e-9 and _angle(p, ours[key]) <= 1e-9
+
+
 def test_the_suite_holds_the_cases_the_check_needs() -> None:
     names = {p.stem for p in OWN_SDF}
     assert {
@@ -152,6 +168,7 @@ def test_the_suite_holds_the_cases_the_check_needs() -> None:
         "joint_relative",
         "sensor_relative",
         "include",
+        "merged",
         "world",
         "v111_model",
         "placement",
@@ -333,7 +350,7 @@ def test_broken_sdf_is_read_as_written_without_raising(monkeypatch: pytest.Monke
     assert [(i.uri, i.why) for i in sm.includes] == [
         ("model://sk_selfie", ""),
         ("model://sk_selfie", "the include comes back to a file that includes it"),
-        ("http://x/y", "only model:// and file:// URIs and paths can be read"),
+        ("http://x/y", "only model://, package:// and file:// URIs and paths can be read"),
         ("", "the <include> has no <uri>"),
     ]
     joints = {j.name: j for j in robot.joints}
@@ -342,3 +359,62 @@ def test_broken_sdf_is_read_as_written_without_raising(monkeypatch: pytest.Monke
     assert [s.problems for s in robot.sensors] == [
         ["pose relative to a frame that does not resolve"]
     ] * 2
+
+
+@pytest.mark.parametrize("path", OWN_SDF + CORPUS_SDF, ids=lambda p: p.name)
+def test_masses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Path) -> None:
+    # A link without <inertial> weighs what libsdformat's Link::Inertial() says (1 kg, unit
+    # inertia: gazebosim/sdformat@sdformat12_12.8.0:src/Link.cc:66-69), not nothing.
+    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(MODELS), "SDF_PATH": str(MODELS)}
+    res = subprocess.run(
+        [str(sdf_poses), str(_for_libsdformat12(path, tmp_path))],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+        env=env,
+    )
+    theirs = {
+        tuple(line.split()[1:4:2]): [float(n) for n in line.split()[4:]]
+        for line in res.stdout.splitlines()
+        if line.startswith("MASS")
+    }
+    assert theirs
+    old = os.environ.get("GZ_SIM_RESOURCE_PATH")
+    os.environ["GZ_SIM_RESOURCE_PATH"] = str(MODELS)
+    try:
+        robots = load_robot(path, sdf=True).robots
+    finally:
+        if old is None:
+            del os.environ["GZ_SIM_RESOURCE_PATH"]
+        else:
+            os.environ["GZ_SIM_RESOURCE_PATH"] = old
+    ours = {}
+    for robot in robots:
+        for link in robot.links:
+            inertial = link.inertial
+            assert inertial is not None, link.name
+            keys = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+            ours[(robot.name, link.name)] = [inertial.mass, *(inertial.inertia[k] for k in keys)]
+    assert ours == theirs
+
+
+def test_merged_includes_join_the_including_model(monkeypatch: pytest.MonkeyPatch) -> None:
+    (robot,) = _load(SDF_DIR / "merged.sdf", monkeypatch)
+    # unscoped names, in document order, beside a proxy frame for each merged __model__
+    # (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:252-256, 2613-2616)
+    assert [lk.name for lk in robot.links] == [
+        "chassis", "shoulder", "upper", "tool", "finger::nail", "pole", "bumper",
+    ]  # fmt: skip
+    assert robot.sdf.models == {"finger": robot.sdf.models["finger"]}
+    proxy = robot.sdf.graph.vertices["_merged__arm__model__"]
+    assert (proxy.kind, proxy.attached_to) == ("frame", "upper")
+    assert "_merged__mast__model__" in robot.sdf.graph.vertices
+    # the include's plugin and the merged model's join the including model's plugins
+    assert [p.filename for p in robot.model_plugins] == ["sk-arm-helper", "sk-include-helper"]
+    assert robot.joint_map["arm_mount"].child == "shoulder"
+    # the elbow's axis is written in the merged model's frame: the proxy's, not chassis's
+    sm = robot.sdf
+    R = sm.graph.in_frame("_merged__arm__model__", "upper")
+    assert robot.joint_map["elbow"].axis == pytest.approx((R[1], R[4], R[7]))
+    assert robot.sensors[0].source.file.endswith("models/sk_merge_arm/model.sdf")

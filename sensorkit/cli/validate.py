@@ -364,7 +364,9 @@ def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:
             else ""
         )
         if not found.files:
-            die(f"{where}: no robot description (*.urdf, *.urdf.xacro, *.xacro) below it{skipped}")
+            die(
+                f"{where}: no robot description (*.urdf, *.xacro, *.sdf, *.world) below it{skipped}"
+            )
         n = len(found.files)
         note(
             f"sensorkit: {where}: found {n} robot description{'' if n == 1 else 's'}{skipped}",

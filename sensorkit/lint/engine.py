@@ -20,6 +20,7 @@ from sensorkit.lint.rules.base import Bridge
 from sensorkit.lint.suppress import collect
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
+from sensorkit.loading.sdf_files import element_file, resolve_mesh_uri
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import Loaded, load_robot
 from sensorkit.model.frames import sensor_frames
@@ -163,8 +164,12 @@ def find_missing_files(
     seen_pkg: set[str] = set() if seen_packages is None else seen_packages
     exists: dict[Path, bool] = {}
     for link in robot.links if links is None else links:
+        holder = element_file(robot.document, link.element) if robot.sdf is not None else None
         for uri, src in link.meshes:
-            target = resolve_uri(uri, base, resolver)
+            if holder is not None:  # SDF: as gz-sim finds it, from the file holding it
+                target = resolve_mesh_uri(uri, holder, resolver)
+            else:
+                target = resolve_uri(uri, base, resolver)
             path, pkg = target.path, target.missing_package
             if pkg is not None:
                 if pkg not in seen_pkg:

@@ -7,7 +7,10 @@ hold a ``COLCON_IGNORE``, no ``build``/``install``/``log``) and keeps the top-le
 descriptions: every ``*.urdf``, and every ``*.xacro`` (``*.urdf.xacro`` included) that is
 more than a partial. A partial's root holds nothing but ``<xacro:macro>``,
 ``<xacro:property>``, ``<xacro:include>`` and ``<xacro:arg>``: it is included by robots,
-never validated on its own.
+never validated on its own. SDF too: every ``*.sdf`` and ``*.world`` (and ``*.sdf.xacro``),
+except that a Gazebo model folder (one holding a ``model.config``) gives only the SDF file
+its ``model.config`` names (``loading.sdf_files.model_file``: the newest ``<sdf>``), not
+each older version of the model beside it.
 
 Pool: ``run_pool`` hands files to N worker processes, each holding the one it validates
 and the next, and gathers the reports in input order. A worker validates, keeps only the
@@ -59,7 +62,21 @@ class Found:
 
 
 def is_description_name(name: str) -> bool:
-    return name.endswith((".urdf", ".xacro"))
+    return name.endswith((".urdf", ".xacro", ".sdf", ".world"))
+
+
+def _model_versions(here: str, files: list[str]) -> set[str]:
+    """The SDF files of a model folder ``here`` other than the one its model.config names
+    (gz-sim and libsdformat read that one: gazebosim/sdformat@sdformat12_12.8.0:
+    src/parser.cc:1204-1257, getModelFilePath)."""
+    if "model.config" not in files:
+        return set()
+    from sensorkit.loading.sdf_files import model_file
+
+    chosen = model_file(Path(here))
+    if chosen is None:
+        return set()
+    return {f for f in files if f.endswith(".sdf") and f != chosen.name}
 
 
 def is_partial(path: Path) -> bool:
@@ -97,7 +114,8 @@ def find_robots(folder: Path) -> Found:
             dirs[:] = []
             continue
         dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
-        hits.extend(Path(here, f) for f in files if is_description_name(f))
+        other = _model_versions(here, files)
+        hits.extend(Path(here, f) for f in files if is_description_name(f) and f not in other)
     for path in sorted(hits):
         (found.partials if is_partial(path) else found.files).append(path)
     return found

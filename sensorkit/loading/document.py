@@ -279,10 +279,10 @@ def drop_default_namespace(root: etree._Element) -> etree._Element:
     return root
 
 
-def _check_root(root: etree._Element, where: str) -> None:
+def _check_root(root: etree._Element, where: str, sdf: bool = False) -> None:
     tag = root.tag if isinstance(root.tag, str) else ""
     local = etree.QName(root).localname if tag else ""
-    if local != "robot":
+    if local != "robot" and not (sdf and local == "sdf"):
         if local == "sdf":
             msg = (
                 f"{where}: root element is <sdf>: this is an SDF model in a file not named "
@@ -293,8 +293,8 @@ def _check_root(root: etree._Element, where: str) -> None:
         raise InputError(msg)
 
 
-def parse_plain(path: Path, data: bytes) -> LoadResult:
-    """Parse a plain URDF strictly, with exact lines."""
+def parse_plain(path: Path, data: bytes, sdf: bool = False) -> LoadResult:
+    """Parse a plain URDF strictly, with exact lines (an ``<sdf>`` root too with ``sdf``)."""
     where = display_path(path)
     if not data.strip():
         return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
@@ -308,7 +308,7 @@ def parse_plain(path: Path, data: bytes) -> LoadResult:
         return LoadResult(None, [_xml_finding(where, str(exc.msg), line, col)])
     except OverLimit as exc:
         return LoadResult(None, [_limit_finding("SK101", where, str(exc), exc.line)])
-    _check_root(root, where)
+    _check_root(root, where, sdf)
     return LoadResult(Document(path=path, root=drop_default_namespace(root)))
 
 
@@ -327,8 +327,12 @@ def load_description(
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
+    sdf: bool = False,
 ) -> LoadResult:
     """Read ``path`` (URDF or xacro) into a Document, or findings explaining why not.
+
+    With ``sdf`` (a ``.sdf.xacro``), the expansion may give an ``<sdf>`` root: the caller
+    reads it as SDF (:mod:`sensorkit.model.sdf_read`).
 
     Raises InputError when the file cannot be read or is not a robot description.
     ``overlay`` maps absolute paths to bytes used instead of the files' own (``--fix``
@@ -344,7 +348,7 @@ def load_description(
     if not data.strip():
         return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
     # Strict pre-parse: well-formedness with exact position, and no entities, before xacro.
-    plain = parse_plain(path, data)
+    plain = parse_plain(path, data, sdf)
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
@@ -364,7 +368,7 @@ def load_description(
     except OverLimit as exc:  # the output's line is not the file's: no line
         return LoadResult(None, [_limit_finding("SK102", where, f"xacro output: {exc}", None)])
     del xml
-    _check_root(root, where)
+    _check_root(root, where, sdf)
     doc = Document(
         path=path,
         root=drop_default_namespace(root),

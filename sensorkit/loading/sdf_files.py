@@ -6,7 +6,8 @@ An SDF description is read without any expansion: lines are the file's own. When
 ``LOC_ATTR`` ("FILE_INDEX:LINE", as xacro's expansion stamps them) and the Document is
 marked ``expanded``, so that ``Document.locate`` names the file each element came from.
 
-``model://NAME/REST`` is looked up, first hit wins, in:
+``model://NAME/REST``, ``package://NAME/REST`` and a relative ``NAME/REST`` that is not
+beside the including file are looked up, first hit wins, in:
 
 1. each folder of ``GZ_SIM_RESOURCE_PATH`` (then the older ``IGN_GAZEBO_RESOURCE_PATH``
    and libsdformat's own ``SDF_PATH``), as ``FOLDER/NAME/REST``;
@@ -46,15 +47,26 @@ from sensorkit.loading.document import (
 )
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver, valid_package_name
-from sensorkit.loading.uris import OUTSIDE
+from sensorkit.loading.uris import OUTSIDE, UriTarget, resolve_uri
 
 SDF_SUFFIXES = (".sdf", ".world")
+# Schemes libsdformat strips before looking the rest up in SDF_PATH, which gz-sim fills
+# with GZ_SIM_RESOURCE_PATH's folders (gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:87-124;
+# gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:486-540): ``package://PKG/REST`` is
+# ``FOLDER/PKG/REST`` (gazebosim/ros_gz@2.1.1:ros_gz_sim/README.md:96-113).
+SEARCHED_SCHEMES = ("model://", "package://")
 RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
 
 
 def is_sdf_path(path: Path) -> bool:
     """Whether ``path`` is read as SDF (by its name: ``.sdf``, ``.world``)."""
     return path.name.lower().endswith(SDF_SUFFIXES)
+
+
+def is_sdf_xacro(path: Path) -> bool:
+    """Whether ``path`` is SDF written with xacro (``.sdf.xacro``, ``.world.xacro``): it
+    is expanded first, and the result read as SDF."""
+    return path.name.lower().endswith(tuple(s + ".xacro" for s in SDF_SUFFIXES))
 
 
 def parse_sdf(
@@ -148,20 +160,24 @@ def model_file(found: Path) -> Path | None:
 
 
 def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> ModelUri:
-    """The file ``uri`` (``model://``, ``file://``, or a path) names, from the file
-    ``including`` it; see the module's docstring for the order."""
+    """The file ``uri`` (``model://``, ``package://``, ``file://``, or a path) names, from
+    the file ``including`` it; see the module's docstring for the order."""
     if uri.startswith("file://"):
         uri = uri[len("file://") :]
-    if not uri.startswith("model://"):
-        if "://" in uri:
-            return ModelUri(None, "only model:// and file:// URIs and paths can be read")
+    scheme = next((s for s in SEARCHED_SCHEMES if uri.startswith(s)), None)
+    if scheme is None and "://" in uri:
+        return ModelUri(None, "only model://, package:// and file:// URIs and paths can be read")
+    candidates: list[Path] = []
+    if scheme is None:
         path = Path(uri) if os.path.isabs(uri) else including.parent / uri
         if not resolver.allows(path):  # says nothing of what is there
             return ModelUri(None, OUTSIDE)
         got = model_file(path)
-        return ModelUri(got, "" if got else "no model there", (str(path),))
-    name, _, rest = uri[len("model://") :].partition("/")
-    candidates = [d / name / rest if rest else d / name for d in _resource_dirs()]
+        if got is not None or os.path.isabs(uri):
+            return ModelUri(got, "" if got else "no model there", (str(path),))
+        candidates.append(path)  # a relative name is looked up as model:// is (SDF.cc:119-124)
+    name, _, rest = uri[len(scheme or "") :].partition("/")
+    candidates += [d / name / rest if rest else d / name for d in _resource_dirs()]
     if valid_package_name(name):
         pkg = resolver.find(name)
         if pkg is not None:
@@ -177,3 +193,60 @@ def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> M
     searched = tuple(str(c) for c in candidates)
     why = "not found in GZ_SIM_RESOURCE_PATH, the packages, or beside the including model"
     return ModelUri(None, why, searched)
+
+
+def element_file(doc: Document, el: etree._Element) -> Path:
+    """The file an element of ``doc`` was read from (its nearest stamped ancestor's)."""
+    if doc.expanded:
+        cur: etree._Element | None = el
+        while cur is not None:
+            idx, _, _line = (cur.get(LOC_ATTR) or "").partition(":")
+            if idx.isdigit() and int(idx) < len(doc.files):
+                return Path(doc.files[int(idx)])
+            cur = cur.getparent()
+    return doc.path
+
+
+def resolve_mesh_uri(uri: str, holder: Path, resolver: PackageResolver) -> UriTarget:
+    """Where gz-sim finds the mesh ``uri`` written in the SDF file ``holder``: a path to
+    check (``path``), an unknown package (``missing_package``), or nothing to say (both
+    None: the simulator may know more than sensorkit does).
+
+    - a relative path is in the folder of the SDF file that holds it (gz-sim's
+      ``asFullPath``: gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:389-440,
+      src/Conversions.cc:220); not said of xacro text, which gz-sim reads from a string
+      and resolves from its own working folder (Util.cc:421-427);
+    - ``model://NAME/REST`` and ``package://NAME/REST`` are ``FOLDER/NAME/REST`` in the
+      folders gz-common searches, GZ_SIM_RESOURCE_PATH's (Util.cc:486-540 puts them in
+      its file path), the package NAME and the folders beside ``holder``'s model folder,
+      as an include is found: a file found there is the one; when the model or package
+      folder is found but not the file, that folder's file is missing; a ``package://``
+      whose package is found nowhere is an unknown package (as for URDF); a
+      ``model://`` whose model is found nowhere is left unsaid;
+    - ``file://`` and absolute paths are themselves; other schemes (Fuel URLs) unsaid.
+    """
+    scheme = next((s for s in SEARCHED_SCHEMES if uri.startswith(s)), None)
+    if scheme is None:
+        if "://" not in uri and not os.path.isabs(uri) and not is_sdf_path(holder):
+            return UriTarget(None)
+        if "://" in uri and not uri.startswith("file://"):
+            return UriTarget(None)
+        return resolve_uri(uri, holder.parent, resolver)
+    name, _, rest = uri[len(scheme) :].partition("/")
+    if not valid_package_name(name) or not rest:
+        return UriTarget(None)
+    folders = [d / name for d in _resource_dirs()]
+    pkg = resolver.find(name)
+    if pkg is not None:
+        folders.append(pkg)
+    model_dir = holder.resolve().parent
+    folders += [model_dir.parent / name, model_dir / name]
+    found = [f for f in folders if resolver.allows(f) and f.is_dir()]
+    for folder in found:
+        if (folder / rest).is_file():
+            return UriTarget(folder / rest)
+    if found:
+        return UriTarget(found[0] / rest)
+    if scheme == "package://":
+        return UriTarget(None, f"package {name!r} not found", name)
+    return UriTarget(None)

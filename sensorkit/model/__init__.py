@@ -14,6 +14,7 @@ from sensorkit.model.urdf import build_robot
 
 if TYPE_CHECKING:
     from sensorkit.loading.cache import ExpansionCache
+    from sensorkit.loading.document import Document
     from sensorkit.loading.untrusted import Untrusted
 
 
@@ -49,7 +50,8 @@ def load_robot(
     """Load and model a URDF/xacro file. Raises InputError for unreadable/non-robot input.
 
     With ``sdf``, an SDF file (``.sdf``, ``.world``) is read too (see
-    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``. Without
+    :mod:`sensorkit.model.sdf_read`): each of its models is in ``Loaded.robots``; a
+    ``.sdf.xacro`` is expanded by xacro first and its ``<sdf>`` read the same way. Without
     it, SDF is refused as before (InputError naming ``<sdf>``): the commands take it once
     their rules know SDF.
 
@@ -57,12 +59,13 @@ def load_robot(
     ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
     """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
-    from sensorkit.loading.sdf_files import is_sdf_path
+    from sensorkit.loading.sdf_files import is_sdf_path, is_sdf_xacro
 
     if sdf and is_sdf_path(path):
         if untrusted is not None:
             resolver.confine_to(path)  # includes are read inside the workspace only
         return _load_sdf(path, resolver, overlay)
+    sdf_xacro = sdf and is_sdf_xacro(path)
     result = load_description(
         path,
         args=args,
@@ -71,17 +74,30 @@ def load_robot(
         untrusted=untrusted,
         overlay=overlay,
         cache=cache,
+        sdf=sdf_xacro,
     )
     if result.document is None:
         return Loaded(None, result.findings)
+    if sdf_xacro and result.document.root.tag == "sdf":
+        # the expansion is read as SDF; its model:// includes from the file's folder
+        if untrusted is not None:
+            resolver.confine_to(path)
+        loaded = _load_sdf(path, resolver, overlay, result.document)
+        loaded.findings[:0] = result.findings
+        return loaded
     return Loaded(build_robot(result.document), result.findings)
 
 
-def _load_sdf(path: Path, resolver: PackageResolver, overlay: Mapping[str, bytes] | None) -> Loaded:
+def _load_sdf(
+    path: Path,
+    resolver: PackageResolver,
+    overlay: Mapping[str, bytes] | None,
+    document: Document | None = None,
+) -> Loaded:
     from sensorkit.model.sdf_build import build_sdf_robot
     from sensorkit.model.sdf_read import read_models
 
-    read = read_models(path, resolver, overlay)
+    read = read_models(path, resolver, overlay, document)
     if read.document is None:
         return Loaded(None, read.findings)
     robots = [build_sdf_robot(read.document, sm) for sm in read.models]

@@ -2,7 +2,8 @@
 :class:`~sensorkit.model.robot.Robot`: the records every rule and command reads.
 
 - A link is a :class:`~sensorkit.model.parts.Link` named with its scope
-  (``inner::link``), its inertial and meshes read from SDF's elements.
+  (``inner::link``), its inertial (libsdformat's default when it has none) and meshes
+  read from SDF's elements.
 - A joint is a :class:`~sensorkit.model.parts.Joint` whose ``origin`` is the child link's
   frame in the parent link's frame, what a URDF joint origin means, so that the Robot's
   poses (each link's in its tree's root, sensors' in their links) hold unchanged. Its
@@ -24,7 +25,7 @@ from sensorkit.model.parse import Origin, child, children, parse_float, parse_ve
 from sensorkit.model.parts import Inertial, Joint, Link
 from sensorkit.model.robot import Robot
 from sensorkit.model.sdf_frames import between, scoped
-from sensorkit.model.sdf_read import Element, SdfModel
+from sensorkit.model.sdf_read import Element, SdfModel, ref
 from sensorkit.model.sensors import Plugin, read_sensor
 from sensorkit.model.transforms import IDENTITY, Pose, matrix_to_rpy, pose_matrix
 
@@ -43,7 +44,14 @@ def exact_origin(p: Pose, source_el: etree._Element | None, doc: Document) -> Or
 
 
 def _inertial(el: etree._Element, doc: Document) -> Inertial:
+    """The ``<inertial>`` ``el``, or the default one when ``el`` is the ``<link>``."""
     from sensorkit.model.sdf_read import read_pose
+
+    if el.tag == "link":
+        unit: dict[str, float | None] = {
+            k: 1.0 if k in ("ixx", "iyy", "izz") else 0.0 for k in _INERTIA_KEYS
+        }
+        return Inertial(1.0, unit, exact_origin(IDENTITY, el, doc), el, doc)
 
     problems: list[str] = []
     mass_text = text_of(el, "mass")
@@ -72,7 +80,10 @@ def _link(item: Element, doc: Document) -> Link:
         uri_el = child(child(child(part, "geometry"), "mesh"), "uri")
         if uri_el is not None and (uri_el.text or "").strip():
             meshes.append(((uri_el.text or "").strip(), doc.locate(uri_el)))
-    inertial = _inertial(inertial_el, doc) if inertial_el is not None else None
+    # A link without <inertial> has libsdformat's default one: mass 1, inertia the unit
+    # matrix, at the link's origin (gazebosim/sdformat@sdformat12_12.8.0:src/Link.cc:66-69,
+    # 150-190), what gz-sim simulates: the element the Inertial points at is the link's.
+    inertial = _inertial(inertial_el if inertial_el is not None else el, doc)
     return Link(item.name, el, doc, inertial, tuple(meshes))
 
 
@@ -92,10 +103,10 @@ def _axis(
         return None, f"axis {why}"
     if item.version < (1, 7):
         flag = (text_of(axis_el, "use_parent_model_frame") or "").lower()
-        frame = item.scope if flag in ("true", "1") else joint
+        frame = item.model_frame if flag in ("true", "1") else joint
     else:
         expressed = xyz_el.get("expressed_in")
-        frame = scoped(item.scope, expressed) if expressed else joint
+        frame = ref(item.scope, item.frame, expressed) if expressed else joint
     R = sm.graph.in_frame(frame, child_link)
     if R is None:
         return None, "axis expressed in a frame that does not resolve"
@@ -118,10 +129,10 @@ def _joint(sm: SdfModel, item: Element, doc: Document) -> Joint | None:
         return None
     parent = kid = None  # None: not written, as the URDF reader has it
     if parent_text:
-        parent = scoped(item.scope, parent_text)
+        parent = ref(item.scope, item.frame, parent_text)
         parent = sm.graph.link_of(parent) or parent
     if child_text:
-        kid = scoped(item.scope, child_text)
+        kid = ref(item.scope, item.frame, child_text)
         kid = sm.graph.link_of(kid) or kid
     a = sm.pose_of(parent) if parent is not None else None
     b = sm.pose_of(kid) if kid is not None else None

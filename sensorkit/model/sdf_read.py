@@ -13,7 +13,12 @@ reading it, and the conversion renames ``//pose/@frame`` to ``//pose/@relative_t
 ``use_parent_model_frame`` to ``xyz/@expressed_in="__model__"``
 (gazebosim/sdformat@sdformat12_12.8.0:sdf/1.7/1_6.convert:3-42): so do we. Every model
 keeps the version of the file it was read from (an included file may be of another).
-Not read: ``//include/@merge`` (SDF 1.9): a merged include is read as a nested model.
+A merged include (``//include/@merge``, SDF 1.9) is no nested model: its links, joints,
+frames, nested models and plugins join the including model unscoped, beside a frame
+``_merged__NAME__model__`` that stands for the merged model's ``__model__``, as
+libsdformat inserts them (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:236-364).
+Not read: a merged include directly in a ``<world>`` (an error in libsdformat 12,
+parser.cc:221-229; merged into the world from sdformat 14) is read as a model of its own.
 """
 
 from __future__ import annotations
@@ -56,6 +61,11 @@ class Element:
     element: etree._Element
     scope: str
     version: tuple[int, ...]
+    frame: str | None = None  # the vertex its ``__model__`` names (None: ``scope``)
+
+    @property
+    def model_frame(self) -> str:
+        return self.scope if self.frame is None else self.frame
 
 
 @dataclass
@@ -154,16 +164,36 @@ def _vertex(
     default: str,
     version: tuple[int, ...],
     attached_to: str | None = None,
+    frame: str | None = None,
 ) -> Vertex:
-    """The vertex of ``el``, its pose relative to what it names in ``scope``, else to
-    ``default`` (a vertex name, already scoped)."""
+    """The vertex of ``el``, its pose relative to what it names in ``scope`` (``__model__``
+    being ``frame``, the scope's own unless merged), else to ``default`` (a vertex name,
+    already scoped)."""
     raw, rel, pose_el, problem = read_pose(el, version)
     if problem is not None and pose_el is not None:
         sm.pose_problems.append((problem, pose_el))
-    relative_to = scoped(scope, rel) if rel is not None else default
+    relative_to = ref(scope, frame, rel) if rel is not None else default
     vertex = Vertex(name, kind, relative_to, raw, el, rel, attached_to)
     sm.graph.add(vertex)
     return vertex
+
+
+def ref(scope: str, frame: str | None, name: str) -> str:
+    """The vertex ``name`` written in the model ``scope`` names, ``__model__`` being
+    ``frame``: a merged include's elements name its proxy frame by ``__model__``
+    (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:294-352)."""
+    if name == "__model__" and frame is not None:
+        return frame
+    return scoped(scope, name)
+
+
+def merges(inc: etree._Element) -> bool:
+    """Whether an ``<include>`` is merged: ``@merge`` read as tinyxml2's BoolAttribute
+    (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:1820)."""
+    text = (inc.get("merge") or "").strip()
+    if text.lstrip("-").isdigit():
+        return int(text) != 0
+    return text in ("true", "True", "TRUE")
 
 
 def _canonical(el: etree._Element, name: str) -> str | None:
@@ -182,44 +212,51 @@ def _canonical(el: etree._Element, name: str) -> str | None:
 
 
 def _walk_model(
-    ctx: _Ctx, sm: SdfModel, el: etree._Element, scope: str, version: tuple[int, ...]
+    ctx: _Ctx,
+    sm: SdfModel,
+    el: etree._Element,
+    scope: str,
+    version: tuple[int, ...],
+    frame: str | None = None,
 ) -> None:
-    """Every frame, link, joint, sensor and plugin of the model ``el`` whose frame is
-    the vertex ``scope``, nested models and includes too.
+    """Every frame, link, joint, sensor and plugin of the model ``el`` whose elements are
+    named in ``scope`` and whose frame is the vertex ``frame`` (``scope`` itself unless the
+    model is merged), nested models and includes too.
 
     Defaults when a pose names no frame (gazebosim/sdformat@sdformat12_12.8.0:
     src/FrameSemantics.cc): a link's and a nested model's pose is in the model frame
     (:293-298, :428-432, :686 the scope vertex); a joint's in its child (:383-387); a
     frame's in what it is attached to, the model frame when nothing (:335-339, :797-802).
     """
+    mf = scope if frame is None else frame
     for c in el:
         tag, name = c.tag, c.get("name", "")
         if tag == "link":
             full = scoped(scope, name)
-            _vertex(sm, c, "link", full, scope, scope, version)
-            sm.links.append(Element(full, c, scope, version))
+            _vertex(sm, c, "link", full, scope, mf, version, frame=mf)
+            sm.links.append(Element(full, c, scope, version, frame))
             for s in c:
                 if s.tag == "sensor":
                     sm.sensors.append(Element(full, s, scope, version))
                 elif s.tag == "plugin":
                     sm.plugins.append((full, s))
         elif tag == "joint":
-            kid = scoped(scope, text_of(c, "child") or "")
-            _vertex(sm, c, "joint", scoped(scope, name), scope, kid, version, kid)
-            sm.joints.append(Element(scoped(scope, name), c, scope, version))
+            kid = ref(scope, mf, text_of(c, "child") or "")
+            _vertex(sm, c, "joint", scoped(scope, name), scope, kid, version, kid, mf)
+            sm.joints.append(Element(scoped(scope, name), c, scope, version, frame))
         elif tag == "frame":
-            att = scoped(scope, c.get("attached_to") or "__model__")
-            _vertex(sm, c, "frame", scoped(scope, name), scope, att, version, att)
+            att = ref(scope, mf, c.get("attached_to") or "__model__")
+            _vertex(sm, c, "frame", scoped(scope, name), scope, att, version, att, mf)
         elif tag == "model":
             full = scoped(scope, name)
-            _vertex(sm, c, "model", full, scope, scope, version, _canonical(c, full))
+            _vertex(sm, c, "model", full, scope, mf, version, _canonical(c, full), mf)
             sm.models[full] = c
             _walk_model(ctx, sm, c, full, version)
             _place(sm, full, _placement(c, None, version), c)
         elif tag == "include":
-            _include(ctx, sm, c, scope, version)
+            _include(ctx, sm, c, scope, version, mf)
         elif tag == "plugin":
-            sm.plugins.append((scope, c))
+            sm.plugins.append((mf, c))
 
 
 def _load_include(
@@ -257,19 +294,28 @@ def _load_include(
 
 
 def _include(
-    ctx: _Ctx, sm: SdfModel, inc: etree._Element, scope: str, version: tuple[int, ...]
+    ctx: _Ctx,
+    sm: SdfModel,
+    inc: etree._Element,
+    scope: str,
+    version: tuple[int, ...],
+    frame: str | None = None,
 ) -> None:
     """A nested model from an ``<include>``: its ``<name>`` and ``<pose>`` (with its
     attributes) replace the included model's (gazebosim/sdformat@sdformat12_12.8.0:
     src/parser.cc:1676-1700). The included file keeps its own version: libsdformat reads
-    and converts each file on its own."""
+    and converts each file on its own. A merged include joins ``scope`` instead."""
     loaded = _load_include(ctx, inc, sm)
     if loaded is None:
         return
     model, inner = loaded
+    mf = scope if frame is None else frame
+    if merges(inc):
+        _merge(ctx, sm, inc, model, inner, (scope, version, mf))
+        return
     full = scoped(scope, text_of(inc, "name") or model.get("name", ""))
     owner = inc if child(inc, "pose") is not None else model
-    _vertex(sm, owner, "model", full, scope, scope, version if owner is inc else inner)
+    _vertex(sm, owner, "model", full, scope, mf, version if owner is inc else inner, frame=mf)
     sm.graph.vertices[full].attached_to = _canonical(model, full)
     sm.graph.vertices[full].element = model
     sm.models[full] = model
@@ -281,6 +327,43 @@ def _include(
     finally:
         ctx.stack.pop()
     _place(sm, full, _placement(model, inc, inner), inc)
+
+
+def _merge(
+    ctx: _Ctx,
+    sm: SdfModel,
+    inc: etree._Element,
+    model: etree._Element,
+    inner: tuple[int, ...],
+    at: tuple[str, tuple[int, ...], str],
+) -> None:
+    """A merged include (gazebosim/sdformat@sdformat12_12.8.0:src/parser.cc:236-364): a
+    frame ``_merged__NAME__model__`` (:2613-2616) attached to the merged model's canonical
+    link, posed as the model would be (the include's pose, else the file's, relative to
+    what it names, else the including model's frame; with a placement frame, the model
+    frame that puts it there: :262-281), stands for the merged model's ``__model__``; its
+    links, joints, frames, nested models and plugins join the including model's scope,
+    their defaults and ``__model__`` naming that frame (:283-352)."""
+    scope, version, mf = at
+    name = text_of(inc, "name") or model.get("name", "")
+    proxy = scoped(scope, f"_merged__{name}__model__")
+    owner = inc if child(inc, "pose") is not None else model
+    v = _vertex(sm, owner, "frame", proxy, scope, mf, version if owner is inc else inner, None, mf)
+    v.attached_to = _canonical(model, scope)
+    ctx.stack.append(str(sm.includes[-1].path))
+    try:
+        _walk_model(ctx, sm, model, scope, inner, proxy)
+    finally:
+        ctx.stack.pop()
+    # the include's <plugin>s were added after the model's (parser.cc:1767-1773)
+    sm.plugins.extend((mf, p) for p in inc if p.tag == "plugin")
+    placement = _placement(model, inc, inner)
+    if placement and sm.graph.vertices.get(proxy) is v:
+        X_MPf = sm.graph.pose_in_scope(ref(scope, proxy, placement), proxy)
+        if X_MPf is None:
+            sm.pose_problems.append((f"placement_frame {placement!r} names no frame", inc))
+        else:
+            v.raw = compose(v.raw, inverse(X_MPf))
 
 
 def _placement(
@@ -300,17 +383,25 @@ def _place(sm: SdfModel, vertex: str, frame: str | None, el: etree._Element) -> 
 
 
 def read_models(
-    path: Path, resolver: PackageResolver, overlay: Mapping[str, bytes] | None = None
+    path: Path,
+    resolver: PackageResolver,
+    overlay: Mapping[str, bytes] | None = None,
+    document: Document | None = None,
 ) -> SdfRead:
     """The models of the SDF file ``path``: its ``<model>``, or each model of its
-    ``<world>``. Raises InputError when the file is unreadable or holds neither."""
+    ``<world>``; from ``document`` when given (a ``.sdf.xacro``'s expansion, whose
+    elements keep their files and lines). Raises InputError when the file is unreadable
+    or holds neither."""
     from sensorkit.base.errors import InputError
     from sensorkit.loading.document import display_path
 
-    root, findings = parse_sdf(path, overlay)
-    if root is None:
-        return SdfRead(None, [], findings)
-    doc = Document(path=path, root=root)
+    if document is None:
+        root, findings = parse_sdf(path, overlay)
+        if root is None:
+            return SdfRead(None, [], findings)
+        doc = Document(path=path, root=root)
+    else:
+        doc, root = document, document.root
     ctx = _Ctx(doc, resolver.for_file(path), overlay, [str(path.resolve())])
     version = version_of(root)
     out = SdfRead(doc)

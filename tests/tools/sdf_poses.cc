@@ -5,6 +5,7 @@
 //   ERROR <message>
 //   LINK <model> <frame> <scoped link> x y z r00 r01 r02 r10 r11 r12 r20 r21 r22
 //   SENSOR <model> <frame> <scoped link>::<sensor> x y z r00 ... r22
+//   MASS <model> inertial <scoped link> mass ixx ixy ixz iyy iyz izz  (Link::Inertial())
 // <frame> is "model" (the pose in the top model's frame) or "world" (world files only).
 #include <cstdio>
 #include <cstdlib>
@@ -43,6 +44,11 @@ static int walk(const sdf::Model *model, const std::string &top, const std::stri
     const Pose3 X_top_link = X_top_model * X_model_link;
     const std::string name = prefix + link->Name();
     print("LINK", top, "model", name, X_top_link);
+    const auto &inertial = link->Inertial();
+    const auto I = inertial.MassMatrix().Moi();
+    std::printf("MASS %s inertial %s %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", top.c_str(),
+                name.c_str(), inertial.MassMatrix().Mass(), I(0, 0), I(0, 1), I(0, 2), I(1, 1),
+                I(1, 2), I(2, 2));
     if (X_world_top) print("LINK", top, "world", name, *X_world_top * X_top_link);
     for (uint64_t j = 0; j < link->SensorCount(); ++j) {
       const sdf::Sensor *s = link->SensorByIndex(j);

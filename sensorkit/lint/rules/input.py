@@ -26,6 +26,7 @@ declare(
     "error",
     "`$(find pkg)` / `package://pkg/...` resolve; list every place searched",
     "xacro at run time",
+    ("urdf", "sdf"),  # SDF: package:// mesh URIs (an include's is SK107)
 )
 
 ALLOWED_CHILDREN = URDF_CHILDREN
@@ -37,7 +38,13 @@ HINTS = {
 }
 
 
-@rule("SK104", "warning", "files referenced (meshes, includes) exist", "yourdfpy (log only)")
+@rule(
+    "SK104",
+    "warning",
+    "files referenced (meshes, includes) exist",
+    "yourdfpy (log only)",
+    ("urdf", "sdf"),  # SDF: mesh URIs as gz-sim finds them (loading.sdf_files.resolve_mesh_uri)
+)
 def missing_files(ctx: Context) -> Iterator[Finding]:
     for miss in ctx.missing_files:
         yield ctx.finding(
