@@ -109,6 +109,19 @@ def test_sk503_not_said_where_tf_publishers_disagree() -> None:
     assert "ambiguous_lidar" not in _sensors(_findings("sk503.sdf", "SK503"))
 
 
+def test_rotation_rules_judge_a_frame_tf_only_moves() -> None:
+    # moved_joint moves moved_link but does not turn it: its rotation is the same from
+    # either publisher, so SK502 holds; its position is not (no SK503).
+    assert _sensors(_findings("tf_disagree.sdf", "SK502")) == {"shifted_cam"}
+    assert _findings("tf_disagree.sdf", "SK503") == []
+
+
+def test_rotation_rules_skip_a_frame_tf_may_turn() -> None:
+    # turned_joint turns turned_link: sdformat_urdf's link is optical, PosePublisher's not.
+    assert "turned_cam" not in _sensors(_findings("tf_disagree.sdf", "SK502"))
+    assert _findings("tf_disagree.sdf", "SK508") == []  # turned_optical_frame likewise
+
+
 def test_sk504_imu_turned_from_its_frame() -> None:
     found = _findings("sk504.sdf", "SK504")
     assert _sensors(found) == {"flipped_imu"}
