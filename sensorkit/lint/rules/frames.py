@@ -518,6 +518,8 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
     "optical rotation written approximately (e.g. -1.57 for -pi/2): report the angular error and suggest `${-pi/2}`",
 )
 def approximate_optical(ctx: Context) -> Iterator[Finding]:
+    # URDF only: it points at the joint origin that writes the rotation; in SDF the rotation
+    # is a link's <pose>, maybe relative to another frame, which this rule does not locate.
     for joint, err, frame in _approx_joints(ctx):
         text = joint.origin.rpy_text or " ".join(f"{v:g}" for v in joint.origin.rpy)
         yield ctx.finding(

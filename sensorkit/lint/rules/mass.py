@@ -1,4 +1,10 @@
-"""SK3xx: mass, and what the URDF-to-SDF conversion keeps."""
+"""SK3xx: mass, and what the URDF-to-SDF conversion keeps.
+
+On SDF only SK302 runs. SK301 and SK303 are the conversion's (massless links dropped,
+fixed joints lumped), which an SDF model never goes through (sensorkit.model.sdf.convert).
+SK304's fix, a massless root link, is no fix in SDF: a link without <inertial> weighs 1 kg
+there (gazebosim/sdformat@sdformat12_12.8.0:sdf/1.9/inertial.sdf:8).
+"""
 
 from __future__ import annotations
 
