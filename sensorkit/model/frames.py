@@ -67,9 +67,16 @@ class SensorFrames:
         """The frame image data is stamped with."""
         return self.image_frame or self.published
 
-    def T_render_frame(self, robot: Robot, frame: str | None) -> Mat | None:
-        """Pose of link ``frame`` seen from the render pose (None if either is unknown)."""
+    def T_render_frame(
+        self, robot: Robot, frame: str | None, *, position: bool = True
+    ) -> Mat | None:
+        """Pose of link ``frame`` seen from the render pose (None if either is unknown).
+
+        For an SDF model, also None when TF's publishers disagree on where the link is
+        (:func:`sdf_tf_agrees`); ``position=False``: only its rotation is asked for."""
         if frame is None or frame not in robot.link_map or self.T_world_render is None:
+            return None
+        if robot.sdf is not None and not sdf_tf_agrees(robot, frame, position=position):
             return None
         if self.link is not None and robot.tree_of(frame) != robot.tree_of(self.link):
             return None  # in another tree (cut off by a joint to a missing link): no relation
@@ -79,6 +86,38 @@ class SensorFrames:
         from sensorkit.model.transforms import relative
 
         return relative(self.T_world_render, T_world_frame)
+
+
+SDF_AGREE_TOL = 1e-6  # m and rad: below this two poses of a frame are the same for SK5xx
+
+
+def sdf_tf_agrees(robot: Robot, link: str, *, position: bool = True) -> bool:
+    """Whether TF places the SDF link ``link`` where the SDF does, whoever publishes it.
+
+    robot_state_publisher fed the SDF through sdformat_urdf puts a link at the frame of the
+    joint it is the child of ("urdf link pose is the location of the joint having it as
+    a child": ros/sdformat_urdf@9cec63e:sdformat_urdf/src/sdformat_urdf.cpp:322-327, the
+    joint origins chained between joint frames :221-231); gz-sim's PosePublisher, bridged
+    to /tf, publishes the link's own pose (gazebosim/gz-sim@gz-sim8_8.9.0:
+    src/systems/pose_publisher/PosePublisher.cc:421-422 names it, :513 its Pose). The two
+    agree when the joint's pose in its child link is the identity, as it is when the
+    joint writes no <pose>: a joint's pose is relative to its child by default
+    (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:383-387). A link no joint
+    hangs is its own frame either way. ``position=False``: only the rotations are compared.
+    """
+    sm = robot.sdf
+    joint = robot.parent_joint.get(link)
+    if sm is None or joint is None:
+        return True
+    from sensorkit.model.transforms import pose_matrix, rotation, rotation_angle, translation
+
+    j = sm.graph.in_frame(joint.name, link)  # the Robot's joint names are scoped vertices
+    if j is None:
+        return False
+    T = pose_matrix(j)
+    if rotation_angle(rotation(T)) > SDF_AGREE_TOL:
+        return False
+    return not position or max(abs(v) for v in translation(T)) <= SDF_AGREE_TOL
 
 
 # Links farther than this from the origin (or not finite) are outside the grid of
@@ -245,9 +284,13 @@ def sensor_frames(
         if value:
             stamped = known.stamped_frame(spec, value)
             return SensorFrames(sensor, link, T, stamped, name, False, plugin, spec=spec)
-    return SensorFrames(
-        sensor, link, T, default_frame(spec, plugin, link, conv), "default", True, plugin, spec=spec
-    )
+    frame = default_frame(spec, plugin, link, conv)
+    if robot.sdf is not None and frame is not None and frame == link:
+        # gazebo_ros's SensorFrameID: with no frame_name, the parent link's name without its
+        # scopes (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4:gazebo_ros/src/utils.cpp:40-61): the
+        # scoped name of a nested model's link loses its models.
+        frame = frame.rpartition("::")[2]
+    return SensorFrames(sensor, link, T, frame, "default", True, plugin, spec=spec)
 
 
 def default_frame(

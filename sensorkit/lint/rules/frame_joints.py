@@ -141,6 +141,22 @@ def _mul3(A: Mat, B: Mat) -> Mat:
     )
 
 
+def sdf_optical_fix(ctx: Context, s: Sensor, fr: SensorFrames) -> str:
+    """SK502's fix in SDF: Fortress and Harmonic stamp images with <optical_frame_id>
+    (see GZ_OPTICAL_FRAME_ID in sensorkit.model.frames); else an optical link."""
+    from sensorkit.model.frames import GZ_OPTICAL_FRAME_ID
+
+    name = f"{(fr.link or s.name).rpartition('::')[2]}_optical_frame"
+    link = (
+        f'a link {name} whose <pose relative_to="{fr.link}"> is the sensor\'s <pose> turned by '
+        f"roll -pi/2, yaw -pi/2 (-1.5707963267948966 0 -1.5707963267948966 when the sensor's "
+        f"is 0), with a fixed joint from {fr.link!r}"
+    )
+    if ctx.target in GZ_OPTICAL_FRAME_ID:
+        return f"add {link}, and name it in <camera><optical_frame_id>"
+    return f"add {link}, and publish in it"
+
+
 # A link named for an optical frame: "optical" as a word of its name, last or followed by
 # "frame" or "link" (camera_optical_frame, camera_link_optical, rgb_optical_link), not
 # optical_flow_link (a PX4 optical-flow sensor's body) or optical_table.
@@ -153,9 +169,13 @@ OPTICAL_NAME = re.compile(r"(?:^|[_/\-])optical(?:$|[_\-](?:frame|link)(?:$|[_\-
     "a link named as an optical frame (`optical` as a word of its name, last or before `frame`/`link`) "
     "that no sensor stamps is optical: its rotation from its parent link, or from some link above "
     "it, is Rz(-pi/2)*Rx(-pi/2) within 0.5 degree (a frame a sensor stamps is SK502's or SK504's)",
+    formats=("urdf", "sdf"),
 )
 def optical_named(ctx: Context) -> Iterator[Finding]:
+    from sensorkit.model.frames import sdf_tf_agrees
+
     robot = ctx.robot
+    sdf = robot.sdf is not None
     # A frame a sensor stamps is judged by SK502 (cameras) or SK504 (lidars, IMUs).
     stamped: set[str | None] = set()
     for s in robot.sensors:
@@ -168,6 +188,10 @@ def optical_named(ctx: Context) -> Iterator[Finding]:
         joint = robot.parent_joint.get(name)
         if joint is None or joint.parent is None:
             continue
+        if sdf and not all(
+            sdf_tf_agrees(robot, x, position=False) for x in (name, *robot.ancestors(name))
+        ):
+            continue  # TF's publishers turn these links differently (sdf_tf_agrees)
         errs = []
         up: str | None = joint.parent
         while up is not None:
@@ -180,6 +204,7 @@ def optical_named(ctx: Context) -> Iterator[Finding]:
         if not errs or min(errs) <= ANGLE_TOL:
             continue
         optical = rpy_text((-HALF_PI, 0.0, -HALF_PI), robot.document.expanded)
+        pose = child(robot.link_map[name].element, "pose") if sdf else None
         yield ctx.finding(
             "SK508",
             Severity.WARNING,
@@ -187,12 +212,17 @@ def optical_named(ctx: Context) -> Iterator[Finding]:
             f"{joint.parent!r} is {math.degrees(errs[0]):.1f} degrees from the optical rotation "
             "(z forward, x right, y down), and no link above it sees it optical either: "
             "data stamped with it would land turned",
-            joint.source,
+            (pose if pose is not None else robot.link_map[name].element) if sdf else joint.source,
             link=name,
             joint=joint.name,
             frame=name,
-            fix=f'give joint {joint.name!r} rpy="{optical}" if its parent is the camera\'s body '
-            "frame (x forward, z up); if the link is no optical frame, rename it",
+            fix=(
+                f"turn the <pose> of link {name!r} by roll -pi/2, yaw -pi/2 from its parent"
+                if sdf
+                else f'give joint {joint.name!r} rpy="{optical}"'
+            )
+            + " if its parent is the camera's body frame (x forward, z up); if the link is no "
+            "optical frame, rename it",
         )
 
 
@@ -203,6 +233,7 @@ def optical_named(ctx: Context) -> Iterator[Finding]:
     "metres): its origin, its `<pose>` through the fixed joints that lumping merges, measured from "
     "the link Gazebo attaches it to, or, when its own link is not lumped, from the parent link of "
     "the joint into its link (a link named `world` is the world: not measured)",
+    formats=("urdf", "sdf"),
 )
 def far_sensor(ctx: Context) -> Iterator[Finding]:
     robot, conv = ctx.robot, ctx.conversion
@@ -234,5 +265,7 @@ def far_sensor(ctx: Context) -> Iterator[Finding]:
             s.source,
             sensor=s.name,
             link=anchor,
-            fix="write the joint origins and the sensor <pose> between them in metres",
+            fix="write the "
+            + ("link poses" if robot.sdf is not None else "joint origins")
+            + " and the sensor <pose> between them in metres",
         )

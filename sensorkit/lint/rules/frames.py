@@ -10,12 +10,16 @@ from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.knowledge.gazebo_sim import (
     GZ_FRAMED_KINDS,
     GZ_NAVSAT_TYPES,
-    GZ_SENSOR_POSE_PARAM,
     gz_never_created,
 )
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text
-from sensorkit.lint.rules.tf_frames import gz_default_in_tf, in_tf, prefix_finding
+from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text, sdf_optical_fix
+from sensorkit.lint.rules.tf_frames import (
+    gz_default_in_tf,
+    gz_sensor_poses_published,
+    in_tf,
+    prefix_finding,
+)
 from sensorkit.model import transforms as tf
 from sensorkit.model.frames import SensorFrames, optical_frame_at
 from sensorkit.model.parse import child
@@ -94,18 +98,24 @@ def _exists(robot: Robot, name: str) -> bool:
     "error/warning",
     "the published frame names an existing link (error); a Gazebo Sim sensor with no frame tag is "
     "stamped MODEL::LINK::SENSOR, which TF does not have (warning)",
+    formats=("urdf", "sdf"),
 )
 def frame_exists(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
     gz = is_gz(ctx.target)
     # The model publishes its sensors' poses: the scoped name may well be in TF (below).
-    poses = gz and _gz_sensor_poses_published(robot)
+    poses = gz and gz_sensor_poses_published(robot)
     for s in robot.sensors:
         fr = ctx.frames_of(s)
         if gz and gz_never_created(ctx.target, s.type):
             continue  # never created (SK613): it stamps nothing
         if gz and fr.is_default and fr.image_frame is None and _gz_stamps_scoped_name(s):
-            if poses or gz_default_in_tf(ctx, s, fr):
+            if poses or gz_default_in_tf(ctx, s, fr) or robot.sdf is not None:
+                # An SDF model's PosePublisher is often added where it is spawned, out of
+                # sensorkit's sight: osrf/subt@083c6a8:submitted_models/
+                # costar_husky_sensor_config_1/launch/spawner.rb:29-32 adds one with
+                # <publish_sensor_pose> true to the model it includes, putting the sensor's
+                # scoped name in TF. Said of an SDF model, the warning may be false.
                 continue
             yield _gz_default_frame(ctx, s, fr)
             continue
@@ -151,27 +161,6 @@ def _gz_stamps_scoped_name(s: Sensor) -> bool:
     """A gz sensor whose data, with no frame tag, reaches ROS stamped with its scoped name
     (see sensorkit/knowledge/gazebo_sim.py for the sources)."""
     return s.kind in GZ_FRAMED_KINDS or s.type in GZ_NAVSAT_TYPES
-
-
-def _gz_sensor_poses_published(robot: Robot) -> bool:
-    """The model loads gz-sim's PosePublisher with <publish_sensor_pose> true.
-
-    It publishes each sensor's pose from MODEL::LINK to MODEL::LINK::SENSOR, the very name
-    a sensor with no frame tag stamps, and ros_gz_bridge turns "::" into "/" in both (see
-    GZ_SENSOR_POSE_PARAM in sensorkit/knowledge/gazebo_sim.py). Whether that reaches TF and
-    joins the robot's tree is the launch's business (a bridge of the pose topic to /tf,
-    robot_state_publisher's frame_prefix "MODEL/"), which sensorkit does not see: osrf/vrx
-    does both. So SK501 says nothing then, for every kind: a miss at worst, never a false
-    warning.
-    """
-    from sensorkit.knowledge import plugins as known
-
-    pose_publisher = known.lookup("gz-sim-pose-publisher-system", "gz")
-    return pose_publisher is not None and any(
-        known.lookup(p.filename, "gz") is pose_publisher
-        and (p.param(GZ_SENSOR_POSE_PARAM) or "").strip().lower() in ("true", "1")
-        for p in robot.model_plugins
-    )
 
 
 def _gz_default_frame(ctx: Context, s: Sensor, fr: SensorFrames) -> Finding:
@@ -245,18 +234,20 @@ def _missing_frame(
 
 
 def _stamped(
-    ctx: Context, wanted: Callable[[Sensor], bool]
+    ctx: Context, wanted: Callable[[Sensor], bool], *, position: bool = True
 ) -> Iterator[tuple[Sensor, SensorFrames, str | None, Mat]]:
     """The sensors ``wanted`` picks, each with its frames, the frame its data is stamped
     with (a camera's image frame, else the published one) and that frame's pose from the
-    render pose; a sensor whose frame has no such pose is left out."""
+    render pose; a sensor whose frame has no such pose is left out (for an SDF model, also
+    one whose frame TF's publishers place differently: ``SensorFrames.T_render_frame``;
+    ``position=False``: only its rotation is used, and only it must agree)."""
     robot = ctx.robot
     for s in robot.sensors:
         if not wanted(s):
             continue
         fr = ctx.frames_of(s)
         frame = fr.camera_frame if s.is_camera else fr.published
-        T = fr.T_render_frame(robot, frame)
+        T = fr.T_render_frame(robot, frame, position=position)
         if T is not None:
             yield s, fr, frame, T
 
@@ -266,10 +257,12 @@ def _stamped(
     "error",
     "camera/depth image frame is optical: its rotation from the render pose is Rz(-pi/2)*Rx(-pi/2) "
     '(z forward, x right, y down) within 0.5 degree; say what the data will look like otherwise ("point cloud points up")',
+    formats=("urdf", "sdf"),
 )
 def camera_optical(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
-    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera):
+    sdf = robot.sdf is not None
+    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera, position=False):
         if fr.is_default and fr.image_frame is None and not fr.plugin:
             continue
         R = tf.rotation(T)
@@ -281,12 +274,15 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             "its plugin's frame_name" if fr.how == "frame_name" else f"<{fr.image_how or fr.how}>"
         )
         if fr.how == "default":
-            where = "the plugin names no frame, so Gazebo uses the link it sits on after lumping"
+            where = "the plugin names no frame, so Gazebo uses the link it sits on" + (
+                "" if sdf else " after lumping"
+            )
         message = (
             f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
             f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}"
         )
-        joint, rpy, _why = blamed_optical_joint(ctx, s, fr, frame)
+        # In SDF the rotation is the link's <pose>, not a joint's: no joint is blamed.
+        joint, rpy, _why = (None, None, "") if sdf else blamed_optical_joint(ctx, s, fr, frame)
         if joint is not None and rpy is not None:
             # The frame is a link whose only role is this camera's optical frame: the wrong
             # rotation is its joint's rpy, and that is where the finding points.
@@ -315,6 +311,8 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             fix=(
                 f"publish in {existing!r}, which is already an optical frame at the camera"
                 if existing
+                else sdf_optical_fix(ctx, s, fr)
+                if sdf
                 else f"add a link {fr.link}_optical_frame with a fixed joint from {fr.link!r}: "
                 f'<origin xyz="0 0 0" rpy="{OPTICAL_RPY}"/>, and publish in it '
                 f"(frame_name / gz_frame_id)"
@@ -326,6 +324,7 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
     "SK503",
     "error",
     "the published frame is co-located with the render origin (within 1 mm); report the offset",
+    formats=("urdf", "sdf"),
 )
 def frame_position(ctx: Context) -> Iterator[Finding]:
     robot = ctx.robot
@@ -349,6 +348,9 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
             fix=(
                 f"name a frame at the sensor in the plugin (<frame_name>{optical_frame_at(robot, fr.T_world_render) or fr.link}</frame_name>)"
                 if fr.is_default
+                else f'stamp a link placed where the sensor renders (<pose relative_to="{fr.link}"> the '
+                f"sensor's <pose>, with a fixed joint), or move the sensor to {frame!r}"
+                if robot.sdf is not None
                 else f'move {frame!r} to the sensor\'s origin: xyz="0 0 0" on its joint (and the same <pose> as the sensor)'
             ),
         )
@@ -456,9 +458,10 @@ def _y_on_link(robot: Robot, s: Sensor, link: str) -> float | None:
     "SK504",
     "error",
     "lidar, IMU and other body sensors are published in a frame with identity rotation from the render pose (x forward, z up)",
+    formats=("urdf", "sdf"),
 )
 def body_frame(ctx: Context) -> Iterator[Finding]:
-    for s, fr, _frame, T in _stamped(ctx, lambda s: s.kind in ("lidar", "imu")):
+    for s, fr, _frame, T in _stamped(ctx, lambda s: s.kind in ("lidar", "imu"), position=False):
         R = tf.rotation(T)
         err = tf.rotation_angle(R)
         if err <= ANGLE_TOL:
@@ -515,6 +518,8 @@ def _approx_joints(ctx: Context) -> Iterator[tuple[Joint, float, str]]:
     "optical rotation written approximately (e.g. -1.57 for -pi/2): report the angular error and suggest `${-pi/2}`",
 )
 def approximate_optical(ctx: Context) -> Iterator[Finding]:
+    # URDF only: it points at the joint origin that writes the rotation; in SDF the rotation
+    # is a link's <pose>, maybe relative to another frame, which this rule does not locate.
     for joint, err, frame in _approx_joints(ctx):
         text = joint.origin.rpy_text or " ".join(f"{v:g}" for v in joint.origin.rpy)
         yield ctx.finding(
@@ -529,10 +534,15 @@ def approximate_optical(ctx: Context) -> Iterator[Finding]:
         )
 
 
-@rule("SK506", "info", "a frame used as optical frame lacks the REP 103 `_optical` naming")
+@rule(
+    "SK506",
+    "info",
+    "a frame used as optical frame lacks the REP 103 `_optical` naming",
+    formats=("urdf", "sdf"),
+)
 def optical_naming(ctx: Context) -> Iterator[Finding]:
     seen: set[str] = set()
-    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera):
+    for s, fr, frame, T in _stamped(ctx, lambda s: s.is_camera, position=False):
         if frame is None or frame in seen or "optical" in frame:
             continue
         if tf.angle_between(tf.rotation(T), tf.R_BODY_OPTICAL) <= ANGLE_TOL:
@@ -553,16 +563,25 @@ def optical_naming(ctx: Context) -> Iterator[Finding]:
     "warning",
     "the robot description defines `odom` or `map` links, which clash with the TF that localization "
     "publishes (`world` fixed to the robot is a legitimate Gazebo idiom)",
+    formats=("urdf", "sdf"),
 )
 def reserved_frames(ctx: Context) -> Iterator[Finding]:
+    # SDF: sdformat_urdf hands robot_state_publisher every link by its name (see
+    # tf_frames.sdf_maybe_in_tf); a nested model's link is scoped ("inner::odom"), no clash.
+    sdf = ctx.robot.sdf is not None
     for lk in ctx.robot.links:
         if lk.name.lstrip("/") in ("odom", "map"):
             yield ctx.finding(
                 "SK507",
                 Severity.WARNING,
-                f"link {lk.name!r} is part of the robot description: robot_state_publisher will fight "
-                f"localization/odometry over the {lk.name!r} frame",
+                f"link {lk.name!r} is part of the robot description: robot_state_publisher "
+                + (
+                    "fed this SDF (sdformat_urdf publishes every link by name) would fight "
+                    if sdf
+                    else "will fight "
+                )
+                + f"localization/odometry over the {lk.name!r} frame",
                 lk.source,
                 link=lk.name,
-                fix=f"remove {lk.name!r} from the URDF; odometry or localization publishes it",
+                fix=f"remove {lk.name!r} from the {'SDF' if sdf else 'URDF'}; odometry or localization publishes it",
             )

@@ -1,4 +1,10 @@
-"""SK3xx: mass, and what the URDF-to-SDF conversion keeps."""
+"""SK3xx: mass, and what the URDF-to-SDF conversion keeps.
+
+On SDF only SK302 runs. SK301 and SK303 are the conversion's (massless links dropped,
+fixed joints lumped), which an SDF model never goes through (sensorkit.model.sdf.convert).
+SK304's fix, a massless root link, is no fix in SDF: a link without <inertial> weighs 1 kg
+there (gazebosim/sdformat@sdformat12_12.8.0:sdf/1.9/inertial.sdf:8).
+"""
 
 from __future__ import annotations
 
@@ -153,8 +159,14 @@ def _few(names: list[str], n: int = 8) -> str:
     "robot); moments that are not positive definite or break the triangle inequality are a warning "
     "otherwise (Gazebo Classic simulates the values as written)",
     "gz sdf -k",
+    formats=("urdf", "sdf"),
 )
 def inertia_valid(ctx: Context) -> Iterator[Finding]:
+    # SDF: the same check on every link, none lumped (sensorkit.model.sdf.convert): sdformat
+    # reports "A link named X has invalid inertia." for the MassMatrix3 gz-math rejects
+    # (gazebosim/sdformat@sdformat12_12.8.0:src/Link.cc:180-187), and gz-sim's server
+    # stops loading a world whose SDF has errors (gazebosim/gz-sim@gz-sim8_8.9.0:
+    # src/Server.cc:81-91, EXIT_IMMEDIATELY its default: src/ServerConfig.cc:299).
     # Gazebo Sim: sdformat's Link::Load reports LINK_INERTIA_INVALID when gz-math's
     # MassMatrix3 rejects the values (gazebosim/sdformat@sdf14:src/Link.cc:302-309), and
     # gz-sim's create service refuses an entity whose SDF has any error

@@ -2,7 +2,8 @@
 
 robot_state_publisher puts its frame_prefix before every link's name, a static transform
 publisher adds frames the description lacks, and the name the robot is spawned under is
-the MODEL of a Gazebo Sim default frame (sensorkit.loading.launch_facts).
+the MODEL of a Gazebo Sim default frame (sensorkit.loading.launch_facts). An SDF model's
+frames may reach TF in more ways than a URDF's (:func:`sdf_maybe_in_tf`).
 """
 
 from __future__ import annotations
@@ -10,10 +11,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.knowledge.gazebo_sim import GZ_SENSOR_POSE_PARAM
 from sensorkit.lint.rules.base import Context
 
 if TYPE_CHECKING:
     from sensorkit.model.frames import SensorFrames
+    from sensorkit.model.robot import Robot
     from sensorkit.model.sensors import Sensor
 
 
@@ -26,6 +29,8 @@ def in_tf(ctx: Context, frame: str) -> bool:
     "base_link"); when the prefix could not be read, any name ending in a link's may be one.
     """
     robot = ctx.robot
+    if robot.sdf is not None and sdf_maybe_in_tf(ctx, frame):
+        return True
     launch = ctx.launch
     if launch is None:
         return frame in robot.link_map
@@ -35,6 +40,35 @@ def in_tf(ctx: Context, frame: str) -> bool:
         return any(frame.endswith(link) for link in robot.link_map)
     prefix = launch.frame_prefix or ""
     return frame.startswith(prefix) and frame[len(prefix) :] in robot.link_map
+
+
+def sdf_maybe_in_tf(ctx: Context, frame: str) -> bool:
+    """``frame`` may be in TF for an SDF model: True unless it is sure not to be.
+
+    TF gets an SDF model's frames from robot_state_publisher fed the SDF through
+    sdformat_urdf, which publishes the model's links by name and refuses a model with
+    nested models or in a world (ros/sdformat_urdf@9cec63e:sdformat_urdf/README.md:20-22;
+    src/sdformat_urdf.cpp:71-75 a world, :103-126 one URDF link per link, :320 named as
+    the link), or from gz-sim's PosePublisher bridged to /tf, which names each link with
+    its model's scope (gazebosim/gz-sim@gz-sim8_8.9.0:src/systems/pose_publisher/
+    PosePublisher.cc:421-422) and ros_gz_bridge turns "::" into "/" (see
+    frames._gz_default_frame), or from a URDF kept beside the SDF (turtlebot3), which
+    sensorkit does not see. So a frame may be in TF when it is a link, a link under any
+    prefix ("MODEL/link", robot_state_publisher's frame_prefix), or a <frame> of the model
+    (a URDF beside it may have it); and whenever the model has nested models (their links'
+    names in TF are not known) or an include sensorkit could not read.
+    """
+    robot = ctx.robot
+    sm = robot.sdf
+    if sm is None:
+        return True
+    if any("::" in name for name in robot.link_map) or any(i.path is None for i in sm.includes):
+        return True
+    name = frame.replace("::", "/").strip("/")
+    if name in robot.link_map or name.rpartition("/")[2] in robot.link_map:
+        return True
+    vertex = sm.graph.vertices.get(frame)
+    return vertex is not None and vertex.kind == "frame"
 
 
 def gz_default_in_tf(ctx: Context, s: Sensor, fr: SensorFrames) -> bool:
@@ -50,6 +84,27 @@ def gz_default_in_tf(ctx: Context, s: Sensor, fr: SensorFrames) -> bool:
         return (fr.published or "").replace("::", "/").strip("/") in frames
     tail = "/" + "/".join((fr.published or "").split("::")[1:])
     return any(f.endswith(tail) for f in frames)
+
+
+def gz_sensor_poses_published(robot: Robot) -> bool:
+    """The model loads gz-sim's PosePublisher with <publish_sensor_pose> true.
+
+    It publishes each sensor's pose from MODEL::LINK to MODEL::LINK::SENSOR, the very name
+    a sensor with no frame tag stamps, and ros_gz_bridge turns "::" into "/" in both (see
+    GZ_SENSOR_POSE_PARAM in sensorkit/knowledge/gazebo_sim.py). Whether that reaches TF and
+    joins the robot's tree is the launch's business (a bridge of the pose topic to /tf,
+    robot_state_publisher's frame_prefix "MODEL/"), which sensorkit does not see: osrf/vrx
+    does both. So SK501 says nothing then, for every kind: a miss at worst, never a false
+    warning.
+    """
+    from sensorkit.knowledge import plugins as known
+
+    pose_publisher = known.lookup("gz-sim-pose-publisher-system", "gz")
+    return pose_publisher is not None and any(
+        known.lookup(p.filename, "gz") is pose_publisher
+        and (p.param(GZ_SENSOR_POSE_PARAM) or "").strip().lower() in ("true", "1")
+        for p in robot.model_plugins
+    )
 
 
 def prefix_finding(

@@ -1,4 +1,22 @@
-"""SK2xx: the kinematic tree."""
+"""SK2xx: the kinematic tree.
+
+URDF only (``RuleInfo.formats``): SDF's kinematics are not URDF's, and libsdformat reports
+what these rules would, in its own words (gazebosim/sdformat@sdformat12_12.8.0):
+- SK201: names are unique per scope across links, joints, frames and models, and a second
+  one is DUPLICATE_NAME (src/FrameSemantics.cc:636-645);
+- SK202: a joint's missing child is JOINT_CHILD_LINK_INVALID (src/FrameSemantics.cc:
+  767-775); a parent that names no frame is a frame-graph error;
+- SK203: a link no joint holds is a free body, not a second root: libsdformat loads it
+  without a word (tests/robots/sdf/frames/urdf_only.sdf, tests/test_sdf_frame_rules.py);
+- SK204: a joint whose parent is its child is JOINT_PARENT_SAME_AS_CHILD (src/Joint.cc:
+  159-166); closed chains are SDF;
+- SK205: ball, universal, screw, gearbox and revolute2 are joint types (sdf/1.9/joint.sdf:
+  9-21), an unknown one ATTRIBUTE_INVALID (src/Joint.cc:207-214), and <limit> has defaults
+  (sdf/1.9/joint.sdf:75-89: no effort or velocity limit when absent);
+- SK206: a zero axis is "The norm of the xyz vector cannot be zero" (src/JointAxis.cc:
+  171-177); poses are the reader's (SdfModel.pose_problems);
+- SK207: SDF 1.11's <mimic> sits in <axis>, which sensorkit does not read.
+"""
 
 from __future__ import annotations
 
