@@ -25,6 +25,17 @@ def _scoped_link(ctx: Context, s: Sensor) -> str:
     return ctx.conversion.survivor(ref) if ref in ctx.robot.link_map else ref
 
 
+def _scoped_path(ctx: Context, s: Sensor) -> str:
+    """``MODEL/link/LINK`` of a sensor's scoped gz topic. An SDF link of a nested model is
+    ``inner::link`` in the model, and gz-sim scopes it as ``MODEL/model/inner/link/link``:
+    each entity adds its type and name (gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:138-183)."""
+    link = _scoped_link(ctx, s)
+    if ctx.robot.sdf is None:
+        return f"MODEL/link/{link}"
+    *models, name = link.split("::")
+    return "MODEL" + "".join(f"/model/{m}" for m in models) + f"/link/{name}"
+
+
 def _camera_split(s: Sensor, topics: list[str]) -> tuple[list[str], str] | None:
     """``(image topics, camera_info topic)`` of a gz camera, from :func:`gz_topics` order
     (or the scoped default); None for a sensor that is not a camera."""
@@ -45,7 +56,7 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
     scoped = not s.topic
     topics = gz_topics(s) if s.topic else [topic, f"/sensor/{s.name}/"]
     files = ", ".join(ctx.bridge.files) if ctx.bridge else ""
-    shown = topic if s.topic else f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}"
+    shown = topic if s.topic else f"/world/WORLD/model/{_scoped_path(ctx, s)}{topic}"
     fix_topic = topic.lstrip("/") if s.topic else "..." + topic
     if any(is_bridged(t, scoped, bridged) for t in topics):
         # A camera_info without its image: ROS gets the calibration of a camera it never sees.
@@ -115,6 +126,7 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
     "reads it by name: info when one may and sensorkit cannot tell; on gz: no ros_gz_bridge "
     "entry for its topic when a bridge is known, info for a camera's image when only its "
     "camera_info is bridged, and on the scoped default topic when no bridge is known)",
+    formats=("urdf", "sdf"),
 )
 def publishes_nothing(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
@@ -137,7 +149,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                         "SK607",
                         Severity.INFO,
                         f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes it on its scoped default "
-                        f"/world/WORLD/model/MODEL/link/{_scoped_link(ctx, s)}{topic}; a ros_gz_bridge entry must "
+                        f"/world/WORLD/model/{_scoped_path(ctx, s)}{topic}; a ros_gz_bridge entry must "
                         "name that topic for ROS to see it (no bridge configuration is known: pass --bridge FILE)",
                         s.source,
                         sensor=s.name,
@@ -169,6 +181,16 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
             )
 
 
+def _shares_world(ctx: Context) -> bool:
+    """An SDF model of a world that holds other models: one bridge serves them all, and
+    each model is checked on its own, so an entry for another model's sensor is no stale
+    entry of this one (an included model's sensors are in a file of its own)."""
+    sm = ctx.robot.sdf
+    if sm is None or sm.world is None:
+        return False
+    return sum(1 for el in sm.world if el.tag in ("model", "include")) > 1
+
+
 # ROS message types that carry sensor data: a bridge entry of one of these whose gz topic
 # no sensor publishes is probably a typo (or a sensor outside this robot).
 SENSOR_MSG_TYPES = frozenset(
@@ -188,10 +210,13 @@ SENSOR_MSG_TYPES = frozenset(
     "info",
     "a ros_gz_bridge entry of a sensor message type whose gz topic no sensor of the robot publishes "
     "(a typo, or a sensor outside this description)",
+    formats=("urdf", "sdf"),
 )
 def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
+        return
+    if _shares_world(ctx):
         return
     from sensorkit.base.findings import SourceRef
     from sensorkit.base.suggest import closest
@@ -251,6 +276,7 @@ def _published_types(ctx: Context) -> dict[str, tuple[set[str], list[str]]]:
     "a ros_gz_bridge entry (YAML or launch) whose message types do not match what the sensor "
     "publishes on that gz topic (gz.msgs.Image for a gpu_lidar's scan): gz-transport hands the "
     "bridge nothing, and ROS never sees the data",
+    formats=("urdf", "sdf"),
 )
 def bridge_type_mismatch(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge

@@ -35,6 +35,7 @@ from sensorkit.model.targets import is_gz
     "than 1 px (a principal point: by more than SK411's 10 % and 1 px), a warning below; a gz "
     "lens that renders other than horizontal_fov, with camera_info matching the image: warning",
     "gazebo_ros_camera, at run time",
+    formats=("urdf", "sdf"),
 )
 def focal_length(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:
@@ -220,6 +221,7 @@ def _k_off_severity(cam: CameraSpec, off: list[tuple[str, float, float]]) -> Sev
     "partial lens projection/intrinsics: the left-out values take sdformat's defaults "
     "fx=fy=277, cx=160, cy=120",
     "none",
+    formats=("urdf", "sdf"),
 )
 def partial_lens(ctx: Context) -> Iterator[Finding]:
     # sdformat fills what a written <lens><intrinsics>/<projection> leaves out with 277, 277,

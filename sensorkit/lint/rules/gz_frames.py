@@ -23,6 +23,7 @@ GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
     "warning",
     "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `frame_id` before jetty, "
     "`optical_frame_id` on jetty, a tag another one overrides) or has deprecated (`gz_frame_id` on jetty)",
+    formats=("urdf", "sdf"),
 )
 def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
     target = ctx.target
@@ -86,6 +87,7 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
     "warning",
     "on Gazebo Sim, a bridge carries a depth or RGB-D camera's point cloud, which gz-sensors computes "
     "x-forward but stamps with the optical frame (gz-sensors#488): RViz shows it turned on its side",
+    formats=("urdf", "sdf"),
 )
 def xforward_cloud(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge

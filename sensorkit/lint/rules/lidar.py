@@ -37,6 +37,7 @@ def _backwards_sweep(
     "backwards), 0 <= range min < max (min 0 is an error only on a "
     "Gazebo Sim gpu_lidar); vertical block sane; "
     "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
+    formats=("urdf", "sdf"),
 )
 def lidar_block(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:

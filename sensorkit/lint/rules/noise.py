@@ -25,6 +25,7 @@ def _noises(s: Sensor) -> list[Noise]:
     "but gaussian, gaussian_quantized, none, custom; Gazebo Sim refuses a camera's, and from "
     "Harmonic an IMU's; a warning for a Gazebo Sim lidar, and a Fortress IMU, which run without "
     "noise); stddev >= 0",
+    formats=("urdf", "sdf"),
 )
 def noise(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:

@@ -80,6 +80,7 @@ def _homes(s: Sensor, target: str) -> tuple[str, list[etree._Element]] | None:
     "camera runs at its default 320x240, 1.047 rad), <plugin> or <update_rate> inside them (error), "
     "other sensor-level tags there (warning); a copy its own element also sets (warning). Unknown "
     "names and namespaced custom elements are never reported",
+    formats=("urdf", "sdf"),
 )
 def misplaced_settings(ctx: Context) -> Iterator[Finding]:
     top = schema(ctx.target, "sensor")

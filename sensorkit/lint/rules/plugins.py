@@ -35,6 +35,7 @@ def ros_name(p: Plugin) -> str | None:
     "`libgazebo_ros_camera.so` with a depth sensor, `libgazebo_ros_laser.so`/`gpu_laser` -> "
     "`libgazebo_ros_ray_sensor.so`, `libgazebo_ros_*` under gz -> gz sensors + ros_gz_bridge); a placeholder "
     "filename (`dummyfile`) exists for no target (a warning on gz, where the sensor still publishes)",
+    formats=("urdf", "sdf"),
 )
 def plugin_exists(ctx: Context) -> Iterator[Finding]:
     for p in all_plugins(ctx.robot):
@@ -146,6 +147,7 @@ def _frame_advice(ctx: Context, s: Sensor) -> str:
     "SK603",
     "error",
     "plugin matches the sensor type (camera plugin on camera/depth/multicamera; ray plugin on ray/gpu_ray; imu plugin on imu)",
+    formats=("urdf", "sdf"),
 )
 def plugin_sensor_type(ctx: Context) -> Iterator[Finding]:
     # An error: the plugin gets no data from a sensor of another type. Gazebo Classic's
@@ -186,6 +188,7 @@ def _is_ros2_gazebo_plugin(p: Plugin) -> bool:
     "error",
     "two plugins resolve to the same ROS 2 node name (gazebo_ros refuses the second)",
     "gazebo_ros, at run time",
+    formats=("urdf", "sdf"),
 )
 def node_names(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target) or ctx.target == "ros1":
@@ -233,6 +236,7 @@ def node_names(ctx: Context) -> Iterator[Finding]:
     "info",
     "a sensor's plugin is one sensorkit does not know: it cannot tell the frame or topics it "
     "publishes, so frame and topic rules stay silent for that sensor",
+    formats=("urdf", "sdf"),
 )
 def unknown_plugin(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):

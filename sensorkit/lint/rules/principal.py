@@ -39,6 +39,7 @@ def far_from_centre(value: float, size: int) -> bool:
     "renders the principal point at the centre, so camera_info does not match the image (ROS 1 "
     "<Cx> 0 means computed, and a camera with <lens><intrinsics> is not judged)",
     "none",
+    formats=("urdf", "sdf"),
 )
 def principal_point(ctx: Context) -> Iterator[Finding]:
     ros = ros_generation(ctx.target)

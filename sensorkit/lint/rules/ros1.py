@@ -25,6 +25,7 @@ from sensorkit.model.robot import all_plugins
     "by consequence: error when the ignored value moves a topic or frame, or changes a calibration or a drive's "
     "geometry; warning when it changes a rate, noise, limit or flag; info when the value is what ROS 2 does "
     "anyway, or no plugin ever read it",
+    formats=("urdf", "sdf"),
 )
 def ros1_params(ctx: Context) -> Iterator[Finding]:
     if ctx.target != "classic":
@@ -69,6 +70,7 @@ def ros1_params(ctx: Context) -> Iterator[Finding]:
     "warning",
     "under `--target auto`, a description written for ROS 1 (ROS 1-only plugins and tags, "
     "nothing only ROS 2 has) is said once and validated as ROS 1, instead of one SK602 per tag",
+    formats=("urdf", "sdf"),
 )
 def written_for_ros1(ctx: Context) -> Iterator[Finding]:
     if not (ctx.auto and ctx.target == "ros1"):

@@ -88,6 +88,7 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
     "sensor names unique within the link they end up on after fixed-joint lumping (Gazebo Sim: "
     "sdformat refuses a duplicate; Gazebo Classic: two cameras or two depth cameras abort "
     "gzserver, other pairs are found by name only once: warning); every sensor has a name",
+    formats=("urdf", "sdf"),
 )
 def unique_sensors(ctx: Context) -> Iterator[Finding]:
     # Gazebo Sim: sdformat loads a link's sensors with loadUniqueRepeated: a second sensor of
@@ -162,6 +163,7 @@ def _cameras(ctx: Context) -> Iterator[Sensor]:
     "labels bgr8, unless it is a Classic-only format gazebo_ros mislabels); above 4096x4096 "
     "(warning: beyond any real camera; over 2 GB Gazebo Sim cannot publish)",
     "sdformat (format)",
+    formats=("urdf", "sdf"),
 )
 def camera_image(ctx: Context) -> Iterator[Finding]:
     for s in _cameras(ctx):
@@ -256,6 +258,7 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
     "error",
     "horizontal_fov > 0 and < pi for pinhole cameras (warning above 2.6 rad)",
     "sdformat (bounds only)",
+    formats=("urdf", "sdf"),
 )
 def camera_fov(ctx: Context) -> Iterator[Finding]:
     # An error at and past pi: Gazebo Classic renders vfov = 2 atan(tan(hfov / 2) / ratio),
@@ -329,6 +332,7 @@ def _classic_zfight_band(near: float, far: float, d: float) -> float:
     "error/warning",
     "clip 0 < near < far (error); depth cameras on Gazebo Classic with far/near > ~1.7e4 (warning: its 24-bit "
     "depth test lets surfaces within 0.1% of the far clip z-fight); min_depth/max_depth inside the clip range",
+    formats=("urdf", "sdf"),
 )
 def camera_clip(ctx: Context) -> Iterator[Finding]:
     for s in _cameras(ctx):
@@ -420,7 +424,12 @@ def _depth_range(s: Sensor) -> tuple[float | None, float | None]:
     return lo, hi
 
 
-@rule("SK407", "warning", "update_rate present and > 0 for cameras and lidars")
+@rule(
+    "SK407",
+    "warning",
+    "update_rate present and > 0 for cameras and lidars",
+    formats=("urdf", "sdf"),
+)
 def update_rate(ctx: Context) -> Iterator[Finding]:
     for s in ctx.robot.sensors:
         if not (s.is_camera or s.kind == "lidar"):
@@ -451,6 +460,7 @@ def update_rate(ctx: Context) -> Iterator[Finding]:
     "a sensor type the target's Gazebo Sim never creates (all: `ray`, `lidar`, `multicamera`, "
     "`sonar`, `rfid`, `rfidtag`, `wireless_*`; Fortress also `wideanglecamera`, `air_speed`): it "
     "publishes nothing; name the replacement (`gpu_lidar`, one `camera` per eye)",
+    formats=("urdf", "sdf"),
 )
 def gz_unsupported_type(ctx: Context) -> Iterator[Finding]:
     # Per version, with sources: sensorkit.knowledge.gazebo_sim.GZ_NEVER_CREATED.

@@ -38,6 +38,7 @@ def _is_range(s: Sensor) -> bool:
     "SK605",
     "error",
     "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)",
+    formats=("urdf", "sdf"),
 )
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
     if ctx.target == "ros1":
@@ -85,6 +86,7 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
     "warning/error",
     "ray plugin output_type missing (defaults to PointCloud2: warning) or invalid (error)",
     "gazebo_ros, at run time",
+    formats=("urdf", "sdf"),
 )
 def ray_output_type(ctx: Context) -> Iterator[Finding]:
     if ctx.target != "classic":
@@ -128,6 +130,7 @@ def ray_output_type(ctx: Context) -> Iterator[Finding]:
     "SK609",
     "warning",
     "a `<remapping>` whose source matches none of the topics the plugin publishes (it changes nothing: e.g. `scan:=...` on gazebo_ros_ray_sensor, which publishes `~/out`)",
+    formats=("urdf", "sdf"),
 )
 def useless_remapping(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
