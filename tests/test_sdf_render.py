@@ -28,6 +28,7 @@ HERE = Path(__file__).parent / "robots" / "sdf" / "render"
 TWIN_URDF = HERE / "twin_bot.urdf"
 TWIN_SDF = HERE / "twin_bot.sdf"
 PAIR_WORLD = HERE / "pair_world.sdf"
+PLANE_WORLD = HERE / "plane_world.sdf"
 IMAGES = ("top_cam/rgb.png", "back_cam/rgb.png", "overview.png")
 
 
@@ -106,11 +107,23 @@ def test_the_command_says_what_it_does_not_draw(tmp_path: Path) -> None:
     assert (out / "top_cam" / "rgb.png").is_file()
 
 
-def test_a_world_previews_its_first_model_and_says_so(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("world", "note", "drawn"),
+    [
+        (PAIR_WORLD, "previewing 'scout', the first with sensors (not 'rover')", "front_cam"),
+        (
+            PLANE_WORLD,
+            "previewing 'rig', the first with sensors (not 'ground_plane')",
+            "rig_cam",
+        ),
+    ],
+)
+def test_a_world_previews_its_first_model_with_sensors_and_says_so(
+    tmp_path: Path, world: Path, note: str, drawn: str
+) -> None:
     out = tmp_path / "out"
-    proc = _run("render", "preview", PAIR_WORLD, "--out", out)
+    proc = _run("render", "preview", world, "--out", out)
     assert proc.returncode == 0, proc.stderr
     notes = [x for x in proc.stderr.splitlines() if "world holds" in x]
-    assert notes == ["note: the world holds 2 models: previewing the first, 'scout' (not 'rover')"]
-    assert (out / "front_cam" / "rgb.png").is_file()
-    assert not (out / "scan").exists()
+    assert notes == [f"note: the world holds 2 models: {note}"]
+    assert [p.name for p in out.iterdir() if p.is_dir()] == [drawn]

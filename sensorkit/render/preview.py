@@ -251,16 +251,20 @@ def _load(
 
 def _sdf_robot(robot: Robot, loaded: Loaded, resolver: PackageResolver) -> tuple[Robot, list[str]]:
     """The SDF model drawn as its URDF subset (:mod:`sensorkit.render.sdf_urdf`), and
-    notes: what is not drawn, and which model of a world is previewed."""
+    notes: what is not drawn, and which model of a world is previewed (the first with
+    sensors: a world often starts with its ground plane)."""
     from sensorkit.render.sdf_urdf import sdf_render_robot
 
+    if len(loaded.robots) > 1:
+        robot = next((r for r in loaded.robots if r.sensors), robot)
     drawn, notes = sdf_render_robot(robot, resolver)
     if len(loaded.robots) > 1:
-        others = ", ".join(repr(r.name) for r in loaded.robots[1:])
+        others = ", ".join(repr(r.name) for r in loaded.robots if r is not robot)
+        which = "the first with sensors" if robot.sensors else "the first (none has sensors)"
         notes.insert(
             0,
-            f"the world holds {len(loaded.robots)} models: previewing the first, "
-            f"{robot.name!r} (not {others})",
+            f"the world holds {len(loaded.robots)} models: previewing {robot.name!r}, "
+            f"{which} (not {others})",
         )
     return drawn, notes
 
