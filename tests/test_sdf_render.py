@@ -127,3 +127,22 @@ def test_a_world_previews_its_first_model_with_sensors_and_says_so(
     notes = [x for x in proc.stderr.splitlines() if "world holds" in x]
     assert notes == [f"note: the world holds 2 models: {note}"]
     assert [p.name for p in out.iterdir() if p.is_dir()] == [drawn]
+
+
+def test_missing_meshes_and_shapes_pybullet_lacks_are_named(tmp_path: Path) -> None:
+    model = tmp_path / "m.sdf"
+    model.write_text(
+        '<sdf version="1.9"><model name="m"><link name="l">'
+        '<visual name="hull"><geometry><mesh><uri>meshes/hull.dae</uri></mesh></geometry></visual>'
+        '<visual name="pill"><geometry><capsule><radius>0.1</radius><length>0.2</length>'
+        "</capsule></geometry></visual>"
+        '<visual name="box"><geometry><box><size>0.1 0.1 0.1</size></box></geometry></visual>'
+        "</link></model></sdf>"
+    )
+    proc = _run("render", "preview", model, "--out", tmp_path / "out")
+    assert proc.returncode == 0, proc.stderr
+    notes = [x for x in proc.stderr.splitlines() if "not drawn" in x]
+    assert len(notes) == 2
+    assert notes[0].startswith("note: SDF: not drawn: visual 'hull' of link 'l' (")
+    assert notes[0].endswith(f"): no file at {tmp_path / 'meshes' / 'hull.dae'}")
+    assert notes[1].endswith("): <capsule> geometry is not drawn")

@@ -83,6 +83,8 @@ def _mesh_file(uri: str, doc: Document, el: etree._Element, resolver: PackageRes
         raise ValueError(msg)
     got = resolve_model_uri(uri, _file_of(doc, el), resolver)
     if got.path is None:
+        if not uri.startswith("model://") and got.searched:  # a path: no model folder asked
+            raise ValueError(f"no file at {got.searched[0]}")
         raise ValueError(got.why)
     return str(got.path.resolve())
 
