@@ -14,8 +14,9 @@ from typing import Annotated
 import typer
 
 from sensorkit.base.quote import plural
-from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.common import Reading, handle_errors, note, reads_robot
 from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
+from sensorkit.cli.world_models import described_models, export_prefix, intrinsics_of_models
 
 ImuOpt = Annotated[
     str | None,
@@ -78,8 +79,11 @@ def intrinsics(
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     if convention is not None and convention not in ("classic", "gz", "ideal"):
         raise UsageError(f"--convention {convention!r}: use classic, gz or ideal")
-    file, info = described_robot(file, reading, target=target, convention=convention)
-    text, notes = intrinsics_output(info, sensor, fmt, imu=imu)
+    file, infos = described_models(file, reading, target=target, convention=convention)
+    if len(infos) == 1:
+        text, notes = intrinsics_output(infos[0], sensor, fmt, imu=imu)
+    else:  # the models of a world
+        text, notes = intrinsics_of_models(infos, sensor, fmt, imu)
     sys.stdout.write(text)
     for said in notes:
         note(f"sensorkit: note: {said}", reading.quiet)
@@ -122,8 +126,17 @@ def export(
     """
     from sensorkit.exporters.robot import export_files, publish_export
 
-    file, info = described_robot(file, reading, target=target)
+    file, infos = described_models(file, reading, target=target)
+    info = infos[0]
     plan = export_files(info, imu=imu)
+    several = len(infos) > 1  # a world: each model's files in a folder of its name
+    if several:
+        plans = [(i, export_files(i, imu=imu)) for i in infos]
+        plan.files = {
+            f"{export_prefix(i, several)}{k}": v for i, p in plans for k, v in p.files.items()
+        }
+        plan.notes = [f"{i.robot.name}: {n}" for i, p in plans for n in p.notes]
+        plan.skipped = [f"{export_prefix(i, several)}{s}" for i, p in plans for s in p.skipped]
     inputs = [file, *(Path(f) for f in info.robot.document.files)]  # --force must spare them
     written = publish_export(plan.files, out, force=force, inputs=inputs)
     for path in written:
@@ -133,8 +146,14 @@ def export(
     for skipped in plan.skipped:  # why the exit status is 1: said with -q too
         typer.echo(f"sensorkit: not written: {skipped}", err=True)
     note(
-        f"sensorkit: wrote {plural(len(written), 'file')} for {plural(len(info.sensors), 'sensor')} of "
-        f"{info.robot.name} into {out} (target {info.target}, {info.target_reason})",
+        f"sensorkit: wrote {plural(len(written), 'file')} for "
+        f"{plural(sum(len(i.sensors) for i in infos), 'sensor')} of "
+        + (
+            f"{len(infos)} models ({', '.join(i.robot.name for i in infos)})"
+            if several
+            else info.robot.name
+        )
+        + f" into {out} (target {info.target}, {info.target_reason})",
         reading.quiet,
     )
     if plan.skipped:

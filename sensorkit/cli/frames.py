@@ -14,8 +14,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.common import Reading, handle_errors, note, reads_robot
 from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
+from sensorkit.cli.world_models import described_models, models_json
 
 if TYPE_CHECKING:
     from sensorkit.describe.frames_tree import Frame, FrameTree, SensorFrame, Stamp
@@ -72,13 +73,17 @@ def frames(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    _file, info = described_robot(file, reading, target=target)
-    tree = frame_tree(info)
+    _file, infos = described_models(file, reading, target=target)
+    trees = [frame_tree(info) for info in infos]  # a world: one tree per model
     writer = {"text": frames_text, "json": frames_json, "dot": frames_dot}[fmt]
-    sys.stdout.write(writer(tree))
-    if tree.lumped:
+    if fmt == "json" and len(trees) > 1:
+        sys.stdout.write(models_json(infos, [frames_json(t) for t in trees]))
+    else:
+        sys.stdout.write("\n".join(writer(t) for t in trees))
+    if any(t.lumped for t in trees):
         note(f"sensorkit: note: {LUMPING_NOTE}", reading.quiet)
-    note(f"sensorkit: {_summary(tree)}", reading.quiet)
+    for tree in trees:
+        note(f"sensorkit: {_summary(tree)}", reading.quiet)
 
 
 def _plural(n: int, word: str, words: str | None = None) -> str:

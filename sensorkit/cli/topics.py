@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sensorkit.cli.common import Reading, described_robot, handle_errors, note, reads_robot
+from sensorkit.cli.common import Reading, handle_errors, note, reads_robot
 from sensorkit.cli.options import (
     BRIDGE_DEFAULT,
     BRIDGE_HELP,
@@ -25,6 +25,7 @@ from sensorkit.cli.options import (
     TargetOpt,
     examples,
 )
+from sensorkit.cli.world_models import described_models, models_json
 
 if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
@@ -92,31 +93,39 @@ def topics(
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    file, info = described_robot(file, reading, target=target)
+    file, infos = described_models(file, reading, target=target)
     files = [str(b) for b in bridge or ()]
-    config_read = None
-    if is_gz(info.target):
-        from sensorkit.cli.common import launch_files
-        from sensorkit.lint.config import load_config
-
-        cfg = load_config(file, explicit=reading.flags.config)
-        config_read = load_bridge(
-            info.robot,
-            info.target,
-            files,
-            launch_files(launch, cfg),
-            tuple(reading.flags.package_path or ()),
-        )
-    elif files or launch:
+    if (files or launch) and not any(is_gz(info.target) for info in infos):
         flag = "--bridge" if files else "--launch"
         note(
-            f"sensorkit: note: {flag} ignored: target {info.target} is not Gazebo Sim",
+            f"sensorkit: note: {flag} ignored: target {infos[0].target} is not Gazebo Sim",
             reading.quiet,
         )
-    result = robot_topics(info, config_read)
-    sys.stdout.write(topics_json(result) if fmt == "json" else topics_text(result))
+    results = []
+    for info in infos:
+        config_read = None
+        if is_gz(info.target):
+            from sensorkit.cli.common import launch_files
+            from sensorkit.lint.config import load_config
+
+            cfg = load_config(file, explicit=reading.flags.config)
+            config_read = load_bridge(
+                info.robot,
+                info.target,
+                files,
+                launch_files(launch, cfg),
+                tuple(reading.flags.package_path or ()),
+            )
+        results.append(robot_topics(info, config_read))
+    if len(results) == 1:
+        sys.stdout.write(topics_json(results[0]) if fmt == "json" else topics_text(results[0]))
+    elif fmt == "json":
+        sys.stdout.write(models_json(infos, [topics_json(r) for r in results]))
+    else:  # a world: one table per model
+        sys.stdout.write("\n".join(f"model {r.robot}:\n{topics_text(r)}" for r in results))
     if not reading.quiet:
-        _say_notes_and_summary(result)
+        for result in results:
+            _say_notes_and_summary(result)
 
 
 def _say_notes_and_summary(result: RobotTopics) -> None:

@@ -26,7 +26,7 @@ simulators:
 
 from __future__ import annotations
 
-from typing import Literal, NamedTuple
+from typing import TYPE_CHECKING, Literal, NamedTuple
 
 from lxml import etree
 
@@ -38,11 +38,15 @@ from sensorkit.knowledge.gazebo_sim import (
     GZ_XFORWARD_CLOUD_TYPES,
 )
 
+if TYPE_CHECKING:
+    from sensorkit.model.robot import Robot
+
 __all__ = [
     "BridgeEntry",
     "MessageKind",
     "bridge_entries",
     "bridge_types",
+    "model_bridge_entries",
     "published_entries",
     "sensor_bridge_entries",
     "sensor_entries",
@@ -303,4 +307,18 @@ def bridge_entries(robot: etree._Element, gz_version: str) -> list[BridgeEntry]:
     for gazebo in robot.iter("gazebo"):
         for sensor in gazebo.iter("sensor"):
             entries += sensor_entries(sensor, gz_version)
+    return entries
+
+
+def model_bridge_entries(robot: Robot, gz_version: str) -> list[BridgeEntry]:
+    """:func:`bridge_entries` for a robot read from SDF, whose sensors and plugins sit in
+    its links and model (no ``<gazebo>`` blocks), and only this model's in a world."""
+    prefix = _msg_prefix(gz_version)
+    entries = [
+        BridgeEntry("/clock", "/clock", "rosgraph_msgs/msg/Clock", prefix + "Clock", "GZ_TO_ROS")
+    ]
+    for plugin in robot.model_plugins:
+        entries += _plugin_entries(plugin.element, gz_version)
+    for sensor in robot.sensors:
+        entries += sensor_entries(sensor.element, gz_version)
     return entries

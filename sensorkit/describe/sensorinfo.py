@@ -47,6 +47,7 @@ __all__ = [
     "body_frame",
     "describe",
     "load",
+    "load_models",
     "resolve_target",
 ]
 
@@ -141,6 +142,35 @@ def load(
         msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
         raise InputError(msg)
     return loaded.robot
+
+
+def load_models(
+    path: Path,
+    *,
+    args: Mapping[str, str] | None = None,
+    package_paths: Sequence[str] = (),
+    untrusted: Untrusted | None = None,
+    overlay: Mapping[str, bytes] | None = None,
+    cache: ExpansionCache | None = None,
+) -> list[Robot]:
+    """Every robot of ``path``: each model of an SDF world, else the one robot (see
+    :func:`load`, whose errors it raises)."""
+    from sensorkit.model import load_robot
+
+    loaded = load_robot(
+        path,
+        args=dict(args or {}),
+        package_paths=tuple(package_paths),
+        untrusted=untrusted,
+        overlay=overlay,
+        cache=cache,
+        sdf=True,
+    )
+    if loaded.robot is None:
+        first = loaded.findings[0] if loaded.findings else None
+        msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
+        raise InputError(msg)
+    return list(loaded.robots) or [loaded.robot]
 
 
 def resolve_target(robot: Robot, target: str) -> tuple[str, str]:

@@ -335,7 +335,18 @@ def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str |
     # rgbd_camera's suffix is "": it publishes BASE/image, BASE/depth_image, ...
     suffix = "" if kind == "rgbd" else GZ_DEFAULT_SUFFIX[kind]
     link = survivor or info.sensor.reference or "LINK"
-    return f"/world/WORLD/model/MODEL/link/{link}/sensor/{info.name}{suffix}"
+    world, model = "WORLD", "MODEL"
+    if robot.sdf is not None:
+        # gz-sim's scoped name: every entity from the world down as TYPE/NAME, nested
+        # models too (gazebosim/gz-sim@gz-sim8_8.14.0:src/Util.cc:138-183, used with
+        # "/" as in gazebosim/gz-sim@gz-sim8_8.14.0:src/systems/imu/Imu.cc:201). A
+        # world file names the world and the model; a model file is spawned under a
+        # name sensorkit cannot know.
+        *nested, link = link.split("::")
+        if robot.sdf.world is not None:
+            world, model = robot.sdf.world.get("name", "") or world, robot.name or model
+        model += "".join(f"/model/{part}" for part in nested)
+    return f"/world/{world}/model/{model}/link/{link}/sensor/{info.name}{suffix}"
 
 
 def _gz_topics(

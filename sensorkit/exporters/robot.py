@@ -281,7 +281,7 @@ def _export_pair(plan: ExportFiles, pair: StereoPair, folder: str, imu: SensorIn
 
 
 def _bridge(plan: ExportFiles) -> None:
-    from sensorkit.describe.bridge import bridge_entries
+    from sensorkit.describe.bridge import bridge_entries, model_bridge_entries
     from sensorkit.exporters.bridge import bridge_file_text
 
     info = plan.info
@@ -290,7 +290,10 @@ def _bridge(plan: ExportFiles) -> None:
             why = "; ".join(s.topic_notes) or "no topic"
             plan.skipped.append(f"bridge.yaml: sensor {s.name!r} is not bridged: {why}")
     try:
-        entries = bridge_entries(info.robot.document.root, info.target)
+        if info.robot.sdf is not None:
+            entries = model_bridge_entries(info.robot, info.target)
+        else:
+            entries = bridge_entries(info.robot.document.root, info.target)
         plan.files["bridge.yaml"] = bridge_file_text(
             entries, robot=info.robot.name, gz_version=info.target, by="sensorkit export"
         )

@@ -35,6 +35,7 @@ from sensorkit.render.result import PreviewResult, SensorPreview
 from sensorkit.render.session import Progress, say
 
 if TYPE_CHECKING:
+    from sensorkit.loading import PackageResolver
     from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
     from sensorkit.model import Loaded
@@ -176,6 +177,12 @@ def _ready(request: _Request) -> _Ready:
         request.untrusted,
         request.cache,
     )
+    resolver = PackageResolver.from_options(
+        list(request.package_paths), near=request.path, untrusted=request.untrusted is not None
+    )
+    sdf_notes: list[str] = []
+    if robot.sdf is not None:
+        robot, sdf_notes = _sdf_robot(robot, loaded, resolver)
     admission.check_sensor_names(robot, request.sensors)
     target, target_reason = admission.chosen_target(robot, request.target, request.target_origin)
     admission.check_budget(
@@ -188,11 +195,8 @@ def _ready(request: _Request) -> _Ready:
     robot_shapes = _robot_shapes(robot, poses)
     reach = _reach(robot_shapes, poses)
     admission.check_reach(robot, reach)
-    resolver = PackageResolver.from_options(
-        list(request.package_paths), near=request.path, untrusted=request.untrusted is not None
-    )
     prepared = prepare_urdf(robot, resolver)
-    notes = list(prepared.notes) + _parts_note(robot, len(prepared.parts))
+    notes = sdf_notes + list(prepared.notes) + _parts_note(robot, len(prepared.parts))
     admission.check_tree(robot)
     scene_robot, world_scene = _scene(request, robot, reach)
     return _Ready(
@@ -243,6 +247,26 @@ def _load(
         msg = f"{what} {detail}" if what else detail
         raise InputError(msg)
     return loaded.robot, loaded
+
+
+def _sdf_robot(robot: Robot, loaded: Loaded, resolver: PackageResolver) -> tuple[Robot, list[str]]:
+    """The SDF model drawn as its URDF subset (:mod:`sensorkit.render.sdf_urdf`), and
+    notes: what is not drawn, and which model of a world is previewed (the first with
+    sensors: a world often starts with its ground plane)."""
+    from sensorkit.render.sdf_urdf import sdf_render_robot
+
+    if len(loaded.robots) > 1:
+        robot = next((r for r in loaded.robots if r.sensors), robot)
+    drawn, notes = sdf_render_robot(robot, resolver)
+    if len(loaded.robots) > 1:
+        others = ", ".join(repr(r.name) for r in loaded.robots if r is not robot)
+        which = "the first with sensors" if robot.sensors else "the first (none has sensors)"
+        notes.insert(
+            0,
+            f"the world holds {len(loaded.robots)} models: previewing {robot.name!r}, "
+            f"{which} (not {others})",
+        )
+    return drawn, notes
 
 
 def _robot_shapes(robot: Robot, poses: dict[str, Mat]) -> list[Shape]:
