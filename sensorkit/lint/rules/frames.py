@@ -96,8 +96,9 @@ def _exists(robot: Robot, name: str) -> bool:
 @rule(
     "SK501",
     "error/warning",
-    "the published frame names an existing link (error); a Gazebo Sim sensor with no frame tag is "
-    "stamped MODEL::LINK::SENSOR, which TF does not have (warning)",
+    "the published frame names an existing link (error; info on SDF, whose TF may come from a "
+    "URDF beside it); a Gazebo Sim sensor with no frame tag is stamped MODEL::LINK::SENSOR, "
+    "which TF does not have (warning)",
     formats=("urdf", "sdf"),
 )
 def frame_exists(ctx: Context) -> Iterator[Finding]:
@@ -219,6 +220,25 @@ def _missing_frame(
     if prefixed is not None:
         return prefixed
     close = closest(frame, ctx.robot.link_map)
+    if ctx.robot.sdf is not None:
+        # TF for an SDF model often comes from a URDF robot_state_publisher reads beside it,
+        # which sensorkit does not see: nav2's gz_waffle.sdf.xacro stamps its depth camera
+        # 'camera_depth_frame', a link of the turtlebot3_waffle.urdf shipped in the same
+        # folder (ros-navigation/nav2_minimal_turtlebot_simulation@
+        # nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf:284). A limit of what is known.
+        return ctx.finding(
+            "SK501",
+            Severity.INFO,
+            f"{what} {frame!r} (<{how}>), which is no frame of this SDF model: TF must get it "
+            "from elsewhere (a URDF that robot_state_publisher reads beside the SDF), or it "
+            "cannot place the data; sensorkit does not see that URDF",
+            where,
+            sensor=sensor,
+            frame=frame,
+            fix=f"did you mean {close[0]!r}?"
+            if close
+            else f"make sure the URDF TF is built from has a frame {frame!r}",
+        )
     return ctx.finding(
         "SK501",
         Severity.ERROR,
