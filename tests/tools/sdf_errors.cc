@@ -1,10 +1,12 @@
 // An independent check for the tests: loads an SDF file with libsdformat's sdf::Root::Load
-// (the call Gazebo Sim makes) and prints every error it reports, then resolves every
-// sensor's pose (SemanticPose().Resolve, as a sensor's world pose is asked for) and prints
-// the errors of that too. model:// URIs are looked up in the folders of
+// (the call Gazebo Sim makes) and prints every error it reports, then resolves what
+// gz-sim resolves when it creates the entities, every sensor's pose
+// (SemanticPose().Resolve) and every joint axis (JointAxis::ResolveXyz), and prints the
+// errors of those too. model:// URIs are looked up in the folders of
 // GZ_SIM_RESOURCE_PATH. One line per error:
 //   LOAD <CODE> <line or 0> <message on one line>
 //   SENSOR <CODE> <model>::<link>::<sensor> <message on one line>
+//   AXIS <CODE> <model>::<joint> <message on one line>
 // Exit 0 when no error was printed, 1 otherwise, 2 on bad usage.
 #include <cstdlib>
 #include <iostream>
@@ -39,8 +41,21 @@ static std::string one_line(std::string text) {
   return text;
 }
 
-static int sensors(const sdf::Model *model, const std::string &prefix) {
+static int resolve(const sdf::Model *model, const std::string &prefix) {
   int bad = 0;
+  for (uint64_t i = 0; i < model->JointCount(); ++i) {
+    const sdf::Joint *joint = model->JointByIndex(i);
+    for (unsigned int a = 0; a < 2; ++a) {
+      const sdf::JointAxis *axis = joint->Axis(a);
+      if (!axis) continue;
+      ignition::math::Vector3d xyz;
+      for (const auto &e : axis->ResolveXyz(xyz)) {
+        std::cout << "AXIS " << code_name(e.Code()) << " " << prefix << joint->Name() << " "
+                  << one_line(e.Message()) << "\n";
+        ++bad;
+      }
+    }
+  }
   for (uint64_t i = 0; i < model->LinkCount(); ++i) {
     const sdf::Link *link = model->LinkByIndex(i);
     for (uint64_t j = 0; j < link->SensorCount(); ++j) {
@@ -55,7 +70,7 @@ static int sensors(const sdf::Model *model, const std::string &prefix) {
   }
   for (uint64_t i = 0; i < model->ModelCount(); ++i) {
     const sdf::Model *nested = model->ModelByIndex(i);
-    bad += sensors(nested, prefix + nested->Name() + "::");
+    bad += resolve(nested, prefix + nested->Name() + "::");
   }
   return bad;
 }
@@ -80,12 +95,12 @@ int main(int argc, char **argv) {
               << one_line(e.Message()) << "\n";
     ++bad;
   }
-  if (const sdf::Model *model = root.Model()) bad += sensors(model, model->Name() + "::");
+  if (const sdf::Model *model = root.Model()) bad += resolve(model, model->Name() + "::");
   for (uint64_t w = 0; w < root.WorldCount(); ++w) {
     const sdf::World *world = root.WorldByIndex(w);
     for (uint64_t i = 0; i < world->ModelCount(); ++i) {
       const sdf::Model *model = world->ModelByIndex(i);
-      bad += sensors(model, model->Name() + "::");
+      bad += resolve(model, model->Name() + "::");
     }
   }
   return bad == 0 ? 0 : 1;

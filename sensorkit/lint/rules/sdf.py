@@ -31,6 +31,8 @@ A sensor pose that does not resolve is replaced by its raw pose in its link, rel
 ignored (src/SdfEntityCreator.cc:131-142, :1078;
 gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-120, :891): the
 sensor is not where it is written, an error as a camera frame that is not optical is.
+SK208, SK209 and SK510 say nothing on Gazebo classic targets, whose handling of these
+errors is not established here; SK107 holds for both.
 """
 
 from __future__ import annotations
@@ -56,7 +58,7 @@ SDF = ("sdf",)
     "error/info",
     "an SDF `<include>` whose URI does not resolve (model:// through GZ_SIM_RESOURCE_PATH, "
     "the packages and the models beside it; every place searched); info when sensorkit "
-    "cannot read it (a Fuel URL, outside the workspace with --untrusted)",
+    "cannot read it (a Fuel URL, another scheme, outside the workspace with --untrusted)",
     "libsdformat",
     formats=SDF,
 )
@@ -113,7 +115,7 @@ def _unknowable(blind: list[str], scope: str) -> bool:
     "SK208",
     "error",
     "an SDF name that names no frame in its scope: a pose's `relative_to`, a frame's "
-    "`attached_to`, a model's `placement_frame`, an axis's `expressed_in`",
+    "`attached_to`, a model's `placement_frame`, an axis's `expressed_in` (gz targets)",
     "libsdformat",
     formats=SDF,
 )
@@ -122,11 +124,12 @@ def unknown_frame_names(ctx: Context) -> Iterator[Finding]:
     if sm is None or not is_gz(ctx.target):  # Gazebo classic: not known
         return
     blind = _blind(sm)
-    for graph, where in _graphs(sm):
+    for graph, label in _graphs(sm):
         for v in graph.vertices.values():
-            if graph is sm.graph and _unknowable(blind, _scope_of(v)):
-                continue
-            yield from _vertex_names(ctx, graph, v, where)
+            if graph is not sm.graph:
+                yield from _vertex_names(ctx, graph, v, label)
+            elif not _unknowable(blind, _scope_of(v)):  # the model the name is written in
+                yield from _vertex_names(ctx, graph, v, f"model {_model_label(sm, _scope_of(v))!r}")
     for problem, el in sm.pose_problems:
         if problem.startswith("placement_frame ") and not blind:
             yield ctx.finding(
@@ -209,7 +212,7 @@ def _cycle(graph: FrameGraph, start: str, edge: str) -> list[str] | None:
     "SK209",
     "error",
     "an SDF frame cycle: frames `attached_to` each other, or poses `relative_to` each "
-    "other (or to themselves), so no frame on the cycle has a pose",
+    "other (or to themselves), so no frame on the cycle has a pose (gz targets)",
     "libsdformat",
     formats=SDF,
 )
@@ -276,7 +279,7 @@ def _elsewhere(sm: SdfModel, scope: str, name: str) -> str:
     "error",
     "an SDF sensor's `<pose relative_to>` names no frame of its model (a frame of another "
     "model, of the world or of an enclosing model included): gz-sim places the sensor at "
-    "its raw pose in its link",
+    "its raw pose in its link (gz targets)",
     "libsdformat",
     formats=SDF,
 )
