@@ -13,9 +13,11 @@ Severity rests on what gz-sim does with those errors:
   (gazebosim/gz-sim@gz-sim8_8.14.0:src/systems/user_commands/UserCommands.cc:925-930):
   SK107, SK208, SK209 are errors;
 - an axis that does not resolve: the joint is not created
-  (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:144-154, :803-811): error;
+  (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:144-153, :803-811): error;
 - a sensor pose that does not resolve: its raw pose in its link is used
-  (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:131-142, :1078): SK510 error;
+  (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:131-141, :1078;
+  gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-121, :891): SK510
+  error;
 - a Fuel URI is downloaded by the server (gazebosim/gz-sim@gz-sim8_8.14.0:src/Server.cc:
   72-74), which sensorkit does not do: info.
 """

@@ -8,7 +8,7 @@ Both say it in the words of :func:`include_finding`.
 
 What Gazebo does with such an include: libsdformat reports URI_LOOKUP ("Unable to find
 uri[...]") or ATTRIBUTE_MISSING (no ``<uri>``) (gazebosim/sdformat@sdformat12_12.8.0:
-src/parser.cc:1399-1408, :1440-1446), and a server given a world that has errors loads
+src/parser.cc:1399-1408, :1441-1446), and a server given a world that has errors loads
 nothing of it (gazebosim/gz-sim@gz-sim8_8.14.0:src/Server.cc:83-91, the default behaviour
 src/ServerConfig.cc:298-299; gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/Server.cc:
 136-141), nor does the create service spawn such a model

@@ -8,11 +8,12 @@ the tests' trigger files; tests/test_sdf_rules.py pins each code):
 - SK208, a name that names no frame: a pose's ``relative_to`` (POSE_RELATIVE_TO_INVALID),
   a frame's ``attached_to`` (FRAME_ATTACHED_TO_INVALID) and a model's ``placement_frame``
   (POSE_RELATIVE_TO_INVALID), reported by ``sdf::Root::Load``
-  (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:688-719, :804-821); an
+  (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:688-719, :804-821; the
+  placement frame resolved at :261-265, reported at :1709-1713); an
   axis ``<xyz expressed_in>``, which Load accepts but ``JointAxis::ResolveXyz`` does not
   (POSE_RELATIVE_TO_INVALID).
 - SK209, a cycle: FRAME_ATTACHED_TO_CYCLE and POSE_RELATIVE_TO_CYCLE
-  (src/FrameSemantics.cc:116, :190, :724-731, :826-835).
+  (src/FrameSemantics.cc:116, :190, :724-731, :827-835).
 - SK510, a sensor's ``<pose relative_to>`` naming no frame of the sensor's model. A
   sensor is no vertex of the frame graphs Load checks: only resolving its pose fails
   (POSE_RELATIVE_TO_INVALID, src/FrameSemantics.cc:1801-1804). A frame of another
@@ -26,10 +27,10 @@ src/ServerConfig.cc:298-299; gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/Server
 136-141) and the create service spawn nothing (gazebosim/gz-sim@gz-sim8_8.14.0:
 src/systems/user_commands/UserCommands.cc:925-930): SK107, SK208 and SK209 are errors.
 An axis that does not resolve makes gz-sim drop its joint
-(gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:144-154, :803-811): an error.
+(gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:144-153, :803-811): an error.
 A sensor pose that does not resolve is replaced by its raw pose in its link, relative_to
-ignored (src/SdfEntityCreator.cc:131-142, :1078;
-gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-120, :891): the
+ignored (src/SdfEntityCreator.cc:131-141, :1078;
+gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-121, :891): the
 sensor is not where it is written, an error as a camera frame that is not optical is.
 SK208, SK209 and SK510 say nothing on Gazebo classic targets, whose handling of these
 errors is not established here; SK107 holds for both.
