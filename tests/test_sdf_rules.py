@@ -56,7 +56,13 @@ TRIGGERS = [
     ("sk510_world.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
     ("sk510_outer.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
 ]
-NEAR_MISSES = ["sk107_found.sdf", "sk208_near.sdf", "sk209_near.sdf", "sk510_near.sdf"]
+NEAR_MISSES = [
+    "sk107_found.sdf",
+    "sk208_near.sdf",
+    "sk208_world_near.sdf",
+    "sk209_near.sdf",
+    "sk510_near.sdf",
+]
 
 
 @pytest.fixture

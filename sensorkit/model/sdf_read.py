@@ -474,6 +474,10 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
             else:
                 vertex.raw = compose(vertex.raw, inverse(X_MPf))
         models.append(sm)
+    for v in graph.vertices.values():  # "world" names the world frame, as __model__ a model's
+        # (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:1149-1158)
+        v.relative_to = TOP if v.relative_to == "world" else v.relative_to
+        v.attached_to = TOP if v.attached_to == "world" else v.attached_to
     for sm in models:  # world poses may name a frame inside a model: "model::link"
         for name in list(sm.graph.vertices):
             p = sm.graph.pose(name)
