@@ -196,7 +196,7 @@ def test_sk107_fuel_uri_is_info_once(resources: None) -> None:
     # Two includes of one Fuel model: one info (sensorkit does not download).
     found = _ours("sk107_fuel.sdf")
     assert [(f.rule, f.severity.label, f.source.line) for f in found] == [("SK107", "info", 6)]
-    assert "Fuel" in found[0].message
+    assert "Fuel" in found[0].message and found[0].fix
 
 
 def test_sk107_untrusted_is_info_not_error(tmp_path: Path) -> None:
@@ -250,3 +250,14 @@ def test_a_world_with_no_model_read_still_says_why() -> None:
         env={k: v for k, v in os.environ.items() if k != "GZ_SIM_RESOURCE_PATH"},
     )
     assert res.returncode == 1 and "SK107 error" in res.stdout and "Traceback" not in res.stderr
+
+
+def test_sk107_a_scheme_sensorkit_does_not_read_is_info(tmp_path: Path) -> None:
+    robot = tmp_path / "m.sdf"
+    robot.write_text(
+        '<sdf version="1.9"><model name="m"><link name="a"/>'
+        "<include><uri>ftp://example.org/models/cart</uri></include></model></sdf>"
+    )
+    report = validate_file(robot, Options(select=SDF_IDS))
+    (f,) = report.findings
+    assert (f.rule, f.severity.label) == ("SK107", "info") and f.fix

@@ -97,6 +97,7 @@ def include_finding(inc: Include, doc: Document) -> Finding | None:
             f"<include> {shown}: sensorkit reads model:// and file:// URIs and paths only; "
             "the model it brings is not checked",
             where,
+            fix="include it with model:// or a path to have it checked",
         )
     return _not_found(inc, where, shown)
 
