@@ -53,6 +53,8 @@ TRIGGERS = [
     ("sk208_expressed_in.sdf", "SK208", "error", ("AXIS", "POSE_RELATIVE_TO_INVALID")),
     ("sk209_attached_to.sdf", "SK209", "error", ("LOAD", "FRAME_ATTACHED_TO_CYCLE")),
     ("sk209_relative_to.sdf", "SK209", "error", ("LOAD", "POSE_RELATIVE_TO_CYCLE")),
+    ("sk209_self.sdf", "SK209", "error", ("LOAD", "POSE_RELATIVE_TO_CYCLE")),
+    ("sk209_world.sdf", "SK209", "error", ("LOAD", "FRAME_ATTACHED_TO_CYCLE")),
     ("sk510_world.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
     ("sk510_outer.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
 ]
@@ -159,6 +161,8 @@ def test_findings_point_at_the_element_in_its_own_file(resources: None) -> None:
         ("sk208_included.sdf", MODELS / "sk_bad_frame" / "model.sdf", 'relative_to="shoulder"'),
         ("sk209_attached_to.sdf", RULES_DIR / "sk209_attached_to.sdf", 'name="mount_a"'),
         ("sk209_relative_to.sdf", RULES_DIR / "sk209_relative_to.sdf", 'relative_to="boom"'),
+        ("sk209_self.sdf", RULES_DIR / "sk209_self.sdf", 'relative_to="base_link"'),
+        ("sk209_world.sdf", RULES_DIR / "sk209_world.sdf", 'name="dock_a"'),
         ("sk510_world.sdf", RULES_DIR / "sk510_world.sdf", 'relative_to="tower::top"'),
         ("sk510_outer.sdf", RULES_DIR / "sk510_outer.sdf", 'relative_to="sensor_mount"'),
     ]

@@ -232,7 +232,8 @@ def frame_cycles(ctx: Context) -> Iterator[Finding]:
                 if found is None or frozenset(found) in said:
                     continue
                 said.add(frozenset(found))
-                yield _cycle_finding(ctx, v, found, edge, code, where)
+                label = f"model {_model_label(sm, _scope_of(v))!r}" if graph is sm.graph else where
+                yield _cycle_finding(ctx, v, found, edge, code, label)
 
 
 def _cycle_finding(
