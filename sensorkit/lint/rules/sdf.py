@@ -15,7 +15,8 @@ the tests' trigger files; tests/test_sdf_rules.py pins each code):
 - SK209, a cycle: FRAME_ATTACHED_TO_CYCLE and POSE_RELATIVE_TO_CYCLE
   (src/FrameSemantics.cc:116, :190, :724-731, :827-835).
 - SK510, a sensor's ``<pose relative_to>`` naming no frame of the sensor's model. A
-  sensor is no vertex of the frame graphs Load checks: only resolving its pose fails
+  sensor is no vertex of the frame graphs Load checks (nor in sdformat14_14.9.0's
+  src/FrameSemantics.cc): only resolving its pose fails
   (POSE_RELATIVE_TO_INVALID, src/FrameSemantics.cc:1801-1804). A frame of another
   model, of the world or of an enclosing model is such a name too: a model's graph holds
   its own frames and its nested models' only (libsdformat says "unable to find unique
