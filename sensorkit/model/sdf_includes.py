@@ -52,8 +52,15 @@ FUEL_SCHEMES = ("http://", "https://")
 REFUSED = "Gazebo Sim loads no part of a world that holds it, nor spawns the model"
 
 
+READ_SCHEMES = ("model://", "package://", "file://")
+
+
 def _model_name(uri: str) -> str:
-    return uri[len("model://") :].partition("/")[0] if uri.startswith("model://") else ""
+    """NAME of ``model://NAME/...`` or ``package://NAME/...`` ("" for a path)."""
+    for scheme in READ_SCHEMES[:2]:
+        if uri.startswith(scheme):
+            return uri[len(scheme) :].partition("/")[0]
+    return ""
 
 
 def include_finding(inc: Include, doc: Document) -> Finding | None:
@@ -90,11 +97,12 @@ def include_finding(inc: Include, doc: Document) -> Finding | None:
             where,
             fix="download the model and include it with model:// to have it checked",
         )
-    if "://" in inc.uri and not inc.uri.startswith(("model://", "file://")):
+    if "://" in inc.uri and not inc.uri.startswith(READ_SCHEMES):
         return Finding(
             "SK107",
             Severity.INFO,
-            f"<include> {shown}: sensorkit reads model:// and file:// URIs and paths only; "
+            f"<include> {shown}: sensorkit reads model://, package:// and file:// URIs and "
+            "paths only; "
             "the model it brings is not checked",
             where,
             fix="include it with model:// or a path to have it checked",
@@ -108,7 +116,8 @@ def _not_found(inc: Include, where: SourceRef, shown: str) -> Finding:
     if name:
         fix = (
             f"add the folder that holds {name}/ to GZ_SIM_RESOURCE_PATH, or pass "
-            f"--package-path {name}=DIR (DIR the model's folder)"
+            f"--package-path {name}=DIR (DIR the "
+            f"{'package' if inc.uri.startswith('package://') else 'model'}'s folder)"
         )
     else:
         fix = (

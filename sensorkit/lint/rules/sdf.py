@@ -58,8 +58,9 @@ SDF = ("sdf",)
 @rule(
     "SK107",
     "error/info",
-    "an SDF `<include>` whose URI does not resolve (model:// through GZ_SIM_RESOURCE_PATH, "
-    "the packages and the models beside it; every place searched); info when sensorkit "
+    "an SDF `<include>` whose URI does not resolve (model://, package:// and paths through "
+    "GZ_SIM_RESOURCE_PATH, the packages and the models beside it; every place searched); "
+    "info when sensorkit "
     "cannot read it (a Fuel URL, another scheme, outside the workspace with --untrusted)",
     "libsdformat",
     formats=SDF,
@@ -93,14 +94,10 @@ def _scope_of(v: Vertex) -> str:
 
 def _blind(sm: SdfModel) -> list[str]:
     """The scopes an include that brought nothing was written in: the names it would have
-    brought (a merged include's into that scope, others' below it) are unknown. So is a
-    merged include's (SDF 1.9 ``merge="true"``) while the reader reads it as a nested
-    model (:mod:`sensorkit.model.sdf_read`): its names are not where libsdformat puts
-    them."""
+    brought (a merged include's into that scope, others' below it) are unknown."""
     out: list[str] = []
     for inc in sm.includes:
-        merged = inc.element.get("merge", "").strip().lower() in ("true", "1")
-        if inc.path is not None and not inc.why and not merged:
+        if inc.path is not None and not inc.why:
             continue
         parent = inc.element.getparent()
         scope = next((k for k, el in sm.models.items() if el is parent), "")
