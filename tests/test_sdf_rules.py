@@ -265,3 +265,18 @@ def test_sk107_a_scheme_sensorkit_does_not_read_is_info(tmp_path: Path) -> None:
     report = validate_file(robot, Options(select=SDF_IDS))
     (f,) = report.findings
     assert (f.rule, f.severity.label) == ("SK107", "info") and f.fix
+
+
+def test_sk107_an_unresolved_package_uri_is_an_error_naming_the_package(
+    tmp_path: Path, resources: None
+) -> None:
+    # gz-sim looks package://PKG/REST up as FOLDER/PKG/REST in GZ_SIM_RESOURCE_PATH
+    # through SDF_PATH, as libsdformat looks model:// up: not found is URI_LOOKUP.
+    robot = tmp_path / "m.sdf"
+    robot.write_text(
+        '<sdf version="1.9"><model name="m"><link name="a"/>'
+        "<include><uri>package://sk_no_pkg/models/cart</uri></include></model></sdf>"
+    )
+    (f,) = validate_file(robot, Options(select=SDF_IDS)).findings
+    assert (f.rule, f.severity.label) == ("SK107", "error") and "URI_LOOKUP" in f.message
+    assert "--package-path sk_no_pkg=DIR (DIR the package's folder)" in (f.fix or "")
