@@ -235,8 +235,9 @@ def test_sk202_names_each_missing_or_unknown_end(check) -> None:
 def test_every_rule_has_a_case() -> None:
     # The loaders' rules: test_loading.py; SK612 and SK614 need a bridge file: test_trust.py
     # and test_sim_facts.py; SK615 needs a bridge too: test_launch_rules.py; SK106 a launch
-    # file beside the robot: test_launch_e2e.py.
+    # file beside the robot: test_launch_e2e.py; the SDF-only rules: test_sdf_rules.py.
     covered = {c[0] for c in CASES} | {"SK101", "SK102", "SK103", "SK106", "SK612", "SK614", "SK615"}
+    covered |= {"SK107", "SK208", "SK209", "SK510"}
     assert covered == set(RULES)
 
 

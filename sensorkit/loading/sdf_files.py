@@ -185,12 +185,14 @@ def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> M
     model_dir = including.resolve().parent
     for folder in (model_dir.parent, model_dir):
         candidates.append(folder / name / rest if rest else folder / name)
-    candidates = [c for c in candidates if resolver.allows(c)]  # --untrusted: inside only
-    for cand in candidates:
+    allowed = [c for c in candidates if resolver.allows(c)]  # --untrusted: inside only
+    for cand in allowed:
         got = model_file(cand)
         if got is not None:
             return ModelUri(got)
-    searched = tuple(str(c) for c in candidates)
+    searched = tuple(str(c) for c in allowed)
+    if len(allowed) < len(candidates):  # not inside; what lies outside is not looked at
+        return ModelUri(None, OUTSIDE, searched)
     why = "not found in GZ_SIM_RESOURCE_PATH, the packages, or beside the including model"
     return ModelUri(None, why, searched)
 

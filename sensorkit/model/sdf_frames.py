@@ -56,6 +56,7 @@ class Vertex:
     element: etree._Element
     written: str | None = None
     attached_to: str | None = None
+    pose_element: etree._Element | None = None  # the <pose> its raw pose was read from
 
 
 @dataclass

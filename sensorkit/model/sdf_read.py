@@ -30,7 +30,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from sensorkit.base.findings import Finding
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.loading.document import Document
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.sdf_files import add_file, parse_sdf, resolve_model_uri
@@ -86,6 +86,9 @@ class SdfModel:
     sensors: list[Element] = field(default_factory=list)
     plugins: list[tuple[str, etree._Element]] = field(default_factory=list)  # (owner, el)
     pose_problems: list[tuple[str, etree._Element]] = field(default_factory=list)
+    # a world's own frames and its models' placements (the world graph): on the world's
+    # first model only, so that what they hold is said once (SK208, SK209)
+    world_graph: FrameGraph | None = None
 
     def pose_of(self, name: str) -> Pose | None:
         """Pose of a frame (link, joint, frame, nested model) in the model's frame."""
@@ -107,6 +110,7 @@ class _Ctx:
     resolver: PackageResolver
     overlay: Mapping[str, bytes] | None
     stack: list[str] = field(default_factory=list)  # files being included, for loops
+    world_includes: list[Include] = field(default_factory=list)  # a world's own (SK107)
 
 
 def version_of(root: etree._Element) -> tuple[int, ...]:
@@ -173,7 +177,7 @@ def _vertex(
     if problem is not None and pose_el is not None:
         sm.pose_problems.append((problem, pose_el))
     relative_to = ref(scope, frame, rel) if rel is not None else default
-    vertex = Vertex(name, kind, relative_to, raw, el, rel, attached_to)
+    vertex = Vertex(name, kind, relative_to, raw, el, rel, attached_to, pose_el)
     sm.graph.add(vertex)
     return vertex
 
@@ -418,6 +422,14 @@ def read_models(
     if not any(el.tag in ("model", "world") for el in root):
         msg = f"{display_path(path)}: <sdf> holds no <model> or <world>: nothing to check"
         raise InputError(msg)
+    from sensorkit.model.sdf_includes import include_finding
+
+    said: set[str] = set()  # an info (a Fuel URI not read) once, however often included
+    for inc in ctx.world_includes:  # a world's own includes belong to no model
+        found = include_finding(inc, doc)
+        if found is not None and (found.severity > Severity.INFO or found.message not in said):
+            said.add(found.message)
+            out.findings.append(found)
     return out
 
 
@@ -462,6 +474,10 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
             else:
                 vertex.raw = compose(vertex.raw, inverse(X_MPf))
         models.append(sm)
+    for v in graph.vertices.values():  # "world" names the world frame, as __model__ a model's
+        # (gazebosim/sdformat@sdformat12_12.8.0:src/FrameSemantics.cc:1149-1158)
+        v.relative_to = TOP if v.relative_to == "world" else v.relative_to
+        v.attached_to = TOP if v.attached_to == "world" else v.attached_to
     for sm in models:  # world poses may name a frame inside a model: "model::link"
         for name in list(sm.graph.vertices):
             p = sm.graph.pose(name)
@@ -470,4 +486,7 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
     for sm in models:
         sm.world_pose = graph.pose(sm.name)
         sm.pose_problems.extend(holder.pose_problems)
+    if models and all(i.path is not None and not i.why for i in holder.includes):
+        models[0].world_graph = graph  # not when an include brought nothing: names unknown
+    ctx.world_includes.extend(holder.includes)
     return models

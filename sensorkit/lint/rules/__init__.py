@@ -21,6 +21,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     plugins,
     principal,
     ros1,
+    sdf,
     sensors,
     topics,
     tree,
@@ -39,6 +40,7 @@ RULE_ORDER = (
     "SK412",  # focal
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
+    "SK107", "SK208", "SK209", "SK510",  # sdf
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 

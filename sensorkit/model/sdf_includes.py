@@ -1,0 +1,134 @@
+"""SK107: what to say of an SDF ``<include>`` that leads to no file.
+
+The reader keeps every include (:class:`~sensorkit.model.sdf_read.Include`); one with no
+``path`` brought no model. A model's includes are checked by the SK107 rule
+(:mod:`sensorkit.lint.rules.sdf`); a world's own includes belong to no model, so the reader
+turns them into findings itself (a world whose every include fails has no model to check).
+Both say it in the words of :func:`include_finding`.
+
+What Gazebo does with such an include: libsdformat reports URI_LOOKUP ("Unable to find
+uri[...]") or ATTRIBUTE_MISSING (no ``<uri>``) (gazebosim/sdformat@sdformat12_12.8.0:
+src/parser.cc:1399-1408, :1441-1446), and a server given a world that has errors loads
+nothing of it (gazebosim/gz-sim@gz-sim8_8.14.0:src/Server.cc:83-91, the default behaviour
+src/ServerConfig.cc:298-299; gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/Server.cc:
+136-141), nor does the create service spawn such a model
+(gazebosim/gz-sim@gz-sim8_8.14.0:src/systems/user_commands/UserCommands.cc:925-930): an
+error. An ``http(s)://`` URI is a Gazebo Fuel model that the server downloads through its
+find-file callback (gazebosim/gz-sim@gz-sim8_8.14.0:src/Server.cc:72-74): sensorkit does
+not download, so that is a limit of what it knows (info), as is an include that
+``--untrusted`` does not read: the trust boundary, not a defect of the input.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Protocol
+
+from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.loading.uris import OUTSIDE
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from sensorkit.loading.document import Document
+
+
+class Include(Protocol):
+    """What is read of an include (:class:`sensorkit.model.sdf_read.Include`)."""
+
+    @property
+    def uri(self) -> str: ...
+    @property
+    def element(self) -> etree._Element: ...
+    @property
+    def path(self) -> Path | None: ...
+    @property
+    def why(self) -> str: ...
+    @property
+    def searched(self) -> tuple[str, ...]: ...
+
+
+FUEL_SCHEMES = ("http://", "https://")
+REFUSED = "Gazebo Sim loads no part of a world that holds it, nor spawns the model"
+
+
+READ_SCHEMES = ("model://", "package://", "file://")
+
+
+def _model_name(uri: str) -> str:
+    """NAME of ``model://NAME/...`` or ``package://NAME/...`` ("" for a path)."""
+    for scheme in READ_SCHEMES[:2]:
+        if uri.startswith(scheme):
+            return uri[len(scheme) :].partition("/")[0]
+    return ""
+
+
+def include_finding(inc: Include, doc: Document) -> Finding | None:
+    """The SK107 finding of an include that brought no file (None when it did)."""
+    if inc.path is not None:
+        return None
+    uri_el = next((c for c in inc.element if c.tag == "uri"), None)
+    where = doc.locate(uri_el if uri_el is not None else inc.element)
+    shown = repr(inc.uri)
+    if not inc.uri:
+        return Finding(
+            "SK107",
+            Severity.ERROR,
+            f"<include> has no <uri>: libsdformat reports ATTRIBUTE_MISSING, and {REFUSED}",
+            where,
+            fix="name the model: <uri>model://NAME</uri>",
+        )
+    if inc.why == OUTSIDE:
+        return Finding(
+            "SK107",
+            Severity.INFO,
+            f"<include> {shown} is not read: it is not inside the workspace or the resolved "
+            "packages, and --untrusted reads nothing outside them (GZ_SIM_RESOURCE_PATH "
+            "folders included); the model it brings is not checked",
+            where,
+            fix="validate without --untrusted, or with the model's folder inside the workspace",
+        )
+    if inc.uri.startswith(FUEL_SCHEMES):
+        return Finding(
+            "SK107",
+            Severity.INFO,
+            f"<include> {shown} is a Gazebo Fuel URI, which Gazebo downloads and sensorkit "
+            "does not: the model it brings is not checked",
+            where,
+            fix="download the model and include it with model:// to have it checked",
+        )
+    if "://" in inc.uri and not inc.uri.startswith(READ_SCHEMES):
+        return Finding(
+            "SK107",
+            Severity.INFO,
+            f"<include> {shown}: sensorkit reads model://, package:// and file:// URIs and "
+            "paths only; "
+            "the model it brings is not checked",
+            where,
+            fix="include it with model:// or a path to have it checked",
+        )
+    return _not_found(inc, where, shown)
+
+
+def _not_found(inc: Include, where: SourceRef, shown: str) -> Finding:
+    found = f"searched: {'; '.join(inc.searched)}" if inc.searched else inc.why
+    name = _model_name(inc.uri)
+    if name:
+        fix = (
+            f"add the folder that holds {name}/ to GZ_SIM_RESOURCE_PATH, or pass "
+            f"--package-path {name}=DIR (DIR the "
+            f"{'package' if inc.uri.startswith('package://') else 'model'}'s folder)"
+        )
+    else:
+        fix = (
+            "add the folder that holds it to GZ_SIM_RESOURCE_PATH, or fix the path "
+            "(read relative to the including file)"
+        )
+    return Finding(
+        "SK107",
+        Severity.ERROR,
+        f"<include> {shown} does not resolve ({found}): libsdformat reports URI_LOOKUP, "
+        f"and {REFUSED}",
+        where,
+        fix=fix,
+    )
