@@ -220,36 +220,26 @@ def _missing_frame(
     if prefixed is not None:
         return prefixed
     close = closest(frame, ctx.robot.link_map)
+    sev, what_it_is = Severity.ERROR, "which is not a link of this robot: TF cannot place its data and RViz shows nothing"
+    fix = f"add a link {frame!r} or name an existing one"
     if ctx.robot.sdf is not None:
-        # TF for an SDF model often comes from a URDF robot_state_publisher reads beside it,
-        # which sensorkit does not see: nav2's gz_waffle.sdf.xacro stamps its depth camera
-        # 'camera_depth_frame', a link of the turtlebot3_waffle.urdf shipped in the same
-        # folder (ros-navigation/nav2_minimal_turtlebot_simulation@
-        # nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf:284). A limit of what is known.
-        return ctx.finding(
-            "SK501",
-            Severity.INFO,
-            f"{what} {frame!r} (<{how}>), which is no frame of this SDF model: TF must get it "
-            "from elsewhere (a URDF that robot_state_publisher reads beside the SDF), or it "
-            "cannot place the data; sensorkit does not see that URDF",
-            where,
-            sensor=sensor,
-            frame=frame,
-            fix=f"did you mean {close[0]!r}?"
-            if close
-            else f"make sure the URDF TF is built from has a frame {frame!r}",
+        # TF for an SDF model often comes from a URDF beside it, unseen: nav2's gz_waffle.sdf.xacro
+        # stamps 'camera_depth_frame', a link of the turtlebot3_waffle.urdf next to it
+        # (ros-navigation/nav2_minimal_turtlebot_simulation@nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf:284)
+        sev, fix = Severity.INFO, f"make sure the URDF TF is built from has a frame {frame!r}"
+        what_it_is = (
+            "which is no frame of this SDF model: TF must get it from elsewhere (a URDF that "
+            "robot_state_publisher reads beside the SDF), or it cannot place the data; "
+            "sensorkit does not see that URDF"
         )
     return ctx.finding(
         "SK501",
-        Severity.ERROR,
-        f"{what} {frame!r} (<{how}>), which is not a link of this robot: "
-        "TF cannot place its data and RViz shows nothing",
+        sev,
+        f"{what} {frame!r} (<{how}>), {what_it_is}",
         where,
         sensor=sensor,
         frame=frame,
-        fix=f"did you mean {close[0]!r}?"
-        if close
-        else f"add a link {frame!r} or name an existing one",
+        fix=f"did you mean {close[0]!r}?" if close else fix,
     )
 
 
