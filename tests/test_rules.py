@@ -241,6 +241,20 @@ def test_every_rule_has_a_case() -> None:
     assert covered == set(RULES)
 
 
+def test_every_rule_that_runs_on_sdf_has_an_sdf_trigger_and_near_miss() -> None:
+    """A rule runs on SDF only with SDF cases of its own (issue 28): the sensor and plugin
+    rules' table in test_sdf_sensor_rules.py, the frame and mass rules' in
+    test_sdf_frame_rules.py, the SDF-only rules in test_sdf_rules.py, the loaders' rules in
+    test_sdf_input.py (SK101, SK102, SK103, SK104)."""
+    from test_sdf_frame_rules import ON_SDF
+    from test_sdf_sensor_rules import CASES as SENSOR_CASES
+
+    cased = set(SENSOR_CASES) | set(ON_SDF) | {"SK107", "SK208", "SK209", "SK510"}
+    cased |= {"SK101", "SK102", "SK103", "SK104"}
+    on_sdf = {rid for rid, info in RULES.items() if "sdf" in info.formats}
+    assert on_sdf == cased, (sorted(on_sdf - cased), sorted(cased - on_sdf))
+
+
 def test_sk502_says_what_the_data_looks_like(check) -> None:
     f = next(f for f in check(robot(camera=camera_sensor(params="<frame_name>camera_link</frame_name>")), target="classic").findings if f.rule == "SK502")
     assert "points up" in f.message and f.frame == "camera_link"

@@ -194,3 +194,30 @@ def test_a_folder_gives_sdf_models_and_worlds_once_each() -> None:
 def test_a_world_file_in_a_folder_validates_its_included_models() -> None:
     report = _validate(INPUT / "worlds" / "world.world", GZ_SIM_RESOURCE_PATH=str(MODELS))
     assert {f["file"] for f in report["findings"]} == {str(PARTS.relative_to(ROOT))}
+
+
+def test_sk101_and_sk102_on_sdf_input(tmp_path: Path) -> None:
+    """The loaders' rules hold on SDF: a broken .sdf is SK101 at its line, a .sdf.xacro
+    that does not expand is SK102 at the file; near misses: the same files mended."""
+    from sensorkit.lint.engine import validate_file
+
+    model = '<sdf version="1.9">\n<model name="m">\n<link name="a"/>\n</model>\n</sdf>\n'
+    broken = tmp_path / "broken.sdf"
+    broken.write_text(model.replace("</model>", "</modle>"))
+    found = [(f.rule, f.line) for f in validate_file(broken).findings]
+    assert found == [("SK101", 4)]
+    broken.write_text(model)
+    assert validate_file(broken).findings == []
+    xacro = tmp_path / "robot.sdf.xacro"
+    text = (
+        '<sdf version="1.9" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="w" value="0.1"/>\n<model name="m">\n<link name="a">\n'
+        "<pose>${w} 0 0 0 0 0</pose>\n</link>\n</model>\n</sdf>\n"
+    )
+    xacro.write_text(text.replace("${w}", "${undefined_w}"))
+    report = validate_file(xacro)
+    assert [f.rule for f in report.findings] == ["SK102"] and report.findings[0].file
+    assert "undefined_w" in report.findings[0].message
+    xacro.write_text(text)
+    report = validate_file(xacro)
+    assert report.findings == [] and report.robot is not None and report.robot.sdf is not None
