@@ -230,3 +230,19 @@ def test_turtlebot3_sdf_camera_and_lidar() -> None:
     assert fix is not None and "<optical_frame_id>" in fix
     # lidar_joint has a <pose> in base_scan: TF's base_scan depends on who publishes it
     assert ("SK503", "hls_lfcd_lds") not in by_rule
+
+
+def test_fix_never_edits_sdf(tmp_path: Path) -> None:
+    """--fix's fixers write URDF and xacro text: an SDF finding with a URDF fixer (SK502)
+    is not marked fixable, and --fix leaves the file byte for byte, saying why."""
+    import sys
+
+    path = tmp_path / "sk502.sdf"
+    shutil.copyfile(FRAMES / "sk502.sdf", path)
+    before = path.read_bytes()
+    argv = [sys.executable, "-m", "sensorkit", "validate", str(path), "--target", "harmonic"]
+    plain = subprocess.run(argv, capture_output=True, text=True, check=False)
+    assert "SK502 error" in plain.stdout and "[*]" not in plain.stdout and "fixable" not in plain.stdout
+    fixed = subprocess.run([*argv, "--fix"], capture_output=True, text=True, check=False)
+    assert fixed.returncode == 1 and path.read_bytes() == before
+    assert "SK502: --fix edits URDF and xacro files; change the SDF by hand" in fixed.stderr
