@@ -28,9 +28,10 @@ def test_pre_commit_hooks_file_is_what_pre_commit_requires() -> None:
     assert all(isinstance(hook.get(key), str) and hook[key] for key in PRE_COMMIT_REQUIRED)
     assert hook["entry"] == "sensorkit validate" and hook["language"] == "python"
     files = re.compile(hook["files"])
-    for name in ("robot.urdf.xacro", "a.urdf", "b.xacro", "src/bot/urdf/bot.urdf.xacro"):
+    names = ("robot.urdf.xacro", "a.urdf", "b.xacro", "src/bot/urdf/bot.urdf.xacro")
+    for name in (*names, "model.sdf", "robot.sdf.xacro", "empty.world"):  # SDF too (issue 28)
         assert files.search(name), name
-    for name in ("x.yaml", "robot.urdf.bak", "world.sdf"):
+    for name in ("x.yaml", "robot.urdf.bak", "model.config", "model.sdf.orig"):
         assert not files.search(name), name
 
 
