@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import CORPUS, REALWORLD
+
 from sensorkit.base.errors import InputError
 from sensorkit.model import load_robot
 from sensorkit.model.transforms import Pose, compose
@@ -21,11 +23,25 @@ HERE = Path(__file__).resolve().parent
 SDF_DIR = HERE / "robots" / "sdf"
 MODELS = SDF_DIR / "models"
 TOOL_SOURCE = HERE / "tools" / "sdf_poses.cc"
-TB3 = Path(
-    "/work/shared/corpus/ROBOTIS-GIT__turtlebot3_simulations/turtlebot3_gazebo/models/turtlebot3_waffle"
+# Every SDF robot of ../shared/corpus (its real-world set too, where the wanted SDF robots
+# land): .sdf files and .sdf.xacro ones (expanded by xacro for libsdformat)
+CORPUS_SDF = (
+    sorted(p for p in CORPUS.rglob("*") if p.name.endswith((".sdf", ".sdf.xacro")) and p.is_file())
+    if CORPUS.is_dir()
+    else []
 )
-CORPUS_SDF = sorted(TB3.glob("model.*.sdf")) if TB3.is_dir() else []
 OWN_SDF = sorted(SDF_DIR.glob("*.sdf"))
+
+
+def _resources(path: Path) -> str:
+    """Where a file's includes are looked up (GZ_SIM_RESOURCE_PATH, SDF_PATH): the tests'
+    models folder; for a corpus file, the folder of its model folder and its repository's
+    root (a package:// include is PKG/REST there)."""
+    if not path.is_relative_to(CORPUS):
+        return str(MODELS)
+    rel = path.relative_to(CORPUS).parts
+    depth = 2 if rel[0] == REALWORLD.name else 1
+    return os.pathsep.join([str(path.parent.parent), str(CORPUS.joinpath(*rel[:depth]))])
 
 Key = tuple[str, str, str, str]  # (LINK|SENSOR, model, model|world, scoped name)
 
@@ -58,6 +74,12 @@ def _for_libsdformat12(path: Path, tmp: Path) -> Path:
     reads SDF up to 1.9, and what poses mean is the same in 1.10 and 1.11 (their
     pose.sdf, frame.sdf, link.sdf and model.sdf equal 1.9's, and 1_9.convert and
     1_10.convert change nothing: gazebosim/sdformat@sdformat14_14.9.0:sdf/1.11)."""
+    if path.name.endswith(".sdf.xacro"):  # libsdformat reads the expansion
+        import xacro
+
+        expanded = tmp / path.name.removesuffix(".xacro")
+        expanded.write_text(xacro.process_file(str(path)).toxml())
+        path = expanded
     text = path.read_text()
     for newer in ('version="1.10"', 'version="1.11"'):
         if f"<sdf {newer}" in text:
@@ -67,7 +89,7 @@ def _for_libsdformat12(path: Path, tmp: Path) -> Path:
     return path
 
 
-def _tool(exe: Path, path: Path, resources: Path = MODELS) -> dict[Key, Pose]:
+def _tool(exe: Path, path: Path, resources: Path | str = MODELS) -> dict[Key, Pose]:
     # gz-sim copies GZ_SIM_RESOURCE_PATH into SDF_PATH, where libsdformat looks up a bare
     # include URI such as <uri>sk_merge_mast</uri> (gazebosim/gz-sim@gz-sim8_8.9.0:
     # src/Util.cc:486-540; gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:119-137)
@@ -87,9 +109,9 @@ def _tool(exe: Path, path: Path, resources: Path = MODELS) -> dict[Key, Pose]:
     return out
 
 
-def _ours(path: Path) -> dict[Key, Pose]:
+def _ours(path: Path, resources: str = str(MODELS)) -> dict[Key, Pose]:
     old = os.environ.get("GZ_SIM_RESOURCE_PATH")
-    os.environ["GZ_SIM_RESOURCE_PATH"] = str(MODELS)
+    os.environ["GZ_SIM_RESOURCE_PATH"] = resources
     try:
         loaded = load_robot(path, sdf=True)
     finally:
@@ -135,8 +157,8 @@ def _angle(a: Pose, b: Pose) -> float:
 
 @pytest.mark.parametrize("path", OWN_SDF + CORPUS_SDF, ids=lambda p: p.name)
 def test_poses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Path) -> None:
-    theirs = _tool(sdf_poses, _for_libsdformat12(path, tmp_path))
-    ours = _ours(path)
+    theirs = _tool(sdf_poses, _for_libsdformat12(path, tmp_path), _resources(path))
+    ours = _ours(path, _resources(path))
     assert theirs, "libsdformat printed no pose"
     assert sorted(ours) == sorted(theirs)
     for key, p in theirs.items():
@@ -365,7 +387,8 @@ def test_broken_sdf_is_read_as_written_without_raising(monkeypatch: pytest.Monke
 def test_masses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Path) -> None:
     # A link without <inertial> weighs what libsdformat's Link::Inertial() says (1 kg, unit
     # inertia: gazebosim/sdformat@sdformat12_12.8.0:src/Link.cc:66-69), not nothing.
-    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": str(MODELS), "SDF_PATH": str(MODELS)}
+    resources = _resources(path)
+    env = {**os.environ, "GZ_SIM_RESOURCE_PATH": resources, "SDF_PATH": resources}
     res = subprocess.run(
         [str(sdf_poses), str(_for_libsdformat12(path, tmp_path))],
         capture_output=True,
@@ -381,7 +404,7 @@ def test_masses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Pa
     }
     assert theirs
     old = os.environ.get("GZ_SIM_RESOURCE_PATH")
-    os.environ["GZ_SIM_RESOURCE_PATH"] = str(MODELS)
+    os.environ["GZ_SIM_RESOURCE_PATH"] = resources
     try:
         robots = load_robot(path, sdf=True).robots
     finally:
