@@ -147,6 +147,14 @@ def _ours(path: Path, resources: str = str(MODELS)) -> dict[Key, Pose]:
     return out
 
 
+def _skip_if_only_fuel(path: Path, theirs: object, ours: object) -> None:
+    """A corpus world whose models all come from Fuel (https://) has nothing either side
+    can read offline (subt's worlds/example.sdf): neither prints a pose."""
+    text = path.read_text()
+    if not theirs and not ours and "<model" not in text and "https://fuel." in text:
+        pytest.skip(f"{path.name}: every model is a Fuel include, not read offline")
+
+
 def _angle(a: Pose, b: Pose) -> float:
     """Angle of Ra^T Rb, accurate near zero (atan2 of its skew part and its trace)."""
     m = [[sum(a[3 * k + i] * b[3 * k + j] for k in range(3)) for j in range(3)] for i in range(3)]
@@ -159,6 +167,7 @@ def _angle(a: Pose, b: Pose) -> float:
 def test_poses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Path) -> None:
     theirs = _tool(sdf_poses, _for_libsdformat12(path, tmp_path), _resources(path))
     ours = _ours(path, _resources(path))
+    _skip_if_only_fuel(path, theirs, ours)
     assert theirs, "libsdformat printed no pose"
     assert sorted(ours) == sorted(theirs)
     for key, p in theirs.items():
@@ -402,6 +411,7 @@ def test_masses_agree_with_libsdformat(sdf_poses: Path, path: Path, tmp_path: Pa
         for line in res.stdout.splitlines()
         if line.startswith("MASS")
     }
+    _skip_if_only_fuel(path, theirs, load_robot(path, sdf=True).robots)
     assert theirs
     old = os.environ.get("GZ_SIM_RESOURCE_PATH")
     os.environ["GZ_SIM_RESOURCE_PATH"] = resources
