@@ -82,3 +82,33 @@ def run_cli(*args: str, cwd: Path | None = None, timeout: float = 120) -> subpro
         timeout=timeout,
         cwd=cwd,
     )
+
+
+def sdformat_tool(factory: pytest.TempPathFactory, source: Path) -> Path:
+    """``tests/tools/NAME.cc`` built against Debian's libsdformat12 (the independent SDF
+    reader; tests/run installs g++, pkg-config and libsdformat-dev), once per run: the
+    xdist workers share one build, keyed by the source and the compiler flags."""
+    import fcntl
+    import hashlib
+    import os
+
+    cxx = shutil.which("g++") or shutil.which("c++")
+    pkg = shutil.which("pkg-config")
+    if cxx is None or pkg is None:
+        pytest.fail("g++ and pkg-config are missing: bash tests/run installs them")
+    flags = subprocess.run([pkg, "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=False)
+    if flags.returncode != 0:
+        pytest.fail("libsdformat is missing: apt-get install libsdformat-dev (bash tests/run installs it)")
+    base = factory.getbasetemp()
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    key = hashlib.blake2b(source.read_bytes() + flags.stdout.encode() + cxx.encode(), digest_size=8).hexdigest()
+    exe = shared / f"{source.stem}-{key}"
+    with open(shared / f"{source.stem}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not exe.is_file():
+            partial = exe.with_suffix(".partial")
+            built = subprocess.run([cxx, "-O0", "-o", str(partial), str(source), *flags.stdout.split()],
+                                   capture_output=True, text=True, check=False, timeout=300)
+            assert built.returncode == 0, built.stderr
+            partial.rename(exe)
+    return exe

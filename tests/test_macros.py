@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 import xacro
+from conftest import sdformat_tool
 from lxml import etree
 
 try:
@@ -934,18 +935,7 @@ TOOL_SOURCE = Path(__file__).resolve().parent / "tools" / "urdf2sdf.cc"
 
 @pytest.fixture(scope="session")
 def urdf2sdf(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    cxx = shutil.which("g++") or shutil.which("c++")
-    pkg = shutil.which("pkg-config")
-    if cxx is None or pkg is None:
-        pytest.fail("g++ and pkg-config are missing: bash tests/run installs them")
-    flags = subprocess.run([pkg, "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=False)
-    if flags.returncode != 0:
-        pytest.fail("libsdformat is missing: apt-get install libsdformat-dev (bash tests/run installs it)")
-    exe = tmp_path_factory.mktemp("tool") / "urdf2sdf"
-    built = subprocess.run([cxx, "-O0", "-o", str(exe), str(TOOL_SOURCE), *flags.stdout.split()],
-                           capture_output=True, text=True, check=False, timeout=300)
-    assert built.returncode == 0, built.stderr
-    return exe
+    return sdformat_tool(tmp_path_factory, TOOL_SOURCE)
 
 
 @pytest.mark.parametrize(("sim", "gz_version"), [v for v in SIM_VARIANTS if v[0] != "none"], ids=str)

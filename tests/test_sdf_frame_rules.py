@@ -18,7 +18,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from conftest import CORPUS, needs_corpus
+from conftest import CORPUS, needs_corpus, sdformat_tool
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.engine import Options, validate_file
@@ -181,25 +181,7 @@ def test_classic_default_frame_drops_the_scopes() -> None:
 
 @pytest.fixture(scope="module")
 def sdf_tool(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    cxx = shutil.which("g++") or shutil.which("c++")
-    pkg = shutil.which("pkg-config")
-    if cxx is None or pkg is None:
-        pytest.skip("g++ or pkg-config is missing (bash tests/run installs them)")
-    flags = subprocess.run(
-        [pkg, "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=False
-    )
-    if flags.returncode != 0:
-        pytest.skip("libsdformat12 is missing: apt-get install libsdformat-dev")
-    exe = tmp_path_factory.mktemp("tool") / "sdf_poses"
-    built = subprocess.run(
-        [cxx, "-O0", "-o", str(exe), str(TOOL_SOURCE), *flags.stdout.split()],
-        capture_output=True,
-        text=True,
-        check=False,
-        timeout=300,
-    )
-    assert built.returncode == 0, built.stderr
-    return exe
+    return sdformat_tool(tmp_path_factory, TOOL_SOURCE)
 
 
 @pytest.mark.parametrize("path", sorted(FRAMES.glob("*.sdf")), ids=lambda p: p.name)

@@ -8,12 +8,11 @@ from __future__ import annotations
 import math
 import os
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
-from conftest import CORPUS, REALWORLD
+from conftest import CORPUS, REALWORLD, sdformat_tool
 
 from sensorkit.base.errors import InputError
 from sensorkit.model import load_robot
@@ -48,25 +47,7 @@ Key = tuple[str, str, str, str]  # (LINK|SENSOR, model, model|world, scoped name
 
 @pytest.fixture(scope="module")
 def sdf_poses(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    cxx = shutil.which("g++") or shutil.which("c++")
-    pkg = shutil.which("pkg-config")
-    if cxx is None or pkg is None:
-        pytest.skip("g++ or pkg-config is missing (bash tests/run installs them)")
-    flags = subprocess.run(
-        [pkg, "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=False
-    )
-    if flags.returncode != 0:
-        pytest.skip("libsdformat12 is missing: apt-get install libsdformat-dev")
-    exe = tmp_path_factory.mktemp("tool") / "sdf_poses"
-    built = subprocess.run(
-        [cxx, "-O0", "-o", str(exe), str(TOOL_SOURCE), *flags.stdout.split()],
-        capture_output=True,
-        text=True,
-        check=False,
-        timeout=300,
-    )
-    assert built.returncode == 0, built.stderr
-    return exe
+    return sdformat_tool(tmp_path_factory, TOOL_SOURCE)
 
 
 def _for_libsdformat12(path: Path, tmp: Path) -> Path:

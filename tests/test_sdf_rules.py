@@ -26,12 +26,12 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from conftest import sdformat_tool
 
 from sensorkit.lint.engine import Options, validate_file
 
@@ -77,25 +77,7 @@ def resources(monkeypatch: pytest.MonkeyPatch) -> None:
 
 @pytest.fixture(scope="module")
 def sdf_errors(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    cxx = shutil.which("g++") or shutil.which("c++")
-    pkg = shutil.which("pkg-config")
-    if cxx is None or pkg is None:
-        pytest.skip("g++ or pkg-config is missing (bash tests/run installs them)")
-    flags = subprocess.run(
-        [pkg, "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=False
-    )
-    if flags.returncode != 0:
-        pytest.skip("libsdformat12 is missing: apt-get install libsdformat-dev")
-    exe = tmp_path_factory.mktemp("tool") / "sdf_errors"
-    built = subprocess.run(
-        [cxx, "-O0", "-o", str(exe), str(TOOL_SOURCE), *flags.stdout.split()],
-        capture_output=True,
-        text=True,
-        check=False,
-        timeout=300,
-    )
-    assert built.returncode == 0, built.stderr
-    return exe
+    return sdformat_tool(tmp_path_factory, TOOL_SOURCE)
 
 
 def _libsdformat(exe: Path, name: str) -> set[tuple[str, str]]:
