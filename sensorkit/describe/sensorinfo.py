@@ -120,28 +120,21 @@ def load(
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
 ) -> Robot:
-    """Load and model a URDF/xacro file (``overlay``: absolute path -> bytes read instead;
-    ``cache``: the expansion cache, see ``sensorkit.loading.cache``).
+    """Load and model a URDF/xacro or SDF file: its robot, the first model of an SDF world
+    (``overlay``: absolute path -> bytes read instead; ``cache``: the expansion cache, see
+    ``sensorkit.loading.cache``).
 
     Raises:
         InputError: the file cannot be read, expanded or parsed as a robot.
     """
-    from sensorkit.model import load_robot
-
-    loaded = load_robot(
+    return load_models(
         path,
-        args=dict(args or {}),
-        package_paths=tuple(package_paths),
+        args=args,
+        package_paths=package_paths,
         untrusted=untrusted,
         overlay=overlay,
         cache=cache,
-        sdf=True,
-    )
-    if loaded.robot is None:
-        first = loaded.findings[0] if loaded.findings else None
-        msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
-        raise InputError(msg)
-    return loaded.robot
+    )[0]
 
 
 def load_models(
@@ -153,8 +146,8 @@ def load_models(
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
 ) -> list[Robot]:
-    """Every robot of ``path``: each model of an SDF world, else the one robot (see
-    :func:`load`, whose errors it raises)."""
+    """Every robot of ``path``: each model of an SDF world, else the one robot (the
+    errors of :func:`load`)."""
     from sensorkit.model import load_robot
 
     loaded = load_robot(
