@@ -463,3 +463,25 @@ def test_a_command_group_without_its_command_still_prints_its_help() -> None:
     for args, lists in ((["render"], "preview"), ([], "validate")):
         res = run_cli(*args)
         assert res.returncode == 2 and "Usage:" in res.stdout and lists in res.stdout, args
+
+
+def test_an_abort_is_one_line_and_another_error_stays_itself(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """run_app's except clauses name only exceptions that exist: click's Abort (EOF or
+    Ctrl-C at a prompt) is 'sensorkit: aborted', exit 1; any other exception passes through
+    as itself (it was an AttributeError: typer's vendored click has no Abort where looked)."""
+    from sensorkit import cli
+
+    def abort(**_kw: object) -> None:
+        raise cli._abort_type()
+
+    monkeypatch.setattr(cli, "app", abort)
+    assert cli.run_app() == 1 and capsys.readouterr().err == "sensorkit: aborted\n"
+
+    def bug(**_kw: object) -> None:
+        raise LookupError("a bug of ours")
+
+    monkeypatch.setattr(cli, "app", bug)
+    with pytest.raises(LookupError):
+        cli.run_app()

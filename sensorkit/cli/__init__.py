@@ -211,6 +211,17 @@ def _click_exceptions() -> Any:
     return exceptions
 
 
+def _abort_type() -> type[BaseException]:
+    """click's Abort as typer raises it: typer >= 0.16 keeps it in ``typer.exceptions``
+    (its vendored click has none in ``typer._click.exceptions``: looking it up there
+    turned any other exception into an AttributeError traceback), else click's."""
+    try:
+        from typer.exceptions import Abort
+    except ImportError:  # an older typer, on click itself
+        from click.exceptions import Abort  # type: ignore[assignment]
+    return Abort
+
+
 def run_app() -> int:
     """Run the command; its exit status. A usage error (an unknown option or command, a
     bad or missing value) is one line on stderr, exit status 2, as every other error of
@@ -227,7 +238,7 @@ def run_app() -> int:
     except exceptions.ClickException as exc:
         sys.stderr.write(usage_line(exc) + "\n")
         return int(exc.exit_code)
-    except exceptions.Abort:
+    except _abort_type():
         sys.stderr.write("sensorkit: aborted\n")
         return 1
     return code if isinstance(code, int) else 0
