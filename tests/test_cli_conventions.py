@@ -31,11 +31,14 @@ def test_render_without_subcommand_names_the_one_it_needs() -> None:
     assert res.returncode == 2 and "render preview" not in res.stderr
 
 
-def test_pre_commit_hook_skips_sdf_written_as_xacro() -> None:
+def test_pre_commit_hook_takes_sdf_too() -> None:
+    # It skipped SDF (and SDF written as xacro) while validate refused SDF; validate reads
+    # .sdf, .world and .sdf.xacro since issue 28, so the hook passes them on.
     hook = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())[0]
     pattern = re.compile(hook["files"])
     assert pattern.search("robot.urdf") and pattern.search("robot.urdf.xacro") and pattern.search("parts/arm.xacro")
-    assert not pattern.search("worlds/world.sdf.xacro") and not pattern.search("model.sdf")
+    assert pattern.search("worlds/world.sdf.xacro") and pattern.search("model.sdf") and pattern.search("a.world")
+    assert not pattern.search("model.config") and not pattern.search("robot.yaml")
 
 
 @pytest.mark.parametrize("cmd", [["validate"], ["intrinsics"], ["export", "--out", "x"], ["render", "preview"]])
