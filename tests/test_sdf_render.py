@@ -146,3 +146,16 @@ def test_missing_meshes_and_shapes_pybullet_lacks_are_named(tmp_path: Path) -> N
     assert notes[0].startswith("note: SDF: not drawn: visual 'hull' of link 'l' (")
     assert notes[0].endswith(f"): no file at {tmp_path / 'meshes' / 'hull.dae'}")
     assert notes[1].endswith("): <capsule> geometry is not drawn")
+
+
+def test_a_stamped_frame_the_sdf_model_lacks_is_not_known_not_a_warning() -> None:
+    """As SK501 on SDF: TF may hold a frame the SDF lacks (a URDF kept beside it, as nav2's
+    gz_waffle.sdf.xacro and turtlebot3_waffle.urdf are), so the preview does not warn."""
+    import numpy as np
+
+    from sensorkit.render.checks import frame_check
+
+    sdf = frame_check(np.eye(4), None, "camera_depth_frame", "<gz_frame_id>", optical=True, sdf=True)
+    assert sdf.status == "skipped" and "no frame of this SDF model" in sdf.message
+    urdf = frame_check(np.eye(4), None, "camera_depth_frame", "<gz_frame_id>", optical=True)
+    assert urdf.status == "warn" and "not a link of the URDF" in urdf.message

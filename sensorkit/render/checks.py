@@ -128,15 +128,26 @@ def frame_check(
     how: str,
     *,
     optical: bool,
+    sdf: bool = False,
 ) -> Check:
     """Does the frame the data is stamped with point where the sensor really looks?
 
     ``T_world_true`` is the frame a consumer should see: the optical frame of the render
-    pose for images (z forward, x right, y down), the render pose itself for scans.
+    pose for images (z forward, x right, y down), the render pose itself for scans. For an
+    SDF model (``sdf``) a frame it does not hold may come from a URDF kept beside it, which
+    sensorkit does not see (as SK501 says): not known, so skipped.
     """
     if frame is None:
         return Check(
             "published_frame", "skipped", "the sensor publishes nothing to ROS (no plugin found)"
+        )
+    if T_world_frame is None and sdf:
+        return Check(
+            "published_frame",
+            "skipped",
+            f"the data is stamped {frame!r} ({how}), which is no frame of this SDF model: TF "
+            "may have it from a URDF beside the SDF, which sensorkit does not see",
+            details={"frame": frame, "how": how},
         )
     if T_world_frame is None:
         return Check(

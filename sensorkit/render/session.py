@@ -128,7 +128,8 @@ class Session:
         if sensor.reference is not None:
             out.checks.append(self.pose_check(sensor.reference))
         T_frame = self.poses.get(frame) if frame is not None else None
-        fcheck = frame_check(T_true, T_frame, frame, how, optical=optical)
+        sdf = self.robot.sdf is not None
+        fcheck = frame_check(T_true, T_frame, frame, how, optical=optical, sdf=sdf)
         out.checks.append(fcheck)
         if fcheck.status == "warn" and T_frame is not None and frame is not None:
             return fcheck, (frame, T_frame)
