@@ -84,10 +84,17 @@ class Settings:
 
     def describe(self, file: Path, overlay: dict[str, bytes], convention: Any = None) -> Any:
         """Load ``file`` with these settings and describe its sensors under the target
-        (a ``sensorkit.describe.sensorinfo.RobotInfo`` saying where a chosen target came from)."""
-        from sensorkit.describe.sensorinfo import describe, load
+        (a ``sensorkit.describe.sensorinfo.RobotInfo`` saying where a chosen target came
+        from): its robot, the first model of an SDF world."""
+        return self.describe_all(file, overlay, convention)[0]
 
-        robot = load(
+    def describe_all(
+        self, file: Path, overlay: dict[str, bytes], convention: Any = None
+    ) -> list[Any]:
+        """As :meth:`describe`, for every model of an SDF world (one for other files)."""
+        from sensorkit.describe.sensorinfo import describe, load_models
+
+        robots = load_models(
             file,
             args=self.args,
             package_paths=self.package_paths,
@@ -95,10 +102,13 @@ class Settings:
             overlay=overlay,
             cache=self.cache,
         )
-        info = describe(robot, self.target, convention=convention)
-        if self.target != "auto":
-            info.target_reason = f"chosen with {self.origin('target')}"
-        return info
+        infos = []
+        for robot in robots:
+            info = describe(robot, self.target, convention=convention)
+            if self.target != "auto":
+                info.target_reason = f"chosen with {self.origin('target')}"
+            infos.append(info)
+        return infos
 
     def say_where(self, extra: tuple[str, ...] = (), *, quiet: bool = False) -> None:
         """One stderr line naming the settings taken from the file, if any (not with -q)."""

@@ -30,27 +30,11 @@ def described_models(
     file: Path, reading: Reading, *, target: str | None, convention: str | None = None
 ) -> tuple[Path, list[RobotInfo]]:
     """As ``described_robot``, with every model of a world (one entry for other files)."""
-    from sensorkit.describe.sensorinfo import describe, load_models
-
     use_color(reading.color)
     file, overlay = stdin_robot(file, reading.stdin_filename)
     st = settings(file, reading.flags, target=target)
     st.say_where(quiet=reading.quiet)
-    robots = load_models(
-        file,
-        args=st.args,
-        package_paths=st.package_paths,
-        untrusted=st.untrusted,
-        overlay=overlay,
-        cache=st.cache,
-    )
-    infos: list[RobotInfo] = []
-    for robot in robots:
-        info = describe(robot, st.target, convention=convention)  # type: ignore[arg-type]
-        if st.target != "auto":
-            info.target_reason = f"chosen with {st.origin('target')}"
-        infos.append(info)
-    return file, infos
+    return file, st.describe_all(file, overlay, convention)
 
 
 def world_name(infos: list[RobotInfo]) -> str | None:
