@@ -2,41 +2,13 @@
 
 from __future__ import annotations
 
-import enum
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from sensorkit.base.consequence import SEVERITY_CONTRACT, Consequence, Severity
 from sensorkit.base.quote import shorten
 
-
-class Severity(enum.IntEnum):
-    """Ordered so that ``severity >= fail_on`` reads naturally."""
-
-    INFO = 0
-    WARNING = 1
-    ERROR = 2
-
-    @property
-    def label(self) -> str:
-        return self.name.lower()
-
-    @classmethod
-    def parse(cls, text: str) -> Severity:
-        try:
-            return cls[text.strip().upper()]
-        except KeyError:
-            msg = f"unknown severity {text!r}: use error, warning or info"
-            raise ValueError(msg) from None
-
-
-# What each severity promises the user (issue 23). Every rule's severity is judged by it;
-# `sensorkit rules` and the README print it.
-SEVERITY_CONTRACT: dict[Severity, str] = {
-    Severity.ERROR: "the sensor will not work as written: no data, data in a frame TF cannot "
-    "place, or geometry or calibration that is wrong",
-    Severity.WARNING: "it works, but something a user would fix",
-    Severity.INFO: "true and harmless, or a limit of what sensorkit knows",
-}
+__all__ = ["SEVERITY_CONTRACT", "Finding", "Severity", "SourceRef"]
 
 
 @dataclass(frozen=True)
@@ -70,6 +42,9 @@ class Finding:
     frame: str | None = None
     fix: str | None = None
     column: int | None = None
+    # What was written against what the simulator uses, where the rule knows both
+    # (sensorkit.base.consequence): the severity of such a finding is computed from it.
+    consequence: Consequence | None = None
 
     def __post_init__(self) -> None:
         # What a finding quotes of the input stays short in every format (issue 25): a
@@ -92,6 +67,7 @@ class Finding:
         """The JSON form of the output contract: fields are only ever added."""
         data = asdict(self)
         data.pop("source")
+        data.pop("consequence")
         out: dict[str, Any] = {
             "rule": self.rule,
             "severity": self.severity.label,
@@ -102,6 +78,8 @@ class Finding:
         for key in ("column", "link", "joint", "sensor", "frame", "fix"):
             if data.get(key) is not None:
                 out[key] = data[key]
+        if self.consequence is not None:
+            out["consequence"] = self.consequence.to_dict()
         return out
 
     def sort_key(self) -> tuple[str, int, str, str]:

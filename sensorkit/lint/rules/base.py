@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from sensorkit.base.consequence import Consequence
 from sensorkit.base.findings import Finding, Severity, SourceRef
 
 if TYPE_CHECKING:
@@ -141,3 +142,19 @@ class Context:
     ) -> Finding:
         source = where if isinstance(where, SourceRef) else self.locate(where)
         return Finding(rule_id, severity, message, source, **extra)
+
+    def judged(
+        self,
+        rule_id: str,
+        consequence: Consequence,
+        message: str,
+        where: etree._Element | SourceRef | None = None,
+        **extra: Any,
+    ) -> Finding:
+        """A finding whose severity is computed from ``consequence`` (what was written
+        against what the simulator uses: sensorkit.base.consequence), its message followed
+        by the two values."""
+        text = f"{message} ({consequence.says()})"
+        return self.finding(
+            rule_id, consequence.severity, text, where, consequence=consequence, **extra
+        )
