@@ -327,3 +327,85 @@ def bare_mcap(folder: Path, dest: Path) -> Path:
     (mcap,) = folder.glob("*.mcap")
     shutil.copyfile(mcap, dest)
     return dest
+
+
+# --------------------------------------------------------------------------- Gazebo Sim
+
+
+def gz_camera_info(width: int, height: int, hfov: float) -> dict[str, Any]:
+    """gz-sensors' camera_info, bridged by ros_gz_bridge: K from the lens intrinsics, which
+    the sensorkit macros write as fx = fy = W / (2 tan(hfov / 2)), cx = W / 2, cy = H / 2
+    (the values gz itself derives without them: gazebosim/gz-rendering@gz-rendering8
+    ff0c5b8f:src/Utils.cc:170-185 projectionToCameraIntrinsic, called by gazebosim/
+    gz-sensors@gz-sensors8 c8159af:src/CameraSensor.cc:844-856), K[1] = 0 (:729-738), P
+    from the projection with tx = 0 (:740-756), D = k1 k2 p1 p2 k3 (:716-724), PLUMB_BOB
+    bridged as "plumb_bob" (gazebosim/ros_gz@jazzy 739cb42:ros_gz_bridge/src/convert/
+    sensor_msgs.cpp:230-231)."""
+    f = width / (2.0 * math.tan(hfov / 2.0))
+    cx, cy = width / 2.0, height / 2.0
+    return {
+        "width": width,
+        "height": height,
+        "distortion_model": "plumb_bob",
+        "d": [0.0] * 5,
+        "k": [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0],
+        "r": [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        "p": [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0],
+    }
+
+
+def harmonic_scene() -> Scene:
+    """The Harmonic example robot (examples/harmonic_robot) through its bridge.yaml: its
+    values from the URDF's macro calls (a 1280x720 camera, hfov 1.5; a 640x480 RGB-D
+    camera, hfov 1.0472, pitched 0.2 rad; a 900x16 gpu_lidar's cloud; an IMU at 100 Hz).
+    The gpu_lidar's cloud has x y z intensity ring (gz-sensors@gz-sensors8
+    c8159af:src/GpuLidarSensor.cc:138-141), the rgbd_camera's depth image is 32FC1 and its
+    image rgb8 (src/RgbdCameraSensor.cc:525, :636; ros_gz_bridge sensor_msgs.cpp:126-160)."""
+    w, h = 640, 480
+    rgbd_opt, front_opt = "rgbd_camera_optical_frame", "front_camera_optical_frame"
+
+    def image(width: int, height: int, encoding: str, depth: int) -> dict[str, Any]:
+        step = depth * width
+        return {
+            "width": width,
+            "height": height,
+            "encoding": encoding,
+            "step": step,
+            "data_bytes": step * height,
+        }
+
+    cloud = {
+        "width": 900,
+        "height": 16,
+        "fields": [("x", 0), ("y", 4), ("z", 8), ("intensity", 16), ("ring", 20)],
+        "point_step": 32,
+    }
+    streams = {
+        "/front_camera/image_raw": Stream(
+            "sensor_msgs/msg/Image", front_opt, 30.0, image(1280, 720, "rgb8", 3)
+        ),
+        "/front_camera/camera_info": Stream(
+            "sensor_msgs/msg/CameraInfo", front_opt, 30.0, gz_camera_info(1280, 720, 1.5)
+        ),
+        "/rgbd_camera/image_raw": Stream(
+            "sensor_msgs/msg/Image", rgbd_opt, 30.0, image(w, h, "rgb8", 3)
+        ),
+        "/rgbd_camera/depth/image_raw": Stream(
+            "sensor_msgs/msg/Image", rgbd_opt, 30.0, image(w, h, "32FC1", 4)
+        ),
+        "/rgbd_camera/camera_info": Stream(
+            "sensor_msgs/msg/CameraInfo", rgbd_opt, 30.0, gz_camera_info(w, h, 1.0472)
+        ),
+        "/lidar/points": Stream("sensor_msgs/msg/PointCloud2", "lidar_link", 10.0, cloud),
+        "/imu/imu": Stream("sensor_msgs/msg/Imu", "imu_link", 100.0, {}),
+    }
+    pitch = (0.0, math.sin(0.1), 0.0, math.cos(0.1))  # rpy 0 0.2 0
+    tf = [  # the robot's sensor joints, as its URDF writes them
+        ("base_link", "front_camera_link", (0.26, 0.0, 0.08), IDENTITY_Q),
+        ("front_camera_link", front_opt, (0.0, 0.0, 0.0), OPTICAL_Q),
+        ("base_link", "rgbd_camera_link", (0.22, 0.0, 0.15), pitch),
+        ("rgbd_camera_link", rgbd_opt, (0.0, 0.0, 0.0), OPTICAL_Q),
+        ("base_link", "lidar_link", (0.0, 0.0, 0.25), IDENTITY_Q),
+        ("base_link", "imu_link", (0.0, 0.0, 0.02), IDENTITY_Q),
+    ]
+    return Scene(streams, tf)

@@ -19,7 +19,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from bags import IDENTITY_Q, OPTICAL_Q, Scene, bare_mcap, car_scene, classic_camera_info, write_bag
+from bags import (
+    IDENTITY_Q,
+    OPTICAL_Q,
+    Scene,
+    bare_mcap,
+    car_scene,
+    classic_camera_info,
+    harmonic_scene,
+    write_bag,
+)
 from conftest import ROOT
 from conftest import run_cli as cli
 
@@ -317,6 +326,48 @@ def test_perturbations_fail_in_the_other_formats(fmt: str, run: Callable[..., li
     scene = scene.with_stream("/lidar/scan", frame="laser")
     rules = sorted(f.rule for f in run(scene, fmt))
     assert rules == ["SK801", "SK803", "SK804", "SK805", "SK806", "SK810"], rules
+
+
+# --------------------------------------------------------------------------- Gazebo Sim
+
+HARMONIC = ROOT / "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_robot.urdf.xacro"
+
+
+@pytest.fixture(scope="module")
+def harmonic() -> tuple[list[object], list[object]]:
+    """The Harmonic example, its topics named by the bridge.yaml of its package."""
+    from sensorkit.describe.sensorinfo import describe, load
+    from sensorkit.describe.topics import load_bridge, robot_topics
+
+    info = describe(load(HARMONIC), "auto")
+    assert info.target == "harmonic"
+    return [info], [robot_topics(info, load_bridge(info.robot, info.target))]
+
+
+def test_a_gazebo_sim_recording(tmp_path: Path, harmonic: tuple[list[object], list[object]]) -> None:
+    """gz's camera_info (cx = W/2, fx in float32), the rgbd camera's pitched mount, the
+    gpu_lidar's cloud and the IMU pass; Classic's principal point (W+1)/2 is half a pixel
+    off (a warning), a cloud without ring a warning, an IMU stamped in base_link an error."""
+    from sensorkit.recording.check import check_recording
+
+    infos, topics = harmonic
+    scene = small(harmonic_scene())
+    path = write_bag(scene, tmp_path / "gz", "mcap")
+    found = check_recording(infos, topics, path).findings  # type: ignore[arg-type]
+    assert found == [], [f.message for f in found]
+    k = list(scene.streams["/front_camera/camera_info"].fields["k"])
+    k[2] = (1280 + 1) / 2
+    wrong = scene.with_fields("/front_camera/camera_info", k=k)
+    wrong = wrong.with_fields("/lidar/points", fields=[("x", 0), ("y", 4), ("z", 8), ("intensity", 16)])
+    wrong = wrong.with_stream("/imu/imu", frame="base_link")
+    found = check_recording(infos, topics, write_bag(wrong, tmp_path / "gz_bad", "mcap")).findings  # type: ignore[arg-type]
+    got = sorted((f.rule, f.severity.label, f.sensor) for f in found)
+    assert got == [
+        ("SK803", "error", "imu"),
+        ("SK806", "warning", "front_camera"),
+        ("SK809", "warning", "lidar"),
+    ], [f.message for f in found]
+    assert "0.50 px" in of(found, "SK806")[0].message and "without ring" in of(found, "SK809")[0].message
 
 
 # --------------------------------------------------------------------------- acceptance

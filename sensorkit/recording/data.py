@@ -101,7 +101,7 @@ def _shift(have: Sequence[float], want: Sequence[float], size: tuple[int, int]) 
 
 
 def _fmt(values: Sequence[float]) -> str:
-    return "[" + ", ".join(f"{v:.6g}" for v in values) + "]"
+    return "[" + ", ".join(f"{v + 0.0:.6g}" for v in values) + "]"
 
 
 def check_camera_info(sample: TopicSample, exp: Expected, intr: Intrinsics) -> list[Finding]:
