@@ -10,15 +10,19 @@ scan, about 2 GB, written in each format asked for (default: an MCAP rosbag2 and
 bag) into the scratch folder, which must not be in the repository; it is deleted after
 unless --keep.
 
-Paired and interleaved rounds (the order swapped every round) of two whole processes:
+Paired and interleaved rounds (the order rotated every round) of whole processes:
 
 - `sensorkit check-recording BAG CAR -q`;
-- the peer: reading every message of the bag with rosbags' AnyReader (raw bytes, not
-  decoded), which is what a check that reads the whole recording costs at least.
+- `sensorkit topics CAR -q`: the same start-up and description, without the bag (what
+  check-recording adds is the difference);
+- peers: reading every message of the bag with rosbags' AnyReader, raw (the least a check
+  that reads the whole recording costs), and decoded (what checking every message costs).
 
-Per process, from os.wait4: CPU time (user + sys), wall time, peak RSS. Medians are
-printed with the load average before and after; the page cache is warm (the bag was just
-written), as it is when a user checks the bag they recorded.
+Each at two sizes (--frames, default 93 and 930: about 0.2 and 2 GB), to show that time
+and memory do not grow with the bag. Per process, from os.wait4: CPU time (user + sys),
+wall time, peak RSS. Medians are printed with the load average before and after; the page
+cache is warm (the bag was just written), as it is when a user checks the bag they
+recorded.
 """
 
 from __future__ import annotations
@@ -41,11 +45,14 @@ import sys
 from pathlib import Path
 from rosbags.highlevel import AnyReader
 from rosbags.typesys import Stores, get_typestore
+decode = sys.argv[2] == "decode"
 n = size = 0
 with AnyReader([Path(sys.argv[1])], default_typestore=get_typestore(Stores.LATEST)) as r:
-    for _c, _t, raw in r.messages():
+    for c, _t, raw in r.messages():
         n += 1
         size += len(raw)
+        if decode:
+            r.deserialize(raw, c.msgtype)
 print(n, size)
 """
 
@@ -56,15 +63,21 @@ def make_bag(scratch: Path, fmt: str, frames: int) -> Path:
     scene = car_scene()
     for topic, stream in scene.streams.items():
         scene = scene.with_stream(topic, count=frames if stream.rate == 30.0 else frames // 3)
-    name = scratch / f"car_2gb_{fmt}"
+    name = scratch / f"car_{frames}_{fmt}"
     out = name.with_suffix(".bag") if fmt == "ros1" else name
     if out.exists():
         return out
     t0 = time.perf_counter()
     path = write_bag(scene, name, fmt)
-    size = sum(p.stat().st_size for p in ([path] if path.is_file() else path.iterdir()))
-    print(f"wrote {path} ({size / 1e9:.2f} GB) in {time.perf_counter() - t0:.0f} s", flush=True)
+    print(
+        f"wrote {path} ({size_of(path) / 1e9:.2f} GB) in {time.perf_counter() - t0:.0f} s",
+        flush=True,
+    )
     return path
+
+
+def size_of(path: Path) -> int:
+    return sum(p.stat().st_size for p in ([path] if path.is_file() else path.iterdir()))
 
 
 def run(cmd: list[str]) -> tuple[float, float, float, int]:
@@ -81,34 +94,48 @@ def run(cmd: list[str]) -> tuple[float, float, float, int]:
 
 
 def bench(bag: Path, rounds: int) -> None:
-    ours = [sys.executable, "-m", "sensorkit", "check-recording", str(bag), str(CAR), "-q"]
-    peer = [sys.executable, "-c", PEER, str(bag)]
-    results: dict[str, list[tuple[float, float, float, int]]] = {"sensorkit": [], "peer": []}
+    sk = [sys.executable, "-m", "sensorkit"]
+    commands = {
+        "check-recording": [*sk, "check-recording", str(bag), str(CAR), "-q"],
+        "topics (start-up)": [*sk, "topics", str(CAR), "-q"],
+        "peer: read all": [sys.executable, "-c", PEER, str(bag), "raw"],
+        "peer: decode all": [sys.executable, "-c", PEER, str(bag), "decode"],
+    }
+    results: dict[str, list[tuple[float, float, float, int]]] = {k: [] for k in commands}
+    names = list(commands)
     load0 = os.getloadavg()[0]
     for i in range(rounds):
-        order = [("sensorkit", ours), ("peer", peer)]
-        for name, cmd in order if i % 2 == 0 else reversed(order):
-            results[name].append(run(cmd))
+        for name in names[i % len(names) :] + names[: i % len(names)]:
+            results[name].append(run(commands[name]))
     load1 = os.getloadavg()[0]
-    print(f"\n{bag.name}: {rounds} paired rounds, load {load0:.1f} -> {load1:.1f}")
-    med: dict[str, tuple[float, float, float]] = {}
+    print(
+        f"\n{bag.name} ({size_of(bag) / 1e9:.2f} GB): {rounds} rounds, load {load0:.1f} -> {load1:.1f}"
+    )
+    med: dict[str, float] = {}
     for name, rows in results.items():
         cpu = statistics.median(r[0] for r in rows)
         wall = statistics.median(r[1] for r in rows)
         rss = max(r[2] for r in rows)
+        med[name] = cpu
         codes = sorted({r[3] for r in rows})
-        med[name] = (cpu, wall, rss)
-        print(f"  {name:<10} cpu {cpu:7.2f} s  wall {wall:7.2f} s  peak RSS {rss:7.1f} MB  exit {codes}")
-    c, p = med["sensorkit"], med["peer"]
-    print(f"  sensorkit / full read: cpu {c[0] / p[0]:.3f}x, wall {c[1] / p[1]:.3f}x")
+        print(
+            f"  {name:<18} cpu {cpu:7.2f} s  wall {wall:7.2f} s  peak RSS {rss:7.1f} MB  exit {codes}"
+        )
+    own = med["check-recording"] - med["topics (start-up)"]
+    print(
+        f"  check-recording's own CPU (less start-up) {own:.2f} s; check-recording / read all "
+        f"{med['check-recording'] / med['peer: read all']:.2f}x, / decode all "
+        f"{med['check-recording'] / med['peer: decode all']:.2f}x",
+        flush=True,
+    )
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scratch", type=Path, default=Path("/work/scratch/recording/bench"))
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--frames", type=int, default=930, help="30 Hz frames (930: about 2 GB)")
-    ap.add_argument("--formats", default="mcap,ros1")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--frames", default="93,930", help="30 Hz frames per size (930: about 2 GB)")
+    ap.add_argument("--formats", default="mcap,sqlite3,ros1")
     ap.add_argument("--keep", action="store_true", help="keep the generated recordings")
     args = ap.parse_args()
     scratch = args.scratch.resolve()
@@ -117,10 +144,11 @@ def main() -> None:
     scratch.mkdir(parents=True, exist_ok=True)
     try:
         for fmt in args.formats.split(","):
-            bag = make_bag(scratch, fmt, args.frames)
-            bench(bag, args.rounds)
-            if not args.keep:
-                shutil.rmtree(bag) if bag.is_dir() else bag.unlink()
+            for frames in (int(f) for f in args.frames.split(",")):
+                bag = make_bag(scratch, fmt, frames)
+                bench(bag, args.rounds)
+                if not args.keep:
+                    shutil.rmtree(bag) if bag.is_dir() else bag.unlink()
     finally:
         if not args.keep:
             shutil.rmtree(scratch, ignore_errors=True)

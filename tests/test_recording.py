@@ -64,7 +64,9 @@ def small(scene: Scene, count: int = 3) -> Scene:
 
 
 @pytest.fixture
-def run(tmp_path: Path, described: tuple[list[object], list[object]]) -> Callable[..., list[Finding]]:
+def run(
+    tmp_path: Path, described: tuple[list[object], list[object]]
+) -> Callable[..., list[Finding]]:
     counter = iter(range(1000))
 
     def go(scene: Scene, fmt: str = "sqlite3") -> list[Finding]:
@@ -128,8 +130,28 @@ def test_a_correct_recording_passes_in_every_format(
     assert scan.stamps[0] == first.sec * 10**9 + first.nanosec
 
 
+def test_a_rosbag2_without_message_definitions_is_read(
+    tmp_path: Path, described: tuple[list[object], list[object]]
+) -> None:
+    """rosbag2 before Iron stores no message definitions: rosbags needs a typestore, and
+    the newest distribution's is taken (a recording of a wrong K is still found)."""
+    import sqlite3
+
+    from sensorkit.recording.check import check_recording
+
+    path = write_bag(_k(small(car_scene()), dfx=300.0 - FX), tmp_path / "humble", "sqlite3")
+    (db,) = path.glob("*.db3")
+    with sqlite3.connect(db) as con:
+        con.execute("DELETE FROM message_definitions")
+    infos, topics = described
+    found = check_recording(infos, topics, path).findings  # type: ignore[arg-type]
+    assert [f.rule for f in found] == ["SK806"], [f.message for f in found]
+
+
 def test_the_shipped_example_recording_passes() -> None:
-    res = cli("check-recording", str(ROOT / "examples/orbslam3_car/recordings/car_sim.mcap"), str(CAR))
+    res = cli(
+        "check-recording", str(ROOT / "examples/orbslam3_car/recordings/car_sim.mcap"), str(CAR)
+    )
     assert res.returncode == 0, res.stdout + res.stderr
     assert "ok: no findings (2 sensors checked)" in res.stdout
 
@@ -200,7 +222,9 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
     "SK802": [
         (
             lambda s: s.with_stream(
-                "/lidar/scan", msgtype="sensor_msgs/msg/PointCloud2", fields=s.streams["/camera/points"].fields
+                "/lidar/scan",
+                msgtype="sensor_msgs/msg/PointCloud2",
+                fields=s.streams["/camera/points"].fields,
             ),
             Severity.ERROR,
             "recorded as sensor_msgs/msg/PointCloud2",
@@ -208,10 +232,20 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
         )
     ],
     "SK803": [
-        (lambda s: s.with_stream("/lidar/scan", frame="laser"), Severity.ERROR, "'laser'", lambda s: s),
+        (
+            lambda s: s.with_stream("/lidar/scan", frame="laser"),
+            Severity.ERROR,
+            "'laser'",
+            lambda s: s,
+        ),
     ],
     "SK804": [
-        (lambda s: s.with_stream("/lidar/scan", frame="laser"), Severity.ERROR, "neither /tf", lambda s: s),
+        (
+            lambda s: s.with_stream("/lidar/scan", frame="laser"),
+            Severity.ERROR,
+            "neither /tf",
+            lambda s: s,
+        ),
         (lambda s: Scene(s.streams, []), Severity.INFO, "no /tf or /tf_static", lambda s: s),
     ],
     "SK805": [
@@ -222,7 +256,12 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
             "which is not an optical frame",
             lambda s: _turn_tf(s, "camera_optical_frame", 0.4),  # under 0.5 degree
         ),
-        (lambda s: _turn_tf(s, "camera_optical_frame", 0.6), Severity.ERROR, "0.6 degrees", lambda s: s),
+        (
+            lambda s: _turn_tf(s, "camera_optical_frame", 0.6),
+            Severity.ERROR,
+            "0.6 degrees",
+            lambda s: s,
+        ),
         (
             lambda s: _move_tf(s, "lidar_link", 0.0011),  # 1.1 mm
             Severity.ERROR,
@@ -231,7 +270,12 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
         ),
     ],
     "SK806": [
-        (lambda s: _k(s, dfx=300.0 - FX), Severity.ERROR, "K is [300", lambda s: _k(s, dfx=FX * 0.009 / 320)),
+        (
+            lambda s: _k(s, dfx=300.0 - FX),
+            Severity.ERROR,
+            "K is [300",
+            lambda s: _k(s, dfx=FX * 0.009 / 320),
+        ),
         # the image edge moves by just over / just under 1 px: error / warning
         (lambda s: _k(s, dfx=FX * 1.05 / 320), Severity.ERROR, "1.05 px", lambda s: s),
         (lambda s: _k(s, dcx=0.95), Severity.WARNING, "0.95 px", lambda s: _k(s, dcx=0.009)),
@@ -262,7 +306,9 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
             lambda s: s,
         ),
         (
-            lambda s: s.with_fields("/camera/depth/image_raw", width=320, height=240, step=1280, data_bytes=1280 * 240),
+            lambda s: s.with_fields(
+                "/camera/depth/image_raw", width=320, height=240, step=1280, data_bytes=1280 * 240
+            ),
             Severity.ERROR,
             "320x240",
             lambda s: s,
@@ -280,16 +326,41 @@ CASES: dict[str, list[tuple[Callable[[Scene], Scene], Severity, str, Callable[[S
                 angle_min=SCAN["angle_min"] + 5e-6,
             ),
         ),
-        (lambda s: s.with_fields("/lidar/scan", angle_min=-3.0), Severity.ERROR, "angle_min -3", lambda s: s),
-        (lambda s: s.with_fields("/lidar/scan", range_max=10.0), Severity.ERROR, "range_max 10", lambda s: s),
+        (
+            lambda s: s.with_fields("/lidar/scan", angle_min=-3.0),
+            Severity.ERROR,
+            "angle_min -3",
+            lambda s: s,
+        ),
+        (
+            lambda s: s.with_fields("/lidar/scan", range_max=10.0),
+            Severity.ERROR,
+            "range_max 10",
+            lambda s: s,
+        ),
     ],
     "SK809": [
-        (lambda s: _fields(s, ["x", "y", "z"]), Severity.WARNING, "without rgb", lambda s: _fields(s, ["rgb", "x", "y", "z"])),
+        (
+            lambda s: _fields(s, ["x", "y", "z"]),
+            Severity.WARNING,
+            "without rgb",
+            lambda s: _fields(s, ["rgb", "x", "y", "z"]),
+        ),
         (lambda s: _fields(s, ["x", "y", "rgb"]), Severity.ERROR, "no field z", lambda s: s),
     ],
     "SK810": [
-        (lambda s: _rate(s, 5.0), Severity.WARNING, "5 Hz", lambda s: _rate(s, 9.2)),  # half; 8 % off
-        (lambda s: _rate(s, 8.8), Severity.WARNING, "8.8 Hz", lambda s: _rate(s, 10.8)),  # 12 %; 8 %
+        (
+            lambda s: _rate(s, 5.0),
+            Severity.WARNING,
+            "5 Hz",
+            lambda s: _rate(s, 9.2),
+        ),  # half; 8 % off
+        (
+            lambda s: _rate(s, 8.8),
+            Severity.WARNING,
+            "8.8 Hz",
+            lambda s: _rate(s, 10.8),
+        ),  # 12 %; 8 %
     ],
 }
 
@@ -317,7 +388,9 @@ def test_trigger_and_near_miss(rule: str, index: int, run: Callable[..., list[Fi
 
 
 @pytest.mark.parametrize("fmt", ["ros1", "mcap"])
-def test_perturbations_fail_in_the_other_formats(fmt: str, run: Callable[..., list[Finding]]) -> None:
+def test_perturbations_fail_in_the_other_formats(
+    fmt: str, run: Callable[..., list[Finding]]
+) -> None:
     """A wrong K, a missing optical rotation, a wrong frame_id, a missing topic and half
     the rate, in a ROS 1 bag and an MCAP rosbag2 too."""
     scene = _rate(small(car_scene()), 5.0)
@@ -330,7 +403,9 @@ def test_perturbations_fail_in_the_other_formats(fmt: str, run: Callable[..., li
 
 # --------------------------------------------------------------------------- Gazebo Sim
 
-HARMONIC = ROOT / "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_robot.urdf.xacro"
+HARMONIC = (
+    ROOT / "examples/harmonic_robot/harmonic_robot_description/urdf/harmonic_robot.urdf.xacro"
+)
 
 
 @pytest.fixture(scope="module")
@@ -344,7 +419,9 @@ def harmonic() -> tuple[list[object], list[object]]:
     return [info], [robot_topics(info, load_bridge(info.robot, info.target))]
 
 
-def test_a_gazebo_sim_recording(tmp_path: Path, harmonic: tuple[list[object], list[object]]) -> None:
+def test_a_gazebo_sim_recording(
+    tmp_path: Path, harmonic: tuple[list[object], list[object]]
+) -> None:
     """gz's camera_info (cx = W/2, fx in float32), the rgbd camera's pitched mount, the
     gpu_lidar's cloud and the IMU pass; Classic's principal point (W+1)/2 is half a pixel
     off (a warning), a cloud without ring a warning, an IMU stamped in base_link an error."""
@@ -358,7 +435,9 @@ def test_a_gazebo_sim_recording(tmp_path: Path, harmonic: tuple[list[object], li
     k = list(scene.streams["/front_camera/camera_info"].fields["k"])
     k[2] = (1280 + 1) / 2
     wrong = scene.with_fields("/front_camera/camera_info", k=k)
-    wrong = wrong.with_fields("/lidar/points", fields=[("x", 0), ("y", 4), ("z", 8), ("intensity", 16)])
+    wrong = wrong.with_fields(
+        "/lidar/points", fields=[("x", 0), ("y", 4), ("z", 8), ("intensity", 16)]
+    )
     wrong = wrong.with_stream("/imu/imu", frame="base_link")
     found = check_recording(infos, topics, write_bag(wrong, tmp_path / "gz_bad", "mcap")).findings  # type: ignore[arg-type]
     got = sorted((f.rule, f.severity.label, f.sensor) for f in found)
@@ -367,7 +446,10 @@ def test_a_gazebo_sim_recording(tmp_path: Path, harmonic: tuple[list[object], li
         ("SK806", "warning", "front_camera"),
         ("SK809", "warning", "lidar"),
     ], [f.message for f in found]
-    assert "0.50 px" in of(found, "SK806")[0].message and "without ring" in of(found, "SK809")[0].message
+    assert (
+        "0.50 px" in of(found, "SK806")[0].message
+        and "without ring" in of(found, "SK809")[0].message
+    )
 
 
 # --------------------------------------------------------------------------- acceptance
@@ -380,7 +462,9 @@ def _sk502_explanation(tmp_path: Path) -> str:
     from sensorkit.lint.engine import Options, validate_file
 
     urdf = xacro.process_file(str(CAR)).toxml()
-    wrong = urdf.replace("<frame_name>camera_optical_frame</frame_name>", "<frame_name>camera_link</frame_name>")
+    wrong = urdf.replace(
+        "<frame_name>camera_optical_frame</frame_name>", "<frame_name>camera_link</frame_name>"
+    )
     assert wrong != urdf
     path = tmp_path / "car_body_frame.urdf"
     path.write_text(wrong)
@@ -418,7 +502,9 @@ def test_a_missing_optical_rotation_in_tf_says_what_sk502_says(
 # --------------------------------------------------------------------------- bounded
 
 
-def test_only_a_bounded_sample_is_read(tmp_path: Path, described: tuple[list[object], list[object]]) -> None:
+def test_only_a_bounded_sample_is_read(
+    tmp_path: Path, described: tuple[list[object], list[object]]
+) -> None:
     from sensorkit.recording.bag import Limits
     from sensorkit.recording.check import check_recording
 
@@ -434,7 +520,9 @@ def test_only_a_bounded_sample_is_read(tmp_path: Path, described: tuple[list[obj
     assert result.findings == []
 
 
-def test_progress_shows_only_on_a_terminal_after_two_seconds(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_progress_shows_only_on_a_terminal_after_two_seconds(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     import io
 
     from sensorkit.cli import recording as cmd

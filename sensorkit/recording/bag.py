@@ -162,9 +162,17 @@ class _Reader:
     def __init__(self, path: Path) -> None:
         highlevel, typesys = _rosbags()
         try:
-            store = typesys.get_typestore(typesys.Stores.LATEST)
-            self.reader = highlevel.AnyReader([path], default_typestore=store)
-            self.reader.open()
+            try:
+                self.reader = highlevel.AnyReader([path])
+                self.reader.open()
+            except highlevel.AnyReaderError as exc:
+                if "no type definitions" not in str(exc):
+                    raise
+                # An older rosbag2 holds no message definitions: read it with the newest
+                # distribution's types (made only then: building them costs 0.2 s).
+                store = typesys.get_typestore(typesys.Stores.LATEST)
+                self.reader = highlevel.AnyReader([path], default_typestore=store)
+                self.reader.open()
         except (OSError, UsageError):
             raise
         except Exception as exc:  # rosbags' errors, and what a broken file raises in it
