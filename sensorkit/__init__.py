@@ -10,13 +10,15 @@ contracts in pyproject.toml; tests/test_layers.py runs it). Bottom up:
 4. ``model``: links, joints, transforms, sensors, what Gazebo's conversion keeps;
 5. ``lint``: the rules and the engine that runs them, report formats, settings;
 6. ``describe``: what a robot publishes (camera_info, topics, frames, bridges);
-7. ``exporters``: config files for other tools (camera_info, ORB-SLAM3, Kalibr, ...);
-8. ``generate``: ``sensorkit new``, whole packages from a robot YAML;
-9. ``edit``: ``sensorkit add-*``, byte-preserving edits of a user's robot;
-10. ``fix``: ``validate --fix``, a fixer per rule;
-11. ``render``: ``render preview``, the only layer that imports pybullet and Pillow;
-12. ``lsp``: ``sensorkit lsp``, the language server (pygls): diagnostics, fixes, hover;
-13. ``cli``: the only layer that prints, exits or parses options; with ``lsp`` the only
+7. ``recording``: ``check-recording``, a bag checked against what ``describe`` predicts
+   (the only layer that imports rosbags, the extra ``sensorkit[recording]``);
+8. ``exporters``: config files for other tools (camera_info, ORB-SLAM3, Kalibr, ...);
+9. ``generate``: ``sensorkit new``, whole packages from a robot YAML;
+10. ``edit``: ``sensorkit add-*``, byte-preserving edits of a user's robot;
+11. ``fix``: ``validate --fix``, a fixer per rule;
+12. ``render``: ``render preview``, the only layer that imports pybullet and Pillow;
+13. ``lsp``: ``sensorkit lsp``, the language server (pygls): diagnostics, fixes, hover;
+14. ``cli``: the only layer that prints, exits or parses options; with ``lsp`` the only
     ones that speak a protocol.
 """
 

@@ -251,7 +251,7 @@ def test_every_printing_command_takes_color_and_quiet() -> None:
     commands = (
         ["validate"], ["rules"], ["intrinsics"], ["export"], ["topics"], ["render", "preview"],
         ["new"], ["add-camera"], ["add-depth-camera"], ["add-lidar"], ["add-stereo"], ["add-imu"],
-        ["frames"],
+        ["frames"], ["check-recording"],
     )  # fmt: skip
     app = sensorkit.cli.app
     registered = {c.name for c in app.registered_commands} | {g.name for g in app.registered_groups}

@@ -20,7 +20,7 @@ from conftest import ROOT
 ADD = ["add-camera", "add-depth-camera", "add-lidar", "add-stereo", "add-imu"]
 COMMANDS = [
     "validate", "rules", "new", "intrinsics", "export", "topics", "frames", "lsp", "render",
-    "render preview", *ADD,
+    "render preview", "check-recording", *ADD,
 ]  # fmt: skip
 # the argument part of each usage line
 USAGE = {
@@ -29,6 +29,7 @@ USAGE = {
     "new": "[OPTIONS] ROBOT.yaml",
     "lsp": "[OPTIONS]",
     "render": "[OPTIONS] COMMAND [ARGS]...",
+    "check-recording": "[OPTIONS] BAG FILE",
     **{
         c: "[OPTIONS] FILE"
         for c in ["intrinsics", "export", "topics", "frames", "render preview", *ADD]

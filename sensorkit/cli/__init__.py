@@ -70,7 +70,7 @@ def _register() -> None:
     for name in (
         (alone,)
         if alone
-        else ("validate", "edit", "new", "render", "export", "topics", "frames", "lsp")
+        else ("validate", "edit", "new", "render", "export", "topics", "frames", "recording", "lsp")
     ):
         try:
             module = importlib.import_module(f"sensorkit.cli.{name}")

@@ -28,6 +28,7 @@ from sensorkit.cli.options import (
 from sensorkit.cli.world_models import described_models, models_json
 
 if TYPE_CHECKING:
+    from sensorkit.describe.sensorinfo import RobotInfo
     from sensorkit.describe.topics import RobotTopics
 
 FORMATS = ("text", "json")
@@ -88,12 +89,36 @@ def topics(
     Exit status: 0, or 2 when it could not run.
     """
     from sensorkit.base.errors import UsageError
-    from sensorkit.describe.topics import load_bridge, robot_topics, topics_json, topics_text
-    from sensorkit.model.targets import is_gz
+    from sensorkit.describe.topics import topics_json, topics_text
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     file, infos = described_models(file, reading, target=target)
+    results = topic_lists(file, infos, bridge, launch, reading)
+    if len(results) == 1:
+        sys.stdout.write(topics_json(results[0]) if fmt == "json" else topics_text(results[0]))
+    elif fmt == "json":
+        sys.stdout.write(models_json(infos, [topics_json(r) for r in results]))
+    else:  # a world: one table per model
+        sys.stdout.write("\n".join(f"model {r.robot}:\n{topics_text(r)}" for r in results))
+    if not reading.quiet:
+        for result in results:
+            _say_notes_and_summary(result)
+
+
+def topic_lists(
+    file: Path,
+    infos: list[RobotInfo],
+    bridge: list[Path] | None,
+    launch: list[Path] | None,
+    reading: Reading,
+) -> list[RobotTopics]:
+    """The topics of each described model, with the bridge (``--bridge``, ``--launch``,
+    the settings file's) on Gazebo Sim; a note (not with -q) when they are given for
+    another target. ``check-recording`` predicts a recording's topics with it too."""
+    from sensorkit.describe.topics import load_bridge, robot_topics
+    from sensorkit.model.targets import is_gz
+
     files = [str(b) for b in bridge or ()]
     if (files or launch) and not any(is_gz(info.target) for info in infos):
         flag = "--bridge" if files else "--launch"
@@ -117,15 +142,7 @@ def topics(
                 tuple(reading.flags.package_path or ()),
             )
         results.append(robot_topics(info, config_read))
-    if len(results) == 1:
-        sys.stdout.write(topics_json(results[0]) if fmt == "json" else topics_text(results[0]))
-    elif fmt == "json":
-        sys.stdout.write(models_json(infos, [topics_json(r) for r in results]))
-    else:  # a world: one table per model
-        sys.stdout.write("\n".join(f"model {r.robot}:\n{topics_text(r)}" for r in results))
-    if not reading.quiet:
-        for result in results:
-            _say_notes_and_summary(result)
+    return results
 
 
 def _say_notes_and_summary(result: RobotTopics) -> None:

@@ -171,3 +171,27 @@ ROS_GZ_ENCODINGS: dict[str, str] = {
     "BGR_INT16": "bgr16",
     "R_FLOAT32": "32FC1",
 }
+
+# --------------------------------------------------------------------------- point clouds
+
+# The fields of the sensor_msgs/PointCloud2 a simulator publishes, by ROS generation and
+# sensor kind (``sensorkit check-recording`` compares a recorded cloud with them).
+# Gazebo Classic, ROS 2: gazebo_ros_camera's depth cloud x y z rgb, FLOAT32
+# (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:481-497);
+# gazebo_ros_ray_sensor's PointCloud2 x y z intensity, FLOAT32
+# (@ros2 d52f7c4:gazebo_ros/include/gazebo_ros/conversions/sensor_msgs.hpp:213-218).
+# Gazebo Sim through ros_gz_bridge (PointCloudPacked's fields as they are): depth_camera and
+# rgbd_camera "xyz" and rgb (gazebosim/gz-sensors@gz-sensors8 c8159af:
+# src/DepthCameraSensor.cc:446-451, src/RgbdCameraSensor.cc:397-400), gpu_lidar "xyz",
+# intensity and ring (src/GpuLidarSensor.cc:138-141); "xyz" becomes the fields x, y, z
+# (gazebosim/gz-msgs@gz-msgs10 292056c:core/include/gz/msgs/PointCloudPackedUtils.hh:98-103).
+# ROS 1 plugins are not listed: their clouds are not checked beyond x, y, z.
+POINT_CLOUD_FIELDS: dict[tuple[str, str], tuple[str, ...]] = {
+    ("ros2", "depth"): ("x", "y", "z", "rgb"),
+    ("ros2", "lidar"): ("x", "y", "z", "intensity"),
+    ("gz", "depth"): ("x", "y", "z", "rgb"),
+    ("gz", "rgbd"): ("x", "y", "z", "rgb"),
+    ("gz", "lidar"): ("x", "y", "z", "intensity", "ring"),
+}
+# Without these a cloud cannot be placed at all.
+POINT_CLOUD_XYZ: tuple[str, ...] = ("x", "y", "z")

@@ -258,7 +258,8 @@ def render(report: Report, fmt: str, *, color: bool = False, quiet: bool = False
 def rule_table(fixable: Callable[[str], str]) -> str:
     """The Markdown rule table for the README, generated from the registry; ``fixable``
     says how ``--fix`` fixes a rule (``sensorkit.fix.fixable``, from the layer above).
-    The SDF column says whether the rule runs on SDF models (``only``: on SDF alone)."""
+    The SDF column says whether the rule runs on SDF models (``only``: on SDF alone;
+    ``bag``: a rule of ``check-recording``, which reads a recording)."""
     lines = [
         "| id | severity | checks | existing tool | SDF | `--fix` |",
         "|---|---|---|---|---|---|",
@@ -267,7 +268,9 @@ def rule_table(fixable: Callable[[str], str]) -> str:
         info = RULES[rid]
         fix = fixable(rid)
         sdf = "yes" if "sdf" in info.formats else ""
-        if "urdf" not in info.formats:
+        if "recording" in info.formats:
+            sdf = "bag"  # check-recording's rules: they read a recording
+        elif "urdf" not in info.formats:
             sdf = "only"
         lines.append(
             f"| {rid} | {info.severity} | {info.title} | {info.existing} | {sdf} | {fix} |"

@@ -20,6 +20,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     placement,
     plugins,
     principal,
+    recording,
     ros1,
     sdf,
     sensors,
@@ -41,6 +42,8 @@ RULE_ORDER = (
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
+    "SK801", "SK802", "SK803", "SK804", "SK805",  # recording (check-recording)
+    "SK806", "SK807", "SK808", "SK809", "SK810",  # recording
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 

@@ -14,6 +14,7 @@ from sensorkit.knowledge.gazebo_sim import (
 )
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text, sdf_optical_fix
+from sensorkit.lint.rules.optical_text import ANGLE_TOL, not_optical
 from sensorkit.lint.rules.tf_frames import (
     gz_default_in_tf,
     gz_sensor_poses_published,
@@ -31,54 +32,9 @@ if TYPE_CHECKING:
     from sensorkit.model.sensors import Sensor
     from sensorkit.model.transforms import Mat
 
-ANGLE_TOL = math.radians(0.5)
 EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
 POSITION_TOL = 1e-3
 OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
-
-
-def _describe_axis(v: tuple[float, float, float]) -> str:
-    names = {
-        (1, 0, 0): "forward",
-        (-1, 0, 0): "backwards",
-        (0, 1, 0): "to the left",
-        (0, -1, 0): "to the right",
-        (0, 0, 1): "up",
-        (0, 0, -1): "down",
-    }
-    i = max(range(3), key=lambda k: abs(v[k]))  # the first largest, as numpy's argmax
-    key = [0, 0, 0]
-    key[i] = 1 if v[i] > 0 else -1
-    return names[(key[0], key[1], key[2])]
-
-
-def optical_consequence(R_render_frame: Mat, gz: bool = False) -> str:
-    """What consumers will see when optical data is stamped with this frame."""
-    R = R_render_frame
-    forward = (R[0][2], R[1][2], R[2][2])  # R @ (0, 0, 1)
-    right = (R[0][0], R[1][0], R[2][0])  # R @ (1, 0, 0)
-    fwd = _describe_axis(forward)
-    if tf.rotation_angle(R_render_frame) < ANGLE_TOL:
-        if gz:
-            # Gazebo Sim's own cloud is x-forward (gz-sensors#488), so with a body frame it
-            # lands right; what breaks is everything that reads image + camera_info.
-            return (
-                "the frame is x-forward (a body frame): images and camera_info say the camera "
-                "looks along its z, so depth_image_proc clouds and image_geometry rays point up "
-                "at the sky and RViz's Camera display overlays the wrong way (Gazebo's own "
-                "points topic, computed x-forward, happens to land right)"
-            )
-        return (
-            "the frame is x-forward (a body frame), so the camera's viewing axis (optical z) "
-            "lands on z: the point cloud points up at the sky and images are rotated in RViz"
-        )
-    if fwd == "forward":
-        return f"the viewing axis is right but image x points {_describe_axis(right)}: the image is rotated or mirrored"
-    if fwd == "up":
-        return "the viewing axis lands pointing up: the point cloud points at the sky"
-    if fwd == "down":
-        return "the viewing axis lands pointing down: the point cloud points into the floor"
-    return f"the viewing axis lands pointing {fwd}: the point cloud is turned away from where the camera looks"
 
 
 def _chain_joints(robot: Robot, top: str, frame: str) -> list[Joint]:
@@ -288,8 +244,8 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
                 "" if sdf else " after lumping"
             )
         message = (
-            f"camera {s.name!r} stamps its images with {frame!r} ({where}), which is not an optical frame "
-            f"(off by {math.degrees(err):.1f} degrees): {optical_consequence(R, is_gz(ctx.target))}"
+            f"camera {s.name!r} stamps its images with {frame!r} ({where}), "
+            f"{not_optical(R, is_gz(ctx.target))}"
         )
         # In SDF the rotation is the link's <pose>, not a joint's: no joint is blamed.
         joint, rpy, _why = (None, None, "") if sdf else blamed_optical_joint(ctx, s, fr, frame)
