@@ -224,3 +224,18 @@ def test_every_sk602_message_says_written_and_used(check: Check) -> None:
                            "<updateRate>15</updateRate>"), target="classic")
     found = [f for f in report.findings if f.rule == "SK602"]
     assert found and all("written " in f.message and f.consequence is not None for f in found)
+
+
+def test_p3d_and_planar_move_tags_are_known(check: Check) -> None:
+    # ROS 2 p3d without <body_name> "cannot proceed" (gazebo_ros_p3d.cpp:111-113): its ROS 1
+    # bodyName ignored is an error; planar_move subscribes cmd_vel (gazebo_ros_planar_move.cpp:
+    # 162-163), so a ROS 1 commandTopic cmd_vel changes nothing, another name does.
+    p3d = ('<gazebo><plugin name="gt" filename="libgazebo_ros_p3d.so"><bodyName>base_link</bodyName>'
+           "<topicName>odom</topicName><frameName>map</frameName></plugin></gazebo>")
+    found = _sk602(check(robot(extra=p3d), target="classic"))
+    assert found["bodyName"][0] == "error" and found["topicName"][0] == "info", found
+    assert found["frameName"][0] == "error", found  # stamped world, not map (gazebo_ros_p3d.cpp:66)
+    planar = ('<gazebo><plugin name="pm" filename="libgazebo_ros_planar_move.so"><commandTopic>cmd_vel</commandTopic>'
+              "<odometryTopic>base/odom</odometryTopic></plugin></gazebo>")
+    found = _sk602(check(robot(extra=planar), target="classic"))
+    assert found["commandTopic"][0] == "info" and found["odometryTopic"][0] == "error", found

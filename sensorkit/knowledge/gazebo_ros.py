@@ -209,6 +209,12 @@ ROS1_TOPIC_REMAPS: dict[str, dict[str, str]] = {
     "gazebo_ros_ray_sensor": {"topicName": "~/out"},
     "gazebo_ros_imu_sensor": {"topicName": "~/out"},
     "gazebo_ros_diff_drive": {"commandTopic": "cmd_vel", "odometryTopic": "odom"},
+    # ROS 2 planar move subscribes cmd_vel and publishes odom (ros2 d52f7c4:
+    # gazebo_plugins/src/gazebo_ros_planar_move.cpp:162-163, :173-174); p3d publishes its
+    # topic_name_ "odom" (gazebo_ros_p3d.cpp:63, :126-128), where ROS 1 took <topicName>
+    # (noetic-devel f9e1a46:gazebo_plugins/src/gazebo_ros_p3d.cpp:81-87).
+    "gazebo_ros_planar_move": {"commandTopic": "cmd_vel", "odometryTopic": "odom"},
+    "gazebo_ros_p3d": {"topicName": "odom"},
 }
 # Camera topics are relative to the camera name in both generations (see above).
 ROS1_CAMERA_RELATIVE = frozenset({"gazebo_ros_camera"})
@@ -365,6 +371,9 @@ ROS2_PLAIN_DEFAULTS: dict[str, dict[str, str]] = {
         "updateRate": "20",
         "publishOdomTF": "true",
     },
+    # ROS 2 p3d: no <body_name>, "Missing <body_name>, cannot proceed" and no publisher
+    # (gazebo_ros_p3d.cpp:111-113); <frame_name> defaults to world (:66, :170-174).
+    "gazebo_ros_p3d": {"bodyName": "(none)", "frameName": "world"},
     "gazebo_ros_imu_sensor": {
         "initialOrientationAsReference": "false",
         "gaussianNoise": "0",
