@@ -132,3 +132,17 @@ def test_sk303_a_lidar_moved_by_lumping_is_an_error(check) -> None:
     lid = lidar_sensor(params="<output_type>sensor_msgs/LaserScan</output_type>")
     found = _of(check(robot(lidar=lid), target="classic"), "SK303")
     assert [f.severity for f in found] == [Severity.ERROR]
+
+
+# --- SK608: an ignored gz frame tag, by the frame stamped instead ---------------------------
+# Harmonic's gz-sensors reads gz_frame_id only (gazebosim/gz-sensors@gz-sensors8 c8159af:
+# src/Sensor.cc:184-195); without it the frame is the scoped sensor name.
+
+
+def test_sk608_ignored_tag_is_an_error_when_another_frame_is_stamped(check) -> None:
+    only = gz_robot(lidar_tags="<topic>scan</topic><ignition_frame_id>laser_link</ignition_frame_id>")
+    found = _of(check(only, target="harmonic"), "SK608")
+    assert [f.severity for f in found] == [Severity.ERROR]
+    assert "written laser_link; the simulator uses" in found[0].message
+    both = gz_robot(lidar_tags="<topic>scan</topic><ignition_frame_id>laser_link</ignition_frame_id><gz_frame_id>laser_link</gz_frame_id>")
+    assert [f.severity for f in _of(check(both, target="harmonic"), "SK608")] == [Severity.INFO]

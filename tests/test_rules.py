@@ -218,7 +218,7 @@ TRIGGER_SEVERITY: dict[str, tuple[Severity, ...]] = {
     "SK605": (Severity.ERROR, Severity.ERROR,),
     "SK606": (Severity.WARNING, Severity.ERROR,),
     "SK607": (Severity.WARNING, Severity.INFO,),
-    "SK608": (Severity.WARNING, Severity.WARNING,),
+    "SK608": (Severity.INFO, Severity.WARNING,),  # the ignored tag names the frame read (issue 35); deprecated
     "SK613": (Severity.ERROR,),
     "SK610": (Severity.INFO,),
     "SK611": (Severity.WARNING,),

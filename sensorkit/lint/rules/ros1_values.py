@@ -76,7 +76,10 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
         )
     if tag in ROS1_SENSOR_RATE_TAGS and p.sensor is not None:
         return _rate(value, ros2)
-    if role is Role.FRAME and ros2:
+    if tag == "frameName" and p.sensor is not None and ros2:
+        # A sensor plugin only stamps its frame; a drive's robotBaseFrame/odometryFrame are
+        # published into TF as parent and child, where another name breaks the tree however
+        # close the links sit, so only the sensor's frame is compared as a place.
         c = frame_consequence(ctx.robot, p.sensor, value, ros2)
         return c, coincide_note(ctx.robot, p.sensor, value, ros2) if c.equal else ""
     return _compare(role, value, ros2), ""
