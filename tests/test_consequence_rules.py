@@ -146,3 +146,12 @@ def test_sk608_ignored_tag_is_an_error_when_another_frame_is_stamped(check) -> N
     assert "written laser_link; the simulator uses" in found[0].message
     both = gz_robot(lidar_tags="<topic>scan</topic><ignition_frame_id>laser_link</ignition_frame_id><gz_frame_id>laser_link</gz_frame_id>")
     assert [f.severity for f in _of(check(both, target="harmonic"), "SK608")] == [Severity.INFO]
+
+
+def test_sk608_two_tags_naming_different_frames_is_a_warning(check) -> None:
+    # gz_frame_id read, ignition_frame_id ignored, each naming another frame: which one was
+    # meant is not known, so no error is promised.
+    two = gz_robot(lidar_tags="<topic>scan</topic><ignition_frame_id>base_link</ignition_frame_id><gz_frame_id>laser_link</gz_frame_id>")
+    found = _of(check(two, target="harmonic"), "SK608")
+    assert [f.severity for f in found] == [Severity.WARNING]
+    assert "written base_link; the simulator uses laser_link" in found[0].message

@@ -26,8 +26,9 @@ GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
     "error/warning/info",
     "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `frame_id` before jetty, "
     "`optical_frame_id` on jetty, a tag another one overrides) or has deprecated (`gz_frame_id` on jetty). "
-    "Severity by consequence: the frame written against the one stamped (an error when they differ, info "
-    "when they are the same frame); a deprecated tag still read is a warning",
+    "Severity by consequence: the frame written against the one stamped (an error when the default "
+    "is stamped instead, info when it is the same frame; a warning when another tag names the frame "
+    "read, since which was meant is unknown); a deprecated tag still read is a warning",
     formats=("urdf", "sdf"),
 )
 def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
@@ -106,7 +107,12 @@ def _stamped(ctx: Context, s: Sensor, written: str) -> Consequence:
     used = fr.camera_frame if s.is_camera else fr.published
     if used is None:
         return Consequence(Role.FRAME, written, UNKNOWN)
-    return frame_consequence(ctx.robot, s, written, used)
+    c = frame_consequence(ctx.robot, s, written, used)
+    if not c.equal and not (fr.is_default and fr.image_frame is None):
+        # The frame read is written too, in another tag: which of the two the author meant
+        # sensorkit cannot tell, so it promises no broken data (a warning, as SK410 does).
+        return Consequence(Role.FLAG, written, used)
+    return c
 
 
 @rule(
