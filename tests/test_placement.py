@@ -173,8 +173,18 @@ def test_camera_settings_under_sensor_equal_to_the_default_change_nothing(check:
     # a child left out takes its default too
     part = cam("", "<image><width>320</width></image>", "")
     assert [f.severity for f in _of(check(part, target="classic"), "SK410")] == [Severity.INFO]
-    off = cam("<horizontal_fov>1.048</horizontal_fov>", "<image><width>321</width></image>",
+    off = cam("<horizontal_fov>1.06</horizontal_fov>", "<image><width>321</width></image>",
               "<clip><near>0.1</near><far>100.5</far></clip>")
     found = _of(check(off, target="classic"), "SK410")
     assert [f.severity for f in found] == [Severity.ERROR] * 3
-    assert any("written 1.048; the simulator uses its default 1.047 rad" in f.message for f in found)
+    assert any("written 1.06; the simulator uses its default 1.047 rad" in f.message for f in found)
+
+
+def test_a_lost_field_of_view_within_a_pixel_of_the_default_changes_nothing(check: Callable) -> None:
+    # pi/3 written where 1.047 applies: the image edge moves 0.07 px at 640 wide (SK409's
+    # 1 px floor); 1.06 moves it by several pixels.
+    def cam(fov: str) -> str:
+        return robot(camera=camera_sensor(camera=f"<horizontal_fov>{fov}</horizontal_fov><camera>{IMAGE}{CLIP}</camera>"))
+
+    assert [f.severity for f in _of(check(cam("1.0471975511965976"), target="classic"), "SK410")] == [Severity.INFO]
+    assert [f.severity for f in _of(check(cam("1.06"), target="classic"), "SK410")] == [Severity.ERROR]

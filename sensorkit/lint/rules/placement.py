@@ -13,6 +13,7 @@ cannot tell.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 
 from lxml import etree
@@ -140,6 +141,22 @@ def _same(written: str | dict[str, str], used: object, *, default: bool = True) 
     return same_value(written, used)
 
 
+def _same_fov(written: str, default: float, s: Sensor) -> bool:
+    """Whether a field of view lost to the default draws the same image: the image edge moves
+    by at most SK409's one pixel (EDGE_PX) at the width the camera runs with (1.0471976,
+    pi/3, is the default 1.047 to 0.07 px at 640 wide)."""
+    from sensorkit.lint.rules.focal import EDGE_PX
+    from sensorkit.model.parse import parse_float
+
+    h, _ = parse_float(written)
+    if h is None or not 0 < h < math.pi:
+        return False
+    cam = s.camera
+    width = cam.width if cam is not None and cam.width else 320
+    fx_written, fx_used = 1 / math.tan(h / 2), 1 / math.tan(default / 2)
+    return width / 2 * abs(fx_written - fx_used) / fx_used <= EDGE_PX
+
+
 def _role(name: str) -> Role:
     return SETTING_ROLE.get(name, Role.GEOMETRY)
 
@@ -188,6 +205,8 @@ def _under_sensor(
         if default is not None:
             used_text = f"its default {CAMERA_DEFAULTS.get(name, _shown(default))}"
             equal = _same(written, default)
+            if name == "horizontal_fov" and isinstance(written, str) and isinstance(default, float):
+                equal = _same_fov(written, default, s)
         elif name == "noise":
             # <noise type> defaults to none (gazebosim/sdformat@sdf9 9ee2d4f:sdf/1.7/noise.sdf:4)
             used_text, equal = "no noise", _zero_noise(el)
