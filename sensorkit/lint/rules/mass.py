@@ -137,19 +137,19 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
             detail += f"; sensors: {_few(sensors)}"
         bodies = [n for n in lost if _has_body(robot.link_map[n])]
         if sensors:
-            c = Consequence(Role.OUTPUT, f"sensors {_few(sensors)}", "none of them")
+            cons = Consequence(Role.OUTPUT, f"sensors {_few(sensors)}", "none of them")
         elif bodies:
-            c = Consequence(Role.GEOMETRY, f"the bodies of {_few(bodies)}", "none of them")
+            cons = Consequence(Role.GEOMETRY, f"the bodies of {_few(bodies)}", "none of them")
         else:
             # Nothing Gazebo would simulate: no sensor, visual or collision. Such a link only
             # names a frame for TF (robot_state_publisher places it from the URDF), e.g. PR2's
             # l_gripper_l_finger_tip_frame, "the same as the l_finger_tip_link" (pr2_common
             # pr2_description/urdf/gripper_v0/gripper.urdf.xacro:349-352).
-            c = Consequence(Role.GEOMETRY, "no body or sensor", "no body or sensor")
+            cons = Consequence(Role.GEOMETRY, "no body or sensor", "no body or sensor")
             detail += "; they hold no sensor, visual or collision: only TF knows them"
         yield ctx.judged(
             "SK301",
-            c,
+            cons,
             f"{where}: {loss} ({detail})",
             link.source,
             link=name,
