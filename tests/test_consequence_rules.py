@@ -155,3 +155,23 @@ def test_sk608_two_tags_naming_different_frames_is_a_warning(check) -> None:
     found = _of(check(two, target="harmonic"), "SK608")
     assert [f.severity for f in found] == [Severity.WARNING]
     assert "written base_link; the simulator uses laser_link" in found[0].message
+
+
+# --- the declared-severity check (conftest) -------------------------------------------------
+
+
+def test_a_severity_its_rule_does_not_declare_is_caught() -> None:
+    # conftest wraps Context.finding for the whole suite: SK503 declares "error" only, so a
+    # warning from it (the mutation "SK503 reported as a warning") is recorded and fails the
+    # test that made it; a declared one is not.
+    import conftest
+
+    from sensorkit.base.findings import SourceRef
+    from sensorkit.lint.rules.base import Context
+
+    before = len(conftest._UNDECLARED)
+    Context.finding(object(), "SK503", Severity.ERROR, "m", SourceRef(None, None))  # type: ignore[arg-type]
+    assert len(conftest._UNDECLARED) == before
+    Context.finding(object(), "SK503", Severity.WARNING, "m", SourceRef(None, None))  # type: ignore[arg-type]
+    assert len(conftest._UNDECLARED) == before + 1 and "SK503 made warning" in conftest._UNDECLARED[-1]
+    del conftest._UNDECLARED[before:]
