@@ -3,11 +3,13 @@ from __future__ import annotations
 import shutil
 import subprocess
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
+from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.engine import FileReport, Options, validate_file
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -38,6 +40,36 @@ def own_cache_home(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest
     folder = tmp_path_factory.mktemp("cache-home")
     monkeypatch.setenv("XDG_CACHE_HOME", str(folder))
     return folder
+
+
+# Every finding a rule makes while the suite runs, held to the severities its rule declares
+# (RuleInfo.severity, e.g. "error/warning/info"; issue 35): a severity a rule does not
+# declare fails the test that produced it.
+_UNDECLARED: list[str] = []
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _declared_severities() -> Iterator[None]:
+    from sensorkit.lint.rules.base import RULES, Context
+
+    original = Context.finding
+
+    def finding(self: Context, rule_id: str, severity: Severity, *args: Any, **kw: Any) -> Finding:
+        info = RULES.get(rule_id)
+        if info is not None and severity.label not in info.severity.split("/"):
+            _UNDECLARED.append(f"{rule_id} made {severity.label}, declares {info.severity}: {args[0] if args else ''}")
+        return original(self, rule_id, severity, *args, **kw)
+
+    Context.finding = finding  # type: ignore[method-assign]
+    yield
+    Context.finding = original  # type: ignore[method-assign]
+
+
+@pytest.fixture(autouse=True)
+def severity_is_declared() -> Iterator[None]:
+    start = len(_UNDECLARED)
+    yield
+    assert not _UNDECLARED[start:], "a finding's severity its rule does not declare: " + "; ".join(_UNDECLARED[start:])
 
 
 @pytest.fixture

@@ -26,7 +26,9 @@ whose launch files have not landed is ``pending: true`` like a robot still to be
 A true label also says its ``impact``: ``defect`` when what the finding names changes what
 the robot does (a sensor that publishes nothing, in the wrong frame, with a wrong
 calibration), ``minor`` when it is true but harmless. An error is a promise that the
-sensor will not work as written, so an error labelled ``minor`` fails the tests.
+sensor will not work as written, so an error labelled ``minor`` fails the tests. A
+``defect`` label also says its ``consequence``: one line naming what ROS receives and what
+it should receive (issue 35).
 
 A ``defect`` label may also say its ``consequence``: one line naming what ROS receives and
 what it should receive (issue 35), e.g. "camera_info P[0][3] = -38.8 on a monocular camera;

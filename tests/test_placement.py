@@ -79,16 +79,30 @@ def test_near_misses(check: Callable) -> None:
     assert not _of(check(robot(lidar=lidar_sensor()), target="classic"), "SK410")
 
 
-def test_a_copy_its_element_also_sets_is_a_warning(check: Callable) -> None:
+def test_a_copy_its_element_also_sets_is_info_when_equal_and_a_warning_when_not(check: Callable) -> None:
+    # Issue 35: the copy <camera> reads holds the same values, so nothing changes (info). Two
+    # different values: which was meant sensorkit cannot tell, so a warning, not an error.
     cam = f"{IMAGE}<camera>{FOV}{IMAGE}{CLIP}</camera>"
     found = _of(check(robot(camera=camera_sensor(camera=cam)), target="classic"), "SK410")
+    assert [f.severity for f in found] == [Severity.INFO]
+    other = IMAGE.replace("640", "1280")
+    cam = f"{other}<camera>{FOV}{IMAGE}{CLIP}</camera>"
+    found = _of(check(robot(camera=camera_sensor(camera=cam)), target="classic"), "SK410")
     assert [f.severity for f in found] == [Severity.WARNING]
+    assert "width 1280" in found[0].message and "width 640" in found[0].message
 
 
 def test_sensor_level_tags_inside_camera_and_ray(check: Callable) -> None:
+    # Issue 35: a plugin never loaded publishes nothing (OUTPUT: error); an update rate lost
+    # to sdformat's default 0 changes the rate only (RATE: a warning, was an error); an
+    # update rate of 0 written there is the default anyway (info).
     cam = f'<camera>{FOV}{IMAGE}{CLIP}<update_rate>30</update_rate><plugin name="p" filename="libgazebo_ros_camera.so"/></camera>'
     found = _of(check(robot(camera=camera_sensor(camera=cam, extra="", plugin="")), target="classic"), "SK410")
-    assert sorted(f.severity for f in found) == [Severity.ERROR, Severity.ERROR]
+    assert sorted(f.severity for f in found) == [Severity.WARNING, Severity.ERROR]
+    assert any("written 30; the simulator uses 0" in f.message for f in found)
+    cam = f"<camera>{FOV}{IMAGE}{CLIP}<update_rate>0</update_rate></camera>"
+    found = _of(check(robot(camera=camera_sensor(camera=cam, extra="")), target="classic"), "SK410")
+    assert [f.severity for f in found] == [Severity.INFO]
     # <range> written under <sensor> of a ray sensor
     lid = lidar_sensor().replace("<update_rate>10</update_rate>", "<update_rate>10</update_rate><range><min>0.1</min><max>30</max></range>")
     found = _of(check(robot(lidar=lid), target="classic"), "SK410")
@@ -129,11 +143,48 @@ def test_principal_point_ros2(check: Callable) -> None:
 
 
 def test_noise_under_sensor(check: Callable) -> None:
-    # <noise> after </ray>: lost; a zero noise changes nothing (warning), a real one does (error)
+    # <noise> after </ray>: lost; a zero noise is the default none anyway (info), a real one
+    # changes the noise only (a warning; issue 35: noise is tuning, not wrong data)
     def lid(noise: str) -> str:
         return robot(lidar=lidar_sensor().replace("</ray>", f"</ray>{noise}"))
 
     zero = _of(check(lid("<noise><type>gaussian</type><mean>0.0</mean><stddev>0.0</stddev></noise>"), target="classic"), "SK410")
-    assert [f.severity for f in zero] == [Severity.WARNING]
+    assert [f.severity for f in zero] == [Severity.INFO]
     real = _of(check(lid('<noise type="gaussian"><mean>0</mean><stddev>0.01</stddev></noise>'), target="classic"), "SK410")
-    assert [f.severity for f in real] == [Severity.ERROR]
+    assert [f.severity for f in real] == [Severity.WARNING]
+
+
+def test_camera_settings_under_sensor_equal_to_the_default_change_nothing(check: Callable) -> None:
+    # Issue 35: a setting sdformat never reads whose value is the default that applies anyway
+    # (sdf/1.7/camera.sdf:12 horizontal_fov 1.047, :18/:21 320x240, :24 R8G8B8, :35/:39 clip
+    # 0.1/100) is info; one value off the default is the error of a camera that does not
+    # see as written.
+    def cam(fov: str, image: str, clip: str) -> str:
+        return robot(camera=camera_sensor(camera=f"{fov}{image}{clip}"))  # no <camera> at all
+
+    same = cam(
+        "<horizontal_fov>1.047</horizontal_fov>",
+        "<image><width>320</width><height>240</height><format>R8G8B8</format></image>",
+        "<clip><near>0.1</near><far>100</far></clip>",
+    )
+    found = _of(check(same, target="classic"), "SK410")
+    assert [f.severity for f in found] == [Severity.INFO] * 3, [f.message for f in found]
+    assert all("nothing changes" in f.message for f in found)
+    # a child left out takes its default too
+    part = cam("", "<image><width>320</width></image>", "")
+    assert [f.severity for f in _of(check(part, target="classic"), "SK410")] == [Severity.INFO]
+    off = cam("<horizontal_fov>1.06</horizontal_fov>", "<image><width>321</width></image>",
+              "<clip><near>0.1</near><far>100.5</far></clip>")
+    found = _of(check(off, target="classic"), "SK410")
+    assert [f.severity for f in found] == [Severity.ERROR] * 3
+    assert any("written 1.06; the simulator uses its default 1.047 rad" in f.message for f in found)
+
+
+def test_a_lost_field_of_view_within_a_pixel_of_the_default_changes_nothing(check: Callable) -> None:
+    # pi/3 written where 1.047 applies: the image edge moves 0.07 px at 640 wide (SK409's
+    # 1 px floor); 1.06 moves it by several pixels.
+    def cam(fov: str) -> str:
+        return robot(camera=camera_sensor(camera=f"<horizontal_fov>{fov}</horizontal_fov><camera>{IMAGE}{CLIP}</camera>"))
+
+    assert [f.severity for f in _of(check(cam("1.0471975511965976"), target="classic"), "SK410")] == [Severity.INFO]
+    assert [f.severity for f in _of(check(cam("1.06"), target="classic"), "SK410")] == [Severity.ERROR]

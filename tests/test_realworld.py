@@ -57,6 +57,9 @@ def test_every_finding_is_labelled(robot_id: str) -> None:
         assert len(str(lab.get("why", ""))) >= 15, f"say why {key} is {lab.get('verdict')}"
         if lab["verdict"] is True:
             assert lab.get("impact") in IMPACTS, f"say whether {key} is a defect or minor: {lab}"
+        if lab.get("impact") == "defect":
+            # Issue 35: a defect names what ROS receives and what it should receive.
+            assert len(str(lab.get("consequence") or "")) >= 15, f"say the consequence of defect {key}: {lab}"
     for key, lab in labelled.items():
         if "gone" in lab:
             assert len(str(lab["gone"])) >= 15, f"say why {key} went"

@@ -161,3 +161,81 @@ def test_remap_that_changes_nothing_is_info(check: Check) -> None:
     other = check(robot(extra=base.format('<remap from="cmd_vel" to="/robot/cmd_vel"/>')), target="classic")
     assert [f.severity.label for f in same.findings if f.rule == "SK602"] == ["info"]
     assert [f.severity.label for f in other.findings if f.rule == "SK602"] == ["error"]
+
+
+# --- issue 35: a frame tag is judged as a frame; tags no ROS 1 plugin read ----------------
+# An IMU's message is filled from the sensor and only stamped with the frame
+# (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_imu_sensor.cpp:102
+# frame_id, :135-140 orientation, angular_velocity, linear_acceleration), so a frame that
+# differs from the written one by a translation only carries the same data.
+
+
+def _imu_on_lumped_link(rpy: str) -> str:
+    imu = (
+        '<link name="imu_link"/><joint name="imu_joint" type="fixed"><parent link="base_link"/>'
+        f'<child link="imu_link"/><origin xyz="0.1 0.02 0.05" rpy="{rpy}"/></joint>'
+        '<gazebo reference="imu_link"><sensor name="imu" type="imu"><update_rate>100</update_rate>'
+        '<plugin name="imu_plugin" filename="libgazebo_ros_imu_sensor.so"><frameName>imu_link</frameName>'
+        "</plugin></sensor></gazebo>"
+    )
+    return robot(extra=imu)
+
+
+def test_imu_frame_tag_translated_only_changes_nothing(check: Check) -> None:
+    # imu_link lumps into base_footprint (massless, fixed): ROS 2 stamps base_footprint
+    # (gazebo_ros/src/utils.cpp:52-61), which sits elsewhere but is turned alike.
+    sev, msg = _sk602(check(_imu_on_lumped_link("0 0 0"), target="classic"))["frameName"]
+    assert sev == "info", msg
+    assert "written imu_link; the simulator uses base_footprint" in msg
+
+
+def test_imu_frame_tag_turned_is_an_error(check: Check) -> None:
+    sev, msg = _sk602(check(_imu_on_lumped_link("0 0 0.02"), target="classic"))["frameName"]
+    assert sev == "error", msg  # 1.1 degrees: over SK5xx's 0.5 degree
+    assert _sk602(check(_imu_on_lumped_link("0 0 0.008"), target="classic"))["frameName"][0] == "info"  # 0.46 degree
+
+
+def test_camera_frame_tag_must_coincide_in_place_too(check: Check) -> None:
+    # A camera's data depends on where its frame sits: the frame written and the one used
+    # must coincide within 1 mm and 0.5 degree.
+    def cam(xyz: str) -> str:
+        extra = (
+            '<link name="camera_lens"/><joint name="lens_joint" type="fixed"><parent link="camera_optical_frame"/>'
+            f'<child link="camera_lens"/><origin xyz="{xyz}" rpy="0 0 0"/></joint>'
+        )
+        params = "<frame_name>camera_optical_frame</frame_name><frameName>camera_lens</frameName>"
+        return robot(camera=camera_sensor(params=params), extra=extra)
+
+    assert _sk602(check(cam("0 0 0.0009"), target="classic"))["frameName"][0] == "info"
+    assert _sk602(check(cam("0 0 0.0011"), target="classic"))["frameName"][0] == "error"
+
+
+def test_baseline_is_read_by_no_ros1_plugin(check: Check) -> None:
+    # noetic-devel f9e1a46: only hackBaseline is read (gazebo_ros_camera_utils.cpp:191-197,
+    # gazebo_ros_multicamera.cpp:92-93); `git grep '"baseline"'` finds no reader.
+    found = _sk602(check(_camera("<frame_name>camera_optical_frame</frame_name><baseline>0.2</baseline>"), target="classic"))
+    assert found["baseline"][0] == "info", found
+    found = _sk602(check(_camera("<frame_name>camera_optical_frame</frame_name><hackBaseline>0.2</hackBaseline>"), target="classic"))
+    assert found["hackBaseline"][0] == "error", found
+
+
+def test_every_sk602_message_says_written_and_used(check: Check) -> None:
+    report = check(_camera("<frame_name>camera_optical_frame</frame_name><cameraName>cam</cameraName>"
+                           "<updateRate>15</updateRate>"), target="classic")
+    found = [f for f in report.findings if f.rule == "SK602"]
+    assert found and all("written " in f.message and f.consequence is not None for f in found)
+
+
+def test_p3d_and_planar_move_tags_are_known(check: Check) -> None:
+    # ROS 2 p3d without <body_name> "cannot proceed" (gazebo_ros_p3d.cpp:111-113): its ROS 1
+    # bodyName ignored is an error; planar_move subscribes cmd_vel (gazebo_ros_planar_move.cpp:
+    # 162-163), so a ROS 1 commandTopic cmd_vel changes nothing, another name does.
+    p3d = ('<gazebo><plugin name="gt" filename="libgazebo_ros_p3d.so"><bodyName>base_link</bodyName>'
+           "<topicName>odom</topicName><frameName>map</frameName></plugin></gazebo>")
+    found = _sk602(check(robot(extra=p3d), target="classic"))
+    assert found["bodyName"][0] == "error" and found["topicName"][0] == "info", found
+    assert found["frameName"][0] == "error", found  # stamped world, not map (gazebo_ros_p3d.cpp:66)
+    planar = ('<gazebo><plugin name="pm" filename="libgazebo_ros_planar_move.so"><commandTopic>cmd_vel</commandTopic>'
+              "<odometryTopic>base/odom</odometryTopic></plugin></gazebo>")
+    found = _sk602(check(robot(extra=planar), target="classic"))
+    assert found["commandTopic"][0] == "info" and found["odometryTopic"][0] == "error", found

@@ -174,11 +174,72 @@ def test_clean_robots_are_clean(check) -> None:
         assert [f for f in report.findings if f.severity >= Severity.WARNING] == [], report.findings
 
 
+# The severity each trigger of CASES must have, in CASES' order per rule (issue 35: every
+# rule's trigger asserts its severity; a rule made an error a warning, or the reverse, fails).
+TRIGGER_SEVERITY: dict[str, tuple[Severity, ...]] = {
+    "SK410": (Severity.ERROR,),
+    "SK411": (Severity.ERROR,),
+    "SK104": (Severity.WARNING,),
+    "SK105": (Severity.WARNING, Severity.WARNING, Severity.WARNING,),
+    "SK201": (Severity.ERROR,),
+    "SK202": (Severity.ERROR,),
+    "SK203": (Severity.ERROR,),
+    "SK204": (Severity.ERROR, Severity.ERROR, Severity.ERROR,),
+    "SK205": (Severity.ERROR, Severity.ERROR, Severity.ERROR,),
+    "SK206": (Severity.ERROR, Severity.ERROR, Severity.ERROR,),
+    "SK207": (Severity.ERROR,),
+    "SK301": (Severity.ERROR, Severity.INFO,),
+    "SK302": (Severity.WARNING, Severity.WARNING,),
+    "SK303": (Severity.ERROR,),
+    "SK304": (Severity.INFO,),
+    "SK401": (Severity.WARNING,),
+    "SK402": (Severity.WARNING,),
+    "SK403": (Severity.ERROR, Severity.WARNING,),
+    "SK404": (Severity.ERROR,),
+    "SK405": (Severity.ERROR, Severity.WARNING, Severity.WARNING, Severity.WARNING, Severity.WARNING, Severity.WARNING,),
+    "SK406": (Severity.WARNING, Severity.ERROR, Severity.ERROR, Severity.WARNING, Severity.WARNING,),
+    "SK407": (Severity.WARNING,),
+    "SK408": (Severity.ERROR, Severity.ERROR,),
+    "SK409": (Severity.ERROR,),
+    "SK412": (Severity.WARNING,),
+    "SK501": (Severity.ERROR,),
+    "SK502": (Severity.ERROR, Severity.ERROR,),
+    "SK503": (Severity.ERROR,),
+    "SK504": (Severity.ERROR,),
+    "SK505": (Severity.INFO,),
+    "SK506": (Severity.INFO,),
+    "SK507": (Severity.WARNING,),
+    "SK508": (Severity.WARNING,),
+    "SK509": (Severity.WARNING,),
+    "SK601": (Severity.ERROR, Severity.ERROR, Severity.ERROR, Severity.INFO,),
+    "SK602": (Severity.ERROR, Severity.INFO,),
+    "SK603": (Severity.ERROR,),
+    "SK604": (Severity.ERROR,),
+    "SK605": (Severity.ERROR, Severity.ERROR,),
+    "SK606": (Severity.WARNING, Severity.ERROR,),
+    "SK607": (Severity.WARNING, Severity.INFO,),
+    "SK608": (Severity.INFO, Severity.WARNING,),  # the ignored tag names the frame read (issue 35); deprecated
+    "SK613": (Severity.ERROR,),
+    "SK610": (Severity.INFO,),
+    "SK611": (Severity.WARNING,),
+    "SK609": (Severity.WARNING, Severity.WARNING,),
+}
+
+
+def test_every_trigger_has_its_severity() -> None:
+    counts: dict[str, int] = {}
+    for rule, *_ in CASES:
+        counts[rule] = counts.get(rule, 0) + 1
+    assert counts == {r: len(v) for r, v in TRIGGER_SEVERITY.items()}
+
+
 @pytest.mark.parametrize(("rule", "bad", "good", "target", "suffix"), CASES, ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES)])
 def test_rule_triggers_and_near_miss_does_not(check, rule: str, bad: str, good: str, target: str, suffix: str) -> None:
     hit = check(bad, target=target, suffix=suffix)
     assert rule in rules_of(hit), [(f.rule, f.message) for f in hit.findings]
     finding = next(f for f in hit.findings if f.rule == rule)
+    nth = sum(1 for c in CASES[: CASES.index((rule, bad, good, target, suffix))] if c[0] == rule)
+    assert finding.severity is TRIGGER_SEVERITY[rule][nth], (finding.severity, finding.message)
     assert finding.fix, f"{rule} has no fix"
     assert finding.file and finding.line, f"{rule} has no location"
     miss = check(good, target=target, suffix=suffix)

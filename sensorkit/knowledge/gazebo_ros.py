@@ -8,6 +8,8 @@ parameters and frames live in :mod:`sensorkit.knowledge.plugins`.
 
 from __future__ import annotations
 
+from sensorkit.base.consequence import Role
+
 # Gazebo Classic itself, lidar <range><min> 0 (the SDF default, gazebosim/sdformat@sdf12
 # b9417e5:sdf/1.6/ray.sdf:50). A CPU `ray` sensor uses min only as each ray's start point
 # (`start = (axis * minRange) + offset.Pos()`) and measures max - min from there
@@ -207,6 +209,12 @@ ROS1_TOPIC_REMAPS: dict[str, dict[str, str]] = {
     "gazebo_ros_ray_sensor": {"topicName": "~/out"},
     "gazebo_ros_imu_sensor": {"topicName": "~/out"},
     "gazebo_ros_diff_drive": {"commandTopic": "cmd_vel", "odometryTopic": "odom"},
+    # ROS 2 planar move subscribes cmd_vel and publishes odom (ros2 d52f7c4:
+    # gazebo_plugins/src/gazebo_ros_planar_move.cpp:162-163, :173-174); p3d publishes its
+    # topic_name_ "odom" (gazebo_ros_p3d.cpp:63, :126-128), where ROS 1 took <topicName>
+    # (noetic-devel f9e1a46:gazebo_plugins/src/gazebo_ros_p3d.cpp:81-87).
+    "gazebo_ros_planar_move": {"commandTopic": "cmd_vel", "odometryTopic": "odom"},
+    "gazebo_ros_p3d": {"topicName": "odom"},
 }
 # Camera topics are relative to the camera name in both generations (see above).
 ROS1_CAMERA_RELATIVE = frozenset({"gazebo_ros_camera"})
@@ -234,49 +242,37 @@ CLASSIC_FOCAL_LENGTH_PARAM = {"ros2": "focal_length", "ros1": "focalLength"}
 # (gazebosim/sdformat@sdf9:sdf/1.7/camera.sdf:145).
 CLASSIC_NO_INTRINSICS_TYPES = frozenset({"wideanglecamera", "wide_angle_camera"})
 
-# What an ignored ROS 1 tag costs under ROS 2 (SK602's severity, issue 23): by what the
-# tag sets when its value differs from what the ROS 2 plugin does without it.
-#   "name":        a topic, namespace or frame (the data goes elsewhere, or TF cannot place
+# What an ignored ROS 1 tag sets, as the role of its value (SK602's severity, issue 35: the
+# one computation in sensorkit.base.consequence, when the value differs from what the ROS 2
+# plugin does without it; equal is info whatever the role):
+#   FRAME, TOPIC:  a frame, topic or namespace (the data goes elsewhere, or TF cannot place
 #                  it as the user meant): error;
-#   "calibration": what camera_info or the IMU orientation says: error;
-#   "drive":       the joints and wheel geometry a drive plugin moves: error;
-#   "behaviour":   a rate, noise, limit or flag (the sensor works, not as tuned): warning;
-#   "nothing":     logging, or read by no ROS 1 plugin either: info.
-# A value equal to what ROS 2 does anyway is info whatever its role.
-ROS1_PARAM_ROLE: dict[str, str] = {
+#   CALIBRATION:   what camera_info or the IMU orientation says: error;
+#   GEOMETRY:      the joints and wheel geometry a drive plugin moves: error;
+#   RATE, NOISE, LIMIT, FLAG: the sensor works, not as tuned: warning.
+# Tags no plugin reads (ROS1_READ_BY_NO_PLUGIN) change nothing: info.
+_FRAME_TAGS = ("frameName", "bodyName", "odometryFrame", "robotBaseFrame")
+ROS1_PARAM_ROLE: dict[str, Role] = {
+    **dict.fromkeys(_FRAME_TAGS, Role.FRAME),
     **dict.fromkeys(
         (
-            "frameName",
             "cameraName",
             "robotNamespace",
             "imageTopicName",
             "cameraInfoTopicName",
             "depthImageTopicName",
-            "depthImageInfoTopicName",
             "depthImageCameraInfoTopicName",
             "pointCloudTopicName",
             "topicName",
-            "bodyName",
             "commandTopic",
             "odometryTopic",
-            "odometryFrame",
-            "robotBaseFrame",
             "remap",
         ),
-        "name",
+        Role.TOPIC,
     ),
     **dict.fromkeys(
-        (
-            "hackBaseline",
-            "baseline",
-            "focalLength",
-            "Cx",
-            "Cy",
-            "CxPrime",
-            "rpyOffset",
-            "rpyOffsets",
-        ),
-        "calibration",
+        ("hackBaseline", "focalLength", "Cx", "Cy", "CxPrime", "rpyOffset", "rpyOffsets"),
+        Role.CALIBRATION,
     ),
     **dict.fromkeys(
         (
@@ -289,13 +285,19 @@ ROS1_PARAM_ROLE: dict[str, str] = {
             "wheelSeparation",
             "wheelDiameter",
         ),
-        "drive",
+        Role.GEOMETRY,
+    ),
+    **dict.fromkeys(("updateRate", "updateRateHZ"), Role.RATE),
+    "gaussianNoise": Role.NOISE,
+    **dict.fromkeys(
+        ("wheelTorque", "wheelAcceleration", "pointCloudCutoff", "pointCloudCutoffMax"), Role.LIMIT
     ),
     # The ROS 1 camera utils put distortionK1..T2 in camera_info only, never in the image
     # (noetic-devel f9e1a46:gazebo_plugins/src/gazebo_ros_camera_utils.cpp:199-237 read
     # them, :580-584 fill D); ROS 2 takes D from the SDF <distortion> the image is rendered
     # with (ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:402-414). Ignoring them
-    # makes camera_info agree with the image: a warning, not a broken calibration.
+    # makes camera_info agree with the image: a flag's worth (warning), not a broken
+    # calibration.
     **dict.fromkeys(
         (
             "distortionK1",
@@ -303,28 +305,29 @@ ROS1_PARAM_ROLE: dict[str, str] = {
             "distortionK3",
             "distortionT1",
             "distortionT2",
-            "updateRate",
-            "updateRateHZ",
-            "gaussianNoise",
             "xyzOffset",
             "xyzOffsets",
             "initialOrientationAsReference",
-            "wheelTorque",
-            "wheelAcceleration",
             "publishWheelTF",
             "publishOdomTF",
             "publishWheelJointState",
             "odometrySource",
-            "pointCloudCutoff",
-            "pointCloudCutoffMax",
         ),
-        "behaviour",
+        Role.FLAG,
     ),
-    # alwaysOn: no plugin in ROS 1's gazebo_plugins or gazebo_ros reads it (noetic-devel
-    # f9e1a46: `git grep '"alwaysOn"'` finds nothing); rosDebugLevel sets the log level
-    # only (gazebo_ros_utils.cpp); serviceName names ROS 1's IMU calibration service.
-    **dict.fromkeys(("alwaysOn", "rosDebugLevel", "serviceName"), "nothing"),
 }
+# Tags read by no ROS 1 plugin at all (or for logging only): ignoring them changes nothing.
+# alwaysOn: no plugin in ROS 1's gazebo_plugins or gazebo_ros reads it (noetic-devel
+# f9e1a46: `git grep '"alwaysOn"'` finds nothing); rosDebugLevel sets the log level only
+# (gazebo_ros_utils.cpp); serviceName names ROS 1's IMU calibration service. <baseline>
+# and <depthImageInfoTopicName>: `git grep -n 'baseline\|depthImageInfo' noetic-devel --
+# gazebo_plugins gazebo_ros` finds only hackBaseline (gazebo_ros_camera_utils.cpp:191-197,
+# gazebo_ros_multicamera.cpp:92-93) and depthImageCameraInfoTopicName
+# (gazebo_ros_depth_camera.cpp:121-124, gazebo_ros_openni_kinect.cpp:96-99): no ROS 1
+# plugin reads either, so ROS 2 ignoring them changes nothing (issue 35 item 8).
+ROS1_READ_BY_NO_PLUGIN = frozenset(
+    {"alwaysOn", "rosDebugLevel", "serviceName", "baseline", "depthImageInfoTopicName"}
+)
 # Tags a ROS 1 plugin of the same library read but never used, or never read at all: they
 # change nothing in either generation. gazebo_ros_imu_sensor (noetic-devel f9e1a46):
 # frameName is its frame (:200-210), bodyName is read by nothing; xyzOffset is read
@@ -368,6 +371,9 @@ ROS2_PLAIN_DEFAULTS: dict[str, dict[str, str]] = {
         "updateRate": "20",
         "publishOdomTF": "true",
     },
+    # ROS 2 p3d: no <body_name>, "Missing <body_name>, cannot proceed" and no publisher
+    # (gazebo_ros_p3d.cpp:111-113); <frame_name> defaults to world (:66, :170-174).
+    "gazebo_ros_p3d": {"bodyName": "(none)", "frameName": "world"},
     "gazebo_ros_imu_sensor": {
         "initialOrientationAsReference": "false",
         "gaussianNoise": "0",

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from sensorkit.base.consequence import Role
+
 # target -> the sdformat branch it reads, its commit and the protocol version its schema is.
 SDFORMAT_OF_TARGET = {
     "classic": "sdf9",
@@ -88,6 +90,37 @@ CAMERA_DEFAULTS = {
     "image": "320x240",
     "horizontal_fov": "1.047 rad",
     "clip": "near 0.1 m, far 100 m",
+}
+# The same defaults as values, to compare with what a misplaced setting holds (issue 35:
+# a setting sdformat never reads whose value is the default that applies anyway changes
+# nothing). Image format default R8G8B8: gazebosim/sdformat@sdf9 9ee2d4f:sdf/1.7/camera.sdf:24.
+# Sensor-level: always_on false, update_rate 0, visualize false (sdf/1.7/sensor.sdf:38, 42, 46).
+SETTING_DEFAULTS: dict[tuple[str, str], float | str | dict[str, float | str]] = {
+    ("camera", "horizontal_fov"): 1.047,
+    ("camera", "image"): {"width": 320, "height": 240, "format": "R8G8B8"},
+    ("camera", "clip"): {"near": 0.1, "far": 100},
+    ("sensor", "update_rate"): 0,
+    ("sensor", "always_on"): "false",
+    ("sensor", "visualize"): "false",
+}
+# What a sensor setting does for the data ROS receives (sensorkit.base.consequence.Role), by
+# element name; any other name of <camera>, <ray>/<lidar> or <imu> sets the data's geometry.
+SETTING_ROLE: dict[str, Role] = {
+    "noise": Role.NOISE,
+    "angular_velocity": Role.NOISE,
+    "linear_acceleration": Role.NOISE,
+    "distortion": Role.CALIBRATION,
+    "lens": Role.CALIBRATION,
+    "save": Role.FLAG,
+    "depth_camera": Role.FLAG,
+    "plugin": Role.OUTPUT,
+    "update_rate": Role.RATE,
+    "topic": Role.TOPIC,
+    "always_on": Role.FLAG,
+    "enable_metrics": Role.FLAG,
+    "visualize": Role.COSMETIC,
+    "pose": Role.GEOMETRY,
+    "frame": Role.FRAME,
 }
 
 

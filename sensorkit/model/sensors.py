@@ -297,7 +297,8 @@ def read_lidar(el: etree._Element, locate: Locate) -> LidarSpec:
     spec.max_angle = _num(spec.raw["max_angle"], "horizontal max_angle", p)
     if v is not None:
         spec.has_vertical = True
-        spec.v_samples = _int(text_of(v, "samples"), "vertical samples", p)
+        spec.raw["v_samples"] = text_of(v, "samples")
+        spec.v_samples = _int(spec.raw["v_samples"], "vertical samples", p)
         spec.v_resolution = _num(text_of(v, "resolution"), "vertical resolution", p)
         spec.v_min_angle = _num(text_of(v, "min_angle"), "vertical min_angle", p)
         spec.v_max_angle = _num(text_of(v, "max_angle"), "vertical max_angle", p)

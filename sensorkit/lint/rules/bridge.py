@@ -121,7 +121,7 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
 
 @rule(
     "SK607",
-    "warning",
+    "warning/info",
     "a sensor publishes nothing to ROS (no plugin on classic, and no model-level plugin that "
     "reads it by name: info when one may and sensorkit cannot tell; on gz: no ros_gz_bridge "
     "entry for its topic when a bridge is known, info for a camera's image when only its "

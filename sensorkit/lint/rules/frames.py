@@ -51,7 +51,7 @@ def _exists(robot: Robot, name: str) -> bool:
 
 @rule(
     "SK501",
-    "error/warning",
+    "error/warning/info",
     "the published frame names an existing link (error; info on SDF, whose TF may come from a "
     "URDF beside it); a Gazebo Sim sensor with no frame tag is stamped MODEL::LINK::SENSOR, "
     "which TF does not have (warning)",

@@ -8,11 +8,14 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.coincide import frame_consequence
 from sensorkit.lint.rules.topic_names import gz_topics, is_bridged, norm_topic
 from sensorkit.model.frames import GZ_DEPRECATED_FRAME_TAGS, GZ_FRAME_TAGS, GZ_OPTICAL_FRAME_ID
 from sensorkit.model.parse import child
+from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 
 GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
@@ -20,9 +23,12 @@ GZ_FRAME_TAG_NAMES = ("gz_frame_id", "ignition_frame_id", "frame_id")
 
 @rule(
     "SK608",
-    "warning",
+    "error/warning/info",
     "a gz frame tag that the chosen gz version ignores (`ignition_frame_id` on harmonic+, `frame_id` before jetty, "
-    "`optical_frame_id` on jetty, a tag another one overrides) or has deprecated (`gz_frame_id` on jetty)",
+    "`optical_frame_id` on jetty, a tag another one overrides) or has deprecated (`gz_frame_id` on jetty). "
+    "Severity by consequence: the frame written against the one stamped (an error when the default "
+    "is stamped instead, info when it is the same frame; a warning when another tag names the frame "
+    "read, since which was meant is unknown); a deprecated tag still read is a warning",
     formats=("urdf", "sdf"),
 )
 def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
@@ -50,9 +56,20 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
                 )
             else:
                 continue
-            yield ctx.finding(
+            if tag in deprecated and first == tag:
+                yield ctx.finding(
+                    "SK608",
+                    Severity.WARNING,
+                    f"sensor {s.name!r}: <{tag}> {why}",
+                    child(s.element, tag),
+                    sensor=s.name,
+                    frame=s.frame_tags[tag],
+                    fix=fix or f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
+                )
+                continue
+            yield ctx.judged(
                 "SK608",
-                Severity.WARNING,
+                _stamped(ctx, s, s.frame_tags[tag]),
                 f"sensor {s.name!r}: <{tag}> {why}",
                 child(s.element, tag),
                 sensor=s.name,
@@ -60,9 +77,9 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
                 fix=fix or f"write <{read[0]}>{s.frame_tags[tag]}</{read[0]}>",
             )
         for tag, value, el in s.misplaced_frame_tags:
-            yield ctx.finding(
+            yield ctx.judged(
                 "SK608",
-                Severity.WARNING,
+                _stamped(ctx, s, value),
                 f"sensor {s.name!r}: <{tag}> inside <camera> is never read (gz-sensors reads it from <sensor>)",
                 el,
                 sensor=s.name,
@@ -71,15 +88,31 @@ def ignored_frame_tags(ctx: Context) -> Iterator[Finding]:
             )
         cam = s.camera
         if cam is not None and cam.optical_frame_id and target not in GZ_OPTICAL_FRAME_ID:
-            yield ctx.finding(
+            yield ctx.judged(
                 "SK608",
-                Severity.WARNING,
+                _stamped(ctx, s, cam.optical_frame_id),
                 f"sensor {s.name!r}: <optical_frame_id> is ignored by {target}",
                 child(cam.element, "optical_frame_id"),
                 sensor=s.name,
                 frame=cam.optical_frame_id,
                 fix=f"set <{read[0]}>{cam.optical_frame_id}</{read[0]}> on the sensor instead",
             )
+
+
+def _stamped(ctx: Context, s: Sensor, written: str) -> Consequence:
+    """The frame ``s`` is stamped with (a camera's image frame), against ``written``: an
+    ignored tag changes nothing where the frame read is the same frame
+    (:mod:`sensorkit.lint.rules.coincide`)."""
+    fr = ctx.frames_of(s)
+    used = fr.camera_frame if s.is_camera else fr.published
+    if used is None:
+        return Consequence(Role.FRAME, written, UNKNOWN)
+    c = frame_consequence(ctx.robot, s, written, used)
+    if not c.equal and not (fr.is_default and fr.image_frame is None):
+        # The frame read is written too, in another tag: which of the two the author meant
+        # sensorkit cannot tell, so it promises no broken data (a warning, as SK410 does).
+        return Consequence(Role.FLAG, written, used)
+    return c
 
 
 @rule(

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.limits import PLAUSIBLE_LIDAR_RAYS, as_float
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.model.parse import parse_float
 from sensorkit.model.sensors import LidarSpec, Sensor
 from sensorkit.model.targets import is_gz
 
@@ -56,6 +59,10 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
             )
 
         for p in spec.problems:
+            truncated = _truncated_samples(ctx, s, spec, p)
+            if truncated is not None:
+                yield truncated
+                continue
             yield err(p, "write numbers (angles in radians, ranges in metres)")
         for label, samples, lo, hi, res in (
             ("horizontal", spec.samples, spec.min_angle, spec.max_angle, spec.resolution),
@@ -112,6 +119,47 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
             )
         elif rmin == 0:
             yield from _range_min_zero(ctx, s, spec)
+
+
+def _stoul(text: str) -> int | None:
+    """What ``std::stoul(text, nullptr, base)`` returns: the leading whole number (after
+    white space and an optional sign; "0x" hexadecimal), ignoring what follows; None where
+    it throws (no digits)."""
+    m = re.match(r"\s*([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)", text)
+    if m is None:
+        return None
+    digits = m.group(2)
+    value = int(digits, 16) if digits[:2].lower() == "0x" else int(digits)
+    return -value if m.group(1) == "-" else value
+
+
+def _truncated_samples(ctx: Context, s: Sensor, spec: LidarSpec, problem: str) -> Finding | None:
+    """SK406 for a sample count that is not a whole number, judged by what sdformat makes of it.
+
+    sdformat parses an ``unsigned int`` with ``std::stoul(tmp, nullptr, numericBase)``, which
+    reads the leading digits and ignores the rest without error (gazebosim/sdformat@sdf9
+    9ee2d4f:src/Param.cc:354-357; @sdf12 b9417e5:src/Param.cc:702-705; @sdf14 8512585:
+    src/Param.cc:911-914), and <samples> is an unsigned int (sdf/1.7/ray.sdf:10). So
+    "666.518" is a lidar of 666 beams: the count written, to less than one beam (info);
+    "1e3" is a lidar of 1 beam (an error)."""
+    for label, raw in (("horizontal", spec.raw.get("samples")), ("vertical", spec.raw.get("v_samples"))):
+        if raw is None or not problem.startswith(f"{label} samples") or "whole number" not in problem:
+            continue
+        written, _ = parse_float(raw)
+        used = _stoul(raw)
+        if written is None or used is None:
+            return None
+        c = Consequence(Role.GEOMETRY, f"{written:g}", used, equal=abs(written - used) < 1.0)
+        return ctx.judged(
+            "SK406",
+            c,
+            f"lidar {s.name!r}: {label} samples {raw.strip()!r} is not a whole number; sdformat "
+            f"reads the leading digits only, a lidar of {used} beams",
+            spec.source,
+            sensor=s.name,
+            fix=f"write <samples>{used if c.equal else round(written)}</samples>",
+        )
+    return None
 
 
 def _range_min_zero(ctx: Context, s: Sensor, spec: LidarSpec) -> Iterator[Finding]:

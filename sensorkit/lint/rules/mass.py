@@ -11,10 +11,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
-from sensorkit.model.parts import Inertial
+from sensorkit.model.parts import Inertial, Link
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 
@@ -97,9 +98,11 @@ def inertia_problem(inertial: Inertial) -> str | None:
 
 @rule(
     "SK301",
-    "error",
+    "error/info",
     "a link joined by a non-fixed joint has an `<inertial>` with mass > 0, else Gazebo drops "
-    "it and its subtree (name what is lost)",
+    "it and its subtree (name what is lost). Severity by consequence: an error when what is "
+    "lost holds a sensor (it publishes nothing) or a body (a visual or collision the robot "
+    "loses); info when the links lost hold neither, so they only ever fed TF",
     "sdformat, at spawn",
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
@@ -132,9 +135,21 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
         detail = f"{len(lost)} links: {_few(lost)}"
         if sensors:
             detail += f"; sensors: {_few(sensors)}"
-        yield ctx.finding(
+        bodies = [n for n in lost if _has_body(robot.link_map[n])]
+        if sensors:
+            cons = Consequence(Role.OUTPUT, f"sensors {_few(sensors)}", "none of them")
+        elif bodies:
+            cons = Consequence(Role.GEOMETRY, f"the bodies of {_few(bodies)}", "none of them")
+        else:
+            # Nothing Gazebo would simulate: no sensor, visual or collision. Such a link only
+            # names a frame for TF (robot_state_publisher places it from the URDF), e.g. PR2's
+            # l_gripper_l_finger_tip_frame, "the same as the l_finger_tip_link" (pr2_common
+            # pr2_description/urdf/gripper_v0/gripper.urdf.xacro:349-352).
+            cons = Consequence(Role.GEOMETRY, "no body or sensor", "no body or sensor")
+            detail += "; they hold no sensor, visual or collision: only TF knows them"
+        yield ctx.judged(
             "SK301",
-            Severity.ERROR,
+            cons,
             f"{where}: {loss} ({detail})",
             link.source,
             link=name,
@@ -145,6 +160,13 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
                 "(e.g. a box: ixx = m/12 (y²+z²), iyy = m/12 (x²+z²), izz = m/12 (x²+y²))"
             ),
         )
+
+
+def _has_body(link: Link) -> bool:
+    """Whether Gazebo would simulate something of ``link``: a visual or a collision."""
+    return any(
+        isinstance(c.tag, str) and c.tag in ("visual", "collision") for c in link.element
+    )
 
 
 def _few(names: list[str], n: int = 8) -> str:
@@ -210,13 +232,17 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
 
 @rule(
     "SK303",
-    "warning",
+    "error/info",
     "a sensor sits on a link that fixed-joint lumping removes and its plugin has no explicit "
-    "frame: the published frame silently becomes the surviving parent link",
+    "frame: the published frame silently becomes the surviving parent link. Severity by "
+    "consequence: info when the survivor coincides with the link for the sensor's data (an "
+    "IMU: turned alike), an error when the data lands in another place or rotation",
 )
 def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
     if is_gz(ctx.target):
         return
+    from sensorkit.lint.rules.coincide import coincide_note, frame_consequence
+
     conv = ctx.conversion
     for sensor in ctx.robot.sensors:
         fr = ctx.frames_of(sensor)
@@ -225,11 +251,17 @@ def lumped_sensor_frame(ctx: Context) -> Iterator[Finding]:
             continue
         if conv.is_lumped(fr.link):
             survivor = conv.survivor(fr.link)
-            yield ctx.finding(
+            c = frame_consequence(ctx.robot, sensor, fr.link, survivor)
+            note = (
+                coincide_note(ctx.robot, sensor, fr.link, survivor)
+                if c.equal
+                else ": the data lands where TF places that link, not where the sensor measures"
+            )
+            yield ctx.judged(
                 "SK303",
-                Severity.WARNING,
+                c,
                 f"sensor {sensor.name!r} is on {fr.link!r}, which fixed-joint lumping merges into "
-                f"{survivor!r}; with no frame_name its data is stamped {survivor!r}, not {fr.link!r}",
+                f"{survivor!r}; with no frame_name its data is stamped {survivor!r}, not {fr.link!r}{note}",
                 sensor.source,
                 sensor=sensor.name,
                 link=fr.link,

@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import ROS1_TO_ROS2_PARAMS, ROS2_PLUGINS
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.plugins import ros_name
-from sensorkit.lint.rules.ros1_values import consequence, full_name
+from sensorkit.lint.rules.ros1_values import consequence, full_name, why
 from sensorkit.model.parse import children, local
 from sensorkit.model.robot import all_plugins
 
@@ -38,27 +39,28 @@ def ros1_params(ctx: Context) -> Iterator[Finding]:
         for el in p.param_elements():
             tag = local(el)
             if tag in ROS1_TO_ROS2_PARAMS:
-                severity, why = consequence(ctx, p, tag, (el.text or "").strip())
-                yield ctx.finding(
+                c, note = consequence(ctx, p, tag, (el.text or "").strip())
+                yield ctx.judged(
                     "SK602",
-                    severity,
-                    f"<{tag}> is a ROS 1 parameter: the ROS 2 {p.filename} never reads it{why}",
+                    c,
+                    f"<{tag}> is a ROS 1 parameter: the ROS 2 {p.filename} never reads it{note}{why(c)}",
                     el,
                     sensor=sensor,
                     fix=f"use {ROS1_TO_ROS2_PARAMS[tag]}"
-                    if severity is not Severity.INFO
+                    if c.severity is not Severity.INFO
                     else f"remove it (or write {ROS1_TO_ROS2_PARAMS[tag]})",
                 )
         ros = p.ros_block()
         if ros is not None:
             for el in children(ros, "remap"):
                 src, dst = el.get("from", "FROM"), el.get("to", "TO")
-                same = full_name(p, src) == full_name(p, dst)
-                yield ctx.finding(
+                # ROS 2 leaves the name as the plugin resolves it: the remap's target is
+                # what was meant, the source's resolution is what is used.
+                c = Consequence(Role.TOPIC, full_name(p, dst), full_name(p, src))
+                yield ctx.judged(
                     "SK602",
-                    Severity.INFO if same else Severity.ERROR,
-                    f'<remap from="{src}" to="{dst}"/> is ROS 1 launch syntax: gazebo_ros ignores it'
-                    + (f": both names resolve to {full_name(p, dst)}, so nothing changes" if same else ""),
+                    c,
+                    f'<remap from="{src}" to="{dst}"/> is ROS 1 launch syntax: gazebo_ros ignores it{why(c)}',
                     el,
                     sensor=sensor,
                     fix=f"<remapping>{src}:={dst}</remapping>",

@@ -1,21 +1,27 @@
-"""What an ignored ROS 1 tag costs under ROS 2: SK602's severity by consequence.
+"""What an ignored ROS 1 tag costs under ROS 2: SK602's consequence (issue 35 item 1).
 
 A ROS 2 plugin never reads a ROS 1 tag, so what it does is what it does without it: the
-tag's ROS 2 form when written, else the ROS 2 default. ``consequence`` compares that with
-the value the ROS 1 tag holds. Equal (or a tag no plugin ever read): info, nothing
-changes. Different: the tag's role says how much (``ROS1_PARAM_ROLE`` in
-sensorkit.knowledge.gazebo_ros, with sources). Not known: a warning, since sensorkit cannot
-say the value changes anything.
+tag's ROS 2 form when written, else the ROS 2 default. ``consequence`` states that as a
+:class:`~sensorkit.base.consequence.Consequence`: the role of the tag's value (from
+``ROS1_PARAM_ROLE`` in sensorkit.knowledge.gazebo_ros, with sources), the value the ROS 1
+tag holds (intended) and what the ROS 2 plugin uses (effective); severity_of makes it a
+severity. A tag no ROS 1 plugin read either changes nothing (info); a value sensorkit cannot
+tell is UNKNOWN (info: a rule must know before it reports more).
+
+A frame tag is compared as a frame (:mod:`sensorkit.lint.rules.coincide`): the frame
+written and the one ROS 2 stamps are the same when they coincide, and for an IMU when they
+are turned alike.
 """
 
 from __future__ import annotations
 
 import math
 
-from sensorkit.base.findings import Severity
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.knowledge.gazebo_ros import (
     ROS1_CAMERA_RELATIVE,
     ROS1_PARAM_ROLE,
+    ROS1_READ_BY_NO_PLUGIN,
     ROS1_RENAMES,
     ROS1_SENSOR_RATE_TAGS,
     ROS1_TOPIC_REMAPS,
@@ -25,17 +31,12 @@ from sensorkit.knowledge.gazebo_ros import (
     ROS2_PLAIN_DEFAULTS,
 )
 from sensorkit.lint.rules.base import Context
+from sensorkit.lint.rules.coincide import coincide_note, frame_consequence
 from sensorkit.lint.rules.topic_names import resolve_name
 from sensorkit.model.sensors import Plugin, Sensor
 
-__all__ = ["consequence", "full_name"]
+__all__ = ["consequence", "full_name", "same_name", "why"]
 
-_BY_ROLE = {
-    "name": (Severity.ERROR, "the topic, namespace or frame is not the one written"),
-    "calibration": (Severity.ERROR, "the calibration published is not the one written"),
-    "drive": (Severity.ERROR, "the drive moves other joints or with other geometry than written"),
-    "behaviour": (Severity.WARNING, "the sensor works, not as tuned"),
-}
 # ROS 1 camera utils' distortion tags and the SDF <distortion> child ROS 2 reads instead.
 _DISTORTION = {
     "distortionK1": "k1",
@@ -44,50 +45,69 @@ _DISTORTION = {
     "distortionT1": "p1",
     "distortionT2": "p2",
 }
+_WHAT = {
+    Role.FRAME: "the frame stamped is not the one written",
+    Role.TOPIC: "the topic or namespace is not the one written",
+    Role.CALIBRATION: "the calibration published is not the one written",
+    Role.GEOMETRY: "the drive moves other joints or with other geometry than written",
+}
 
 
-def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Severity, str]:
-    """(severity, what to add to the message) for ROS 1 ``tag`` holding ``value`` in ``p``."""
-    role = ROS1_PARAM_ROLE.get(tag, "behaviour")
-    if role == "nothing" or tag in ROS1_UNUSED_BY_ROS1.get(p.library, ()):
-        return Severity.INFO, ", and no ROS 1 plugin used it either: nothing changes"
+def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Consequence, str]:
+    """The consequence of ROS 1 ``tag`` holding ``value`` in ``p``, and words for the
+    message (what ROS 2 does instead, or why nothing changes)."""
+    role = ROS1_PARAM_ROLE.get(tag, Role.FLAG)
+    if tag in ROS1_READ_BY_NO_PLUGIN or tag in ROS1_UNUSED_BY_ROS1.get(p.library, ()):
+        # Read by nothing in either generation: what it sets is nothing at all.
+        return Consequence(Role.COSMETIC, value, None), ", and no ROS 1 plugin used it either"
     if tag in ROS1_TOPIC_REMAPS.get(p.library, {}):
-        return _compare(role, value, *_topics(p, tag, value))
+        ros1, ros2 = _topics(p, tag, value)
+        shown = "" if ros1 == value else f" (ROS 1 resolved {value} to {ros1})"
+        return _compare(role, ros1, ros2), shown
     ros2 = _ros2_value(ctx, p, tag)
     if ros2 is None:
-        return Severity.WARNING, " and says nothing"
+        return Consequence(role, value, UNKNOWN), ""
     if tag in ROS1_ZERO_MEANS_DEFAULT | {"CxPrime", "focalLength"} and _number(value) == 0:
         # 0 means "computed" in ROS 1 (gazebo_ros_camera_utils.cpp:504-519), as the ROS 2
         # default is computed (gazebo_ros_camera.cpp:359-374).
         return (
-            Severity.INFO,
-            f"; 0 means the computed default, which ROS 2 uses too ({ros2}): nothing changes",
+            Consequence(role, value, ros2, equal=True),
+            "; 0 means the computed default, which ROS 2 uses too",
         )
     if tag in ROS1_SENSOR_RATE_TAGS and p.sensor is not None:
         return _rate(value, ros2)
-    return _compare(role, value, value, ros2)
+    if tag == "frameName" and p.sensor is not None and ros2:
+        # A sensor plugin only stamps its frame; a drive's robotBaseFrame/odometryFrame are
+        # published into TF as parent and child, where another name breaks the tree however
+        # close the links sit, so only the sensor's frame is compared as a place.
+        c = frame_consequence(ctx.robot, p.sensor, value, ros2)
+        return c, coincide_note(ctx.robot, p.sensor, value, ros2) if c.equal else ""
+    return _compare(role, value, ros2), ""
 
 
-def _compare(role: str, value: str, ros1: str, ros2: str | None) -> tuple[Severity, str]:
+def _compare(role: Role, ros1: str, ros2: str | None) -> Consequence:
     if ros2 is None:
-        return Severity.WARNING, " and says nothing"
-    if _same(ros1, ros2):
-        return Severity.INFO, f"; ROS 2 does the same without it ({ros2}): nothing changes"
-    severity, what = _BY_ROLE.get(role, _BY_ROLE["behaviour"])
-    shown = ros1 if ros1 == value else f"{value}, i.e. {ros1}"
-    return severity, f": ROS 2 uses {ros2} where this says {shown}, so {what}"
+        return Consequence(role, ros1, UNKNOWN)
+    return Consequence(role, ros1, ros2, equal=same_name(ros1, ros2))
 
 
-def _rate(value: str, sensor_rate: str) -> tuple[Severity, str]:
+def why(c: Consequence) -> str:
+    """Words for what a differing value's role changes (empty when nothing changes)."""
+    what = _WHAT.get(c.role)
+    return f", so {what}" if what and c.severity.label == "error" else ""
+
+
+def _rate(value: str, sensor_rate: str) -> tuple[Consequence, str]:
     """ROS 1 throttled publishing to the rate (0: not at all; gazebo_ros_camera_utils.cpp
     :441-444, gazebo_ros_imu_sensor.cpp:103-104); ROS 2 publishes at the sensor's rate."""
     v, r = _number(value), _number(sensor_rate)
-    if v is not None and r is not None and (v == 0 or (r > 0 and v >= r)):
-        return (
-            Severity.INFO,
-            f"; the sensor updates at {sensor_rate} Hz, so a throttle of {value} changes nothing",
-        )
-    return Severity.WARNING, f": ROS 2 publishes at the sensor's {sensor_rate} Hz, not {value} Hz"
+    same = v is not None and r is not None and (v == 0 or (r > 0 and v >= r))
+    note = (
+        f"; the sensor updates at {sensor_rate} Hz, so a throttle of {value} changes nothing"
+        if same
+        else f": ROS 2 publishes at the sensor's {sensor_rate} Hz"
+    )
+    return Consequence(Role.RATE, value, sensor_rate, equal=same), note
 
 
 def _ros2_value(ctx: Context, p: Plugin, tag: str) -> str | None:
@@ -176,7 +196,7 @@ def _fmt(x: float) -> str:
     return f"{x:g}"
 
 
-def _same(a: str, b: str) -> bool:
+def same_name(a: str, b: str) -> bool:
     """Equal as numbers (vectors too), booleans, names or ROS 1 spellings of a ROS 2 value."""
     a, b = a.strip(), b.strip()
     for table in ROS1_VALUE_SPELLINGS.values():

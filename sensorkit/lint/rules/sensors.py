@@ -84,7 +84,7 @@ def gazebo_reference(ctx: Context) -> Iterator[Finding]:
 
 @rule(
     "SK402",
-    "error",
+    "error/warning",
     "sensor names unique within the link they end up on after fixed-joint lumping (Gazebo Sim: "
     "sdformat refuses a duplicate; Gazebo Classic: two cameras or two depth cameras abort "
     "gzserver, other pairs are found by name only once: warning); every sensor has a name",
@@ -255,7 +255,7 @@ def _too_large_camera(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Find
 
 @rule(
     "SK404",
-    "error",
+    "error/warning",
     "horizontal_fov > 0 and < pi for pinhole cameras (warning above 2.6 rad)",
     "sdformat (bounds only)",
     formats=("urdf", "sdf"),

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import RAY_OUTPUT_TYPES
 from sensorkit.lint.rules.base import Context, rule
@@ -36,8 +37,11 @@ def _is_range(s: Sensor) -> bool:
 
 @rule(
     "SK605",
-    "error",
-    "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; `~/out` + remappings)",
+    "error/info",
+    "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; "
+    "`~/out` + remappings). Severity by consequence: an error when subscribers get two streams of "
+    "different data interleaved; info when the only topics shared are camera_info and both cameras "
+    "publish the same K and P (a duplicate, not wrong data)",
     formats=("urdf", "sdf"),
 )
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
@@ -66,11 +70,13 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
             for t, its in owners.items()
             if any(x is first for x, _ in its) and any(x is second for x, _ in its)
         ]
-        yield ctx.finding(
+        c = _collision(ctx, first, second, shared)
+        yield ctx.judged(
             "SK605",
-            Severity.ERROR,
+            c,
             f"sensors {first.name!r} (on {first.reference!r}) and {second.name!r} (on {second.reference!r}) "
-            f"both publish on {', '.join(shared)}: subscribers get both streams interleaved",
+            f"both publish on {', '.join(shared)}: subscribers get both streams interleaved"
+            + (": the same calibration twice" if c.changes_nothing else ""),
             el,
             sensor=second.name,
             fix=(
@@ -79,6 +85,49 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
                 else "give each camera its own sensor name or <camera_name>, a <ros><namespace>, or a remapping"
             ),
         )
+
+
+def _collision(ctx: Context, first: Sensor, second: Sensor, shared: list[str]) -> Consequence:
+    """What subscribers of the shared topics get instead of ``second``'s own stream.
+
+    Only camera_info shared, between cameras whose camera_info is computed from the same
+    inputs: the same K, D and P twice. camera_info is a function of the image size,
+    horizontal_fov, <lens>, <distortion> and the plugin's calibration parameters
+    (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:
+    359-374 cx, cy, fx; :399 hack_baseline; :402-414 D; :427-458 K and P), except that gz-sim
+    gives the second camera of a link a baseline of its own (gazebosim/gz-sim@gz-sim8:
+    src/systems/sensors/Sensors.cc:1189-1224), so on Gazebo Sim two cameras of one link are
+    never called the same."""
+    if shared and all(t.endswith("camera_info") for t in shared):
+        a, b = _calibration(ctx, first), _calibration(ctx, second)
+        if a is not None and b is not None:
+            return Consequence(Role.CALIBRATION, b, a)
+    return Consequence(Role.TOPIC, f"{second.name}'s own stream", f"{second.name}'s and {first.name}'s interleaved")
+
+
+def _calibration(ctx: Context, s: Sensor) -> str | None:
+    """The inputs camera_info is computed from, in words; None when not a camera."""
+    cam = s.camera if s.is_camera else None
+    if cam is None or len(s.cameras) != 1:
+        return None
+    if is_gz(ctx.target):
+        def link(x: Sensor) -> str | None:
+            ref = x.reference
+            return ctx.conversion.survivor(ref) if ref in ctx.robot.link_map else ref
+
+        if any(o is not s and o.is_camera and link(o) == link(s) for o in ctx.robot.sensors):
+            return None  # a gz stereo baseline may differ (see _collision)
+    params = sorted(
+        f"{k} {p.param(k)}"
+        for p in s.plugins
+        for k in ("focal_length", "cx", "cy", "hack_baseline", "focalLength", "Cx", "Cy", "CxPrime", "hackBaseline")
+        if p.param(k) is not None
+    )
+    parts = [f"{cam.width}x{cam.height}", f"hfov {cam.hfov if cam.hfov is not None else 1.047:g}"]
+    if cam.lens_intrinsics is not None:
+        parts.append(f"lens {cam.lens_intrinsics}")
+    parts += [f"{k} {v:g}" for k, v in sorted(cam.distortion.items())] + params
+    return ", ".join(parts)
 
 
 @rule(

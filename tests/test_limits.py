@@ -1,0 +1,253 @@
+"""Issue 35, tests at the limits: every numeric tolerance of the rules gets a case just
+inside and just outside it, and each trigger asserts the severity its rule promises.
+
+The limits (sensorkit.lint.rules.frames ANGLE_TOL 0.5 degree, POSITION_TOL 1 mm, EXACT_TOL;
+sensors SK404 2.6 rad / pi, SK405's z-fight floor and depth range; lidar SK406's whole beam
+count and PLAUSIBLE_LIDAR_RAYS; focal SK409's one-pixel edge floor) are sensorkit's own
+materiality floors except where a simulator line is cited beside the rule. A mutation of any
+of them (the tolerance raised tenfold, a comparison loosened, an error made a warning) makes a
+case here fail.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from builders import OPTICAL, camera_sensor, joint, lidar_sensor, link, robot
+
+from sensorkit.base.findings import Severity
+
+HALF_PI = math.pi / 2
+
+
+def _sev(report: object, rule: str) -> list[Severity]:
+    return [f.severity for f in report.findings if f.rule == rule]  # type: ignore[attr-defined]
+
+
+def _optical(roll_off_deg: float) -> str:
+    """The optical rotation with its roll off by ``roll_off_deg``: R = R_optical * Rx(d), so
+    the rotation differs from optical by exactly d."""
+    return f"{-HALF_PI + math.radians(roll_off_deg)!r} 0 {-HALF_PI!r}"
+
+
+# --- SK502 / SK505: the 0.5 degree optical tolerance ------------------------------------
+
+
+@pytest.mark.parametrize("target", ["classic", "harmonic"])
+def test_sk502_just_outside_half_a_degree_is_an_error(check, target: str) -> None:
+    if target == "harmonic":
+        from builders import gz_robot
+
+        text = gz_robot().replace(f'rpy="{OPTICAL}"', f'rpy="{_optical(0.55)}"')
+    else:
+        text = robot(optical_rpy=_optical(0.55))
+    report = check(text, target=target)
+    assert _sev(report, "SK502") == [Severity.ERROR]
+    assert _sev(report, "SK505") == []
+
+
+@pytest.mark.parametrize("target", ["classic", "harmonic"])
+def test_sk502_just_inside_half_a_degree_is_approximate_only(check, target: str) -> None:
+    if target == "harmonic":
+        from builders import gz_robot
+
+        text = gz_robot().replace(f'rpy="{OPTICAL}"', f'rpy="{_optical(0.45)}"')
+    else:
+        text = robot(optical_rpy=_optical(0.45))
+    report = check(text, target=target)
+    assert _sev(report, "SK502") == []
+    # URDF only: SK505 points at the joint that writes the rotation approximately.
+    assert _sev(report, "SK505") == [Severity.INFO]
+
+
+def test_sk505_floor_written_exactly_is_silent_and_just_above_it_is_reported(check) -> None:
+    # EXACT_TOL 1e-4 rad: 1.5708 (3.7e-6 off) counts as exact; 2e-4 rad off does not.
+    exact = check(robot(optical_rpy="-1.5708 0 -1.5708"), target="classic")
+    assert _sev(exact, "SK505") == [] and _sev(exact, "SK502") == []
+    off = check(robot(optical_rpy=f"{-HALF_PI + 2e-4!r} 0 {-HALF_PI!r}"), target="classic")
+    assert _sev(off, "SK505") == [Severity.INFO]
+
+
+def test_sk506_optical_naming_uses_the_same_half_degree(check) -> None:
+    # A frame named without _optical: an optical rotation 0.45 degree off is still optical
+    # (SK506 info), 0.55 degree off it is not (SK502 error instead).
+    def named(roll_off: float) -> str:
+        return robot(optical_rpy=_optical(roll_off)).replace("camera_optical_frame", "camera_lens")
+
+    inside = check(named(0.45), target="classic")
+    assert _sev(inside, "SK506") == [Severity.INFO] and _sev(inside, "SK502") == []
+    outside = check(named(0.55), target="classic")
+    assert _sev(outside, "SK506") == [] and _sev(outside, "SK502") == [Severity.ERROR]
+
+
+# --- SK504: a body sensor's frame rotation, the same 0.5 degree --------------------------
+
+
+def _lidar_in(frame_rpy: str = "0 0 0", frame_xyz: str = "0 0 0") -> str:
+    params = (
+        "<ros><remapping>~/out:=scan</remapping></ros><output_type>sensor_msgs/LaserScan</output_type>"
+        "<frame_name>laser_frame</frame_name>"
+    )
+    extra = link("laser_frame") + joint("laser_frame_joint", "laser_link", "laser_frame", frame_xyz, frame_rpy)
+    return robot(lidar=lidar_sensor(params=params), extra=extra)
+
+
+def test_sk504_just_outside_half_a_degree_is_an_error(check) -> None:
+    report = check(_lidar_in(frame_rpy=f"0 0 {math.radians(0.55)!r}"), target="classic")
+    assert _sev(report, "SK504") == [Severity.ERROR]
+
+
+def test_sk504_just_inside_half_a_degree_is_silent(check) -> None:
+    report = check(_lidar_in(frame_rpy=f"0 0 {math.radians(0.45)!r}"), target="classic")
+    assert _sev(report, "SK504") == []
+
+
+# --- SK503: the 1 mm position tolerance --------------------------------------------------
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_sk503_just_over_a_millimetre_is_an_error(check, axis: int) -> None:
+    xyz = ["0", "0", "0"]
+    xyz[axis] = "0.0011"
+    report = check(robot(optical_xyz=" ".join(xyz)), target="classic")
+    assert _sev(report, "SK503") == [Severity.ERROR]
+
+
+def test_sk503_just_under_a_millimetre_is_silent(check) -> None:
+    report = check(robot(optical_xyz="0.0009 0 0"), target="classic")
+    assert _sev(report, "SK503") == []
+
+
+def test_sk503_holds_for_a_lidar_frame_too(check) -> None:
+    assert _sev(check(_lidar_in(frame_xyz="0 0.0011 0"), target="classic"), "SK503") == [Severity.ERROR]
+    assert _sev(check(_lidar_in(frame_xyz="0 0.0009 0"), target="classic"), "SK503") == []
+
+
+def test_sk503_stereo_right_eye_is_held_to_the_baseline_within_a_millimetre(check) -> None:
+    # The right eye stamped in the left eye's optical frame, offset by hack_baseline: that is
+    # the ROS stereo convention (gazebo_ros_camera.cpp:399, :458); a baseline 1.1 mm off is not.
+    def stereo(baseline: str) -> str:
+        params = f"<frame_name>camera_optical_frame</frame_name><hack_baseline>{baseline}</hack_baseline>"
+        right = camera_sensor("right_camera", params=params)
+        extra = (
+            link("right_link")
+            + joint("right_joint", "camera_link", "right_link", "0 -0.07 0")
+            + f'<gazebo reference="right_link">{right}</gazebo>'
+        )
+        return robot(extra=extra)
+
+    def right_eye(report: object) -> list[Severity]:
+        return [
+            f.severity for f in report.findings if f.rule == "SK503" and f.sensor == "right_camera"  # type: ignore[attr-defined]
+        ]
+
+    assert right_eye(check(stereo("0.07"), target="classic")) == []
+    assert right_eye(check(stereo("0.0709"), target="classic")) == []
+    assert right_eye(check(stereo("0.0689"), target="classic")) == [Severity.ERROR]
+
+
+# --- SK404: horizontal_fov limits ---------------------------------------------------------
+
+
+def _fov(h: str) -> str:
+    return robot(camera=camera_sensor(camera=(
+        f"<camera><horizontal_fov>{h}</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera>"
+    )))
+
+
+def test_sk404_limits(check) -> None:
+    assert _sev(check(_fov("2.6"), target="classic"), "SK404") == []
+    assert _sev(check(_fov("2.601"), target="classic"), "SK404") == [Severity.WARNING]
+    assert _sev(check(_fov(repr(math.pi - 1e-6)), target="classic"), "SK404") == [Severity.WARNING]
+    assert _sev(check(_fov(repr(math.pi)), target="classic"), "SK404") == [Severity.ERROR]
+    assert _sev(check(_fov("0"), target="classic"), "SK404") == [Severity.ERROR]
+    assert _sev(check(_fov("1e-6"), target="classic"), "SK404") == []
+
+
+# --- SK405: clip and depth limits ---------------------------------------------------------
+
+
+def _depth(near: str, far: str, params: str = "", stype: str = "depth") -> str:
+    cam = (
+        f"<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        f"<format>R8G8B8</format></image><clip><near>{near}</near><far>{far}</far></clip></camera>"
+    )
+    return robot(camera=camera_sensor(stype=stype, camera=cam, params="<frame_name>camera_optical_frame</frame_name>" + params))
+
+
+def test_sk405_zfight_floor_just_over_and_under(check) -> None:
+    # band = far (far - near) / near * 2^-24 >= 1e-3 far  <=>  far/near >= 1 + 1e-3 * 2^24
+    ratio = 1 + 1e-3 * 2**24
+    over = check(_depth("0.01", repr(0.01 * ratio * 1.0001)), target="classic")
+    assert _sev(over, "SK405") == [Severity.WARNING]
+    under = check(_depth("0.01", repr(0.01 * ratio * 0.9999)), target="classic")
+    assert _sev(under, "SK405") == []
+
+
+def test_sk405_near_must_be_positive_and_below_far(check) -> None:
+    # A colour camera: no depth-precision warning to mix in.
+    assert _sev(check(_depth("0", "10", stype="camera"), target="classic"), "SK405") == [Severity.ERROR]
+    assert _sev(check(_depth("1e-6", "10", stype="camera"), target="classic"), "SK405") == []
+    assert _sev(check(_depth("10", "10", stype="camera"), target="classic"), "SK405") == [Severity.ERROR]
+    assert _sev(check(_depth("9.999", "10", stype="camera"), target="classic"), "SK405") == []
+
+
+def test_sk405_depth_range_inside_the_clip(check) -> None:
+    inside = check(_depth("0.05", "50", "<min_depth>0.05</min_depth><max_depth>50</max_depth>"), target="classic")
+    assert _sev(inside, "SK405") == []
+    below = check(_depth("0.05", "50", "<min_depth>0.04999</min_depth>"), target="classic")
+    assert _sev(below, "SK405") == [Severity.WARNING]
+    above = check(_depth("0.05", "50", "<max_depth>50.0001</max_depth>"), target="classic")
+    assert _sev(above, "SK405") == [Severity.WARNING]
+
+
+# --- SK406: lidar limits ------------------------------------------------------------------
+
+
+def test_sk406_whole_beam_count(check) -> None:
+    whole = check(robot(lidar=lidar_sensor(samples="360", resolution="0.5")), target="classic")
+    assert _sev(whole, "SK406") == []
+    # 360 x 1.00001 = 360.0036 beams: not whole (floor 1e-6 beam)
+    broken = check(robot(lidar=lidar_sensor(samples="360", resolution="1.00001")), target="classic")
+    assert _sev(broken, "SK406") == [Severity.WARNING]
+
+
+def test_sk406_plausible_ray_count(check) -> None:
+    from sensorkit.knowledge.limits import PLAUSIBLE_LIDAR_RAYS
+
+    vertical = "<vertical><samples>{v}</samples><resolution>1</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle></vertical>"
+    at = check(robot(lidar=lidar_sensor(samples="1000", vertical=vertical.format(v=PLAUSIBLE_LIDAR_RAYS // 1000))), target="classic")
+    assert _sev(at, "SK406") == []
+    over = check(robot(lidar=lidar_sensor(samples="1001", vertical=vertical.format(v=PLAUSIBLE_LIDAR_RAYS // 1000))), target="classic")
+    assert _sev(over, "SK406") == [Severity.WARNING]
+
+
+def test_sk406_samples_at_least_one(check) -> None:
+    assert _sev(check(robot(lidar=lidar_sensor(samples="1", min_angle="0", max_angle="0")), target="classic"), "SK406") == []
+    assert _sev(check(robot(lidar=lidar_sensor(samples="0")), target="classic"), "SK406") == [Severity.ERROR]
+
+
+def test_sk406_gpu_lidar_range_min_on_gz(check) -> None:
+    # range min 0 is the near clip Ogre refuses (knowledge.gazebo_sim GZ_LIDAR_NEAR_CLIP_TYPES);
+    # any positive min is fine.
+    def gpu(rmin: str) -> str:
+        return robot(lidar=lidar_sensor(stype="gpu_lidar", tag="lidar", plugin="", rmin=rmin))
+
+    assert _sev(check(gpu("0"), target="harmonic"), "SK406") == [Severity.ERROR]
+    assert _sev(check(gpu("1e-6"), target="harmonic"), "SK406") == []
+
+
+# --- SK409: one pixel at the image edge ---------------------------------------------------
+
+# Width 640, horizontal_fov 1.3962634: fx 381.3612; the edge (320 px out) moves by 1 px when
+# fx is off by 381.3612 / 320 = 1.1918.
+_FX = 640 / (2 * math.tan(1.3962634 / 2))
+
+
+@pytest.mark.parametrize(("delta", "want"), [(1.20, Severity.ERROR), (1.18, Severity.WARNING), (1e-5, None)])
+def test_sk409_edge_floor(check, delta: float, want: Severity | None) -> None:
+    params = f"<frame_name>camera_optical_frame</frame_name><focal_length>{_FX + delta!r}</focal_length>"
+    report = check(robot(camera=camera_sensor(params=params)), target="classic")
+    assert _sev(report, "SK409") == ([] if want is None else [want])
