@@ -9,6 +9,7 @@ interleave, so the order is written out here and ``put_in_order`` holds ``RULES`
 
 from sensorkit.lint.rules import (  # noqa: F401  (registration)
     bridge,
+    calibration,
     focal,
     frame_joints,
     frames,
@@ -22,6 +23,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     principal,
     ros1,
     sdf,
+    sensor_blocks,
     sensors,
     topics,
     tree,
@@ -41,6 +43,8 @@ RULE_ORDER = (
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
+    "SK413", "SK414",  # calibration
+    "SK415", "SK416",  # sensor_blocks
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 
