@@ -104,11 +104,11 @@ def _camera_plugin(ctx: Context, s: Sensor) -> tuple[Plugin, str] | None:
 
 @rule(
     "SK413",
-    "error",
+    "error/info",
     "a stereo baseline (ROS 1 <hackBaseline>, ROS 2 <hack_baseline> or <Tx>) on a Gazebo "
     "Classic camera with no stereo partner (no other camera of its image size, not a "
     "multicamera): camera_info P[0][3] = -f * baseline where a monocular camera has 0, so "
-    "every point projected with P moves by -P[0][3] / Z pixels: an error above 1 px at 1 m",
+    "every point projected with P moves by -P[0][3] / Z pixels: an error above 1 px at 1 m, info below",
     "none",
     formats=("urdf", "sdf"),
 )
@@ -189,11 +189,11 @@ def _show(d: dict[str, float]) -> tuple[float, ...]:
 
 @rule(
     "SK414",
-    "error",
+    "error/info",
     "camera_info D and the image's distortion disagree: a ROS 1 camera plugin publishes its "
     "<distortionK1..T2> (without <autoDistortion>) while Gazebo Classic renders the SDF "
     "<distortion>; a Gazebo Sim depth or RGBD camera publishes the SDF <distortion> in D but "
-    "renders no distortion. An error when the image's corner moves by more than 1 px",
+    "renders no distortion. An error when the image's corner moves by more than 1 px, info below",
     "none",
     formats=("urdf", "sdf"),
 )
