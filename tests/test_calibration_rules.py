@@ -202,3 +202,16 @@ def test_sk416_classic_reads_the_camera_pose(check) -> None:
     text = robot(camera=camera_sensor(camera=_cam("<pose>0.1 0 0 0 0 0</pose>")))
     assert _of(check, text, "classic", "SK416") == []
     assert _of(check, gz_robot(), "harmonic", "SK416") == []
+
+
+# ------------------------------------------------------------------------ SK409 on ROS 1
+
+
+def test_sk409_reads_the_ros1_focalLength(check) -> None:
+    # ROS 1 camera utils read <focalLength> (ros-simulation/gazebo_ros_pkgs@noetic-devel
+    # f9e1a46:gazebo_plugins/src/gazebo_ros_camera_utils.cpp:183-189); <focal_length> is
+    # the ROS 2 plugin's tag and means nothing to them.
+    [f] = _of(check, robot(camera=camera_sensor(params=FRAME1 + "<focalLength>500</focalLength>")), "ros1", "SK409")
+    assert "focalLength 500" in f.message and f.severity is Severity.ERROR
+    assert _of(check, robot(camera=camera_sensor(params=FRAME1 + "<focal_length>500</focal_length>")), "ros1", "SK409") == []
+    assert _of(check, robot(camera=camera_sensor(params=FRAME1 + f"<focalLength>{F!r}</focalLength>")), "ros1", "SK409") == []
