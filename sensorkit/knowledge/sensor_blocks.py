@@ -60,6 +60,8 @@ MEANT: dict[tuple[str, str], str] = {
     ("camera", "vertical_fov"): "geometry",
     ("camera", "vfov"): "geometry",
     # No SDF version gives the IMU's orientation a noise (see EVER_DEFINED): it is noise-free.
+    # Gazebo Classic reads noise from <angular_velocity> and <linear_acceleration> only
+    # (gazebo/sensors/ImuSensor.cc:89-150, 11.10.2).
     ("imu", "orientation"): "noise",
 }
 
