@@ -215,3 +215,30 @@ def test_sk409_reads_the_ros1_focalLength(check) -> None:
     assert "focalLength 500" in f.message and f.severity is Severity.ERROR
     assert _of(check, robot(camera=camera_sensor(params=FRAME1 + "<focal_length>500</focal_length>")), "ros1", "SK409") == []
     assert _of(check, robot(camera=camera_sensor(params=FRAME1 + f"<focalLength>{F!r}</focalLength>")), "ros1", "SK409") == []
+
+
+# ------------------------------------------------------------------------ SK417
+
+
+@pytest.mark.parametrize(
+    ("params", "target", "found"),
+    [
+        (FRAME + "<cx>321.6</cx>", "classic", True),  # 1.6 px: over 1.5
+        (FRAME + "<cx>321.4</cx>", "classic", False),  # 1.4 px: under
+        (FRAME + "<cx>320.5</cx>", "classic", False),  # gazebo_ros's own default
+        (FRAME + "<cy>250</cy>", "classic", True),
+        (FRAME + "<cx>400</cx>", "classic", False),  # 80 px > 10 %: SK411's, not both
+        (FRAME1 + "<Cx>0</Cx>", "ros1", False),  # ROS 1: 0 means computed
+        (FRAME1 + "<Cx>324</Cx>", "ros1", True),
+    ],
+)
+def test_sk417_principal_point_off_centre(check, params: str, target: str, found: bool) -> None:
+    # Classic renders the principal point at the centre (elysia-best/gazebo-classic@upstream/
+    # 11.10.2+dfsg:gazebo/rendering/Camera.cc:2033-2035); ROS 2 publishes <cx> as written
+    # (gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:360-364), ROS 1
+    # <Cx> with 0 computed (@noetic-devel f9e1a46:gazebo_ros_camera_utils.cpp:506-509).
+    got = _of(check, robot(camera=camera_sensor(params=params)), target, "SK417")
+    assert bool(got) is found, [f.message for f in got]
+    assert all(f.severity is Severity.ERROR for f in got)
+    if "<cx>400" in params:
+        assert _of(check, robot(camera=camera_sensor(params=params)), target, "SK411")

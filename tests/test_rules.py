@@ -33,6 +33,8 @@ CASES: list[tuple[str, str, str, str, str]] = [
      robot(camera=camera_sensor(params="<frameName>camera_optical_frame</frameName><distortionK1>0</distortionK1>")), "ros1", ".urdf"),
     ("SK415", robot(camera=camera_sensor(camera='<camera><horizontal_fov>1.3962634</horizontal_fov><vertical_fov>0.8</vertical_fov><image><width>640</width><height>480</height></image></camera>')),
      robot(camera=camera_sensor(camera='<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height></image></camera>')), "classic", ".urdf"),
+    ("SK417", robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><cx>325</cx>")),
+     robot(camera=camera_sensor(params="<frame_name>camera_optical_frame</frame_name><cx>320.5</cx>")), "classic", ".urdf"),
     ("SK416", gz_robot().replace("<clip>", "<pose>0.1 0 0 0 0 0</pose><clip>"), gz_robot(), "harmonic", ".urdf"),
     ("SK104",
      robot(extra='<link name="m"><visual><geometry><mesh filename="meshes/nothere.stl"/></geometry></visual>' + inertial() + "</link>" + joint("mj", "base_link", "m")),

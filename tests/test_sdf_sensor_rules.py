@@ -32,6 +32,7 @@ CASES: dict[str, tuple[str, str, str | None]] = {
     "SK414": ("harmonic", "sk414", None),
     "SK415": ("harmonic", "sk415", None),
     "SK416": ("harmonic", "sk416", None),
+    "SK417": ("classic", "sk417", None),
     "SK601": ("classic", "sk601", None),
     "SK602": ("classic", "sk602", None),
     "SK603": ("classic", "sk603", None),

@@ -43,7 +43,7 @@ RULE_ORDER = (
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
-    "SK413", "SK414",  # calibration
+    "SK413", "SK414", "SK417",  # calibration
     "SK415", "SK416",  # sensor_blocks
 )  # fmt: skip
 put_in_order(RULE_ORDER)

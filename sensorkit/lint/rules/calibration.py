@@ -6,9 +6,10 @@ Classic camera with no stereo partner: camera_info P[0][3] = -f * baseline, wher
 monocular camera has 0. SK414: distortion that camera_info D carries and the image does
 not have, or the other way round (ROS 1 camera utils publish their own distortion tags
 while Gazebo Classic renders the SDF ``<distortion>``; Gazebo Sim depth and RGBD cameras
-publish the SDF distortion without rendering it). Sources in
-:mod:`sensorkit.knowledge.sensor_blocks`. The focal length and the principal point are
-SK409, SK411 and SK412's.
+publish the SDF distortion without rendering it). SK417: a ROS principal point over 1.5 px
+from the centre Gazebo Classic renders, nearer than SK411's "far" (10 %). Sources in
+:mod:`sensorkit.knowledge.sensor_blocks` and :mod:`sensorkit.knowledge.gazebo_ros`. The
+focal length is SK409's, a partial lens SK412's.
 
 Materiality (sensorkit's, not a simulator fact): a disagreement is an error when it moves a
 point by more than one pixel, the unit the image measures in (as SK409's ``EDGE_PX``):
@@ -25,6 +26,8 @@ from lxml import etree
 
 from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding
+from sensorkit.knowledge import plugins as known
+from sensorkit.knowledge.gazebo_ros import PRINCIPAL_POINT_FAMILIES, PRINCIPAL_POINT_PARAMS
 from sensorkit.knowledge.sensor_blocks import (
     GZ_DISTORTION_NOT_RENDERED,
     GZ_DISTORTION_SOURCE,
@@ -36,6 +39,7 @@ from sensorkit.knowledge.sensor_blocks import (
     ROS2_TX_TAG,
 )
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.principal import far_from_centre
 from sensorkit.model.frames import publishing_plugin, ros_generation
 from sensorkit.model.parse import child, parse_float
 from sensorkit.model.sensors import CameraSpec, Plugin, Sensor
@@ -276,3 +280,59 @@ def _judge_distortion(
         sensor=s.name,
         fix=fix,
     )
+
+
+# ----------------------------------------------------------------------------- SK417
+
+# A principal point the image does not have, nearer than SK411's "far": sensorkit's 1 px
+# materiality plus the half pixel by which the centre conventions differ ((W - 1) / 2 for
+# pixel centres, W / 2 for the frustum's axis, (W + 1) / 2 gazebo_ros's default), so that
+# the point is over a pixel off whichever convention the reader takes.
+PRINCIPAL_PX = 1.5
+
+
+@rule(
+    "SK417",
+    "error",
+    "a gazebo_ros camera plugin's principal point (ROS 1 <Cx>/<Cy>, ROS 2 <cx>/<cy>) more than "
+    "1.5 px from the image centre (1 px, plus the half pixel between centre conventions) but "
+    "not as far as SK411 reports: Gazebo Classic renders the principal point at the centre, "
+    "so camera_info misplaces every bearing by that many pixels",
+    "none",
+    formats=("urdf", "sdf"),
+)
+def principal_point_offset(ctx: Context) -> Iterator[Finding]:
+    ros = ros_generation(ctx.target)
+    if ros not in PRINCIPAL_POINT_PARAMS:
+        return
+    cx_tag, cy_tag, zero_is_default = PRINCIPAL_POINT_PARAMS[ros]
+    for s in ctx.robot.sensors:
+        if not s.is_camera:
+            continue
+        for p in s.plugins:
+            spec = known.lookup(p.filename, ros)
+            if spec is None or spec.family not in PRINCIPAL_POINT_FAMILIES:
+                continue
+            for cam in s.cameras:
+                if cam.lens_intrinsics is not None:
+                    continue  # the image may be rendered off-centre (SK409's ground)
+                for tag, size in ((cx_tag, cam.width), (cy_tag, cam.height)):
+                    value = _number(p, tag)
+                    if value is None or size is None or size <= 0:
+                        continue
+                    if (value == 0 and zero_is_default) or far_from_centre(value, size):
+                        continue  # computed, or SK411's
+                    off = abs(value - size / 2.0)
+                    if off <= PRINCIPAL_PX:
+                        continue
+                    yield ctx.judged(
+                        "SK417",
+                        Consequence(Role.CALIBRATION, size / 2.0, value, equal=False),
+                        f"camera {s.name!r}: <{tag}> {value:g} is {off:.3g} px from the centre of the "
+                        f"{size} px image ({size / 2.0:g}), where Gazebo Classic renders the principal "
+                        "point (gazebo/rendering/Camera.cc:2033-2035, 11.10.2: a symmetric frustum): "
+                        f"camera_info misplaces every bearing by {off:.3g} px",
+                        child(p.element, tag),
+                        sensor=s.name,
+                        fix=f"remove <{tag}> (the plugin then computes {(size + 1) / 2.0:g})",
+                    )
