@@ -21,6 +21,7 @@ sensorkit/knowledge/sensor_blocks.py):
 from __future__ import annotations
 
 import math
+
 import pytest
 from builders import camera_sensor, gz_robot, robot
 
