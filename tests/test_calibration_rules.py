@@ -243,3 +243,15 @@ def test_sk417_principal_point_off_centre(check, params: str, target: str, found
     assert all(f.severity is Severity.ERROR for f in got)
     if "<cx>400" in params:
         assert _of(check, robot(camera=camera_sensor(params=params)), target, "SK411")
+
+
+def test_sk414_classic_depth_image_is_not_distorted(check) -> None:
+    # the distortion compositor sits on the camera's main viewport (elysia-best/gazebo-classic@
+    # upstream/11.10.2+dfsg:gazebo/rendering/Distortion.cc:467-473), the depth image has its
+    # own (DepthCamera.cc:658-669); gazebo_ros_camera publishes depth/camera_info with the
+    # SDF D (gazebo_ros_pkgs@ros2 d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:407-414, :697-703)
+    dist = _cam("<distortion><k1>0.1</k1></distortion>")
+    [f] = _of(check, robot(camera=camera_sensor(stype="depth", camera=dist)), "classic", "SK414")
+    assert f.severity is Severity.ERROR and "depth image" in f.message
+    assert _of(check, robot(camera=camera_sensor(stype="camera", camera=dist)), "classic", "SK414") == []
+    assert _of(check, robot(camera=camera_sensor(stype="depth", camera=_cam("<distortion><k1>0</k1></distortion>"))), "classic", "SK414") == []

@@ -74,7 +74,10 @@ MEANT: dict[tuple[str, str], str] = {
 # sensor's RawPose (@gz-sensors8:src/Sensor.cc:203, @ign-sensors6:src/Sensor.cc:175,
 # @gz-sensors10:src/Sensor.cc:205) and puts the rendering camera there
 # (@gz-sensors8:src/CameraSensor.cc:221, @ign-sensors6:src/CameraSensor.cc:486,
-# @gz-sensors10:src/CameraSensor.cc:156). sdformat loads <camera><pose> into
+# @gz-sensors10:src/CameraSensor.cc:156; every camera type alike, @gz-sensors8:
+# src/DepthCameraSensor.cc:361, RgbdCameraSensor.cc:328, ThermalCameraSensor.cc:311,
+# SegmentationCameraSensor.cc:379, BoundingBoxCameraSensor.cc:331,
+# WideAngleCameraSensor.cc:250). sdformat loads <camera><pose> into
 # sdf::Camera::RawPose (@sdf12 b9417e5:src/Camera.cc:380-381), which nothing in gz-sim's
 # or gz-sensors' src/ reads (`git grep RawPose` on those branches: only the sensor's, and
 # gz-sim's msgs conversions).
@@ -137,6 +140,16 @@ ROS1_DISTORTION_SOURCE = (
 # Port Distortion class": @gz-sensors8:src/DepthCameraSensor.cc:416-418,
 # RgbdCameraSensor.cc:374-376; @gz-sensors10 :417-419, :359-361; @ign-sensors6 :522-524,
 # :444-446).
+# Gazebo Classic's depth image is not distorted either: the distortion compositor goes on
+# the camera's main viewport (gazebo/rendering/Distortion.cc:467-473), and a depth camera
+# renders depth through a viewport of its own (DepthCamera.cc:223-239, :658-669), while ROS 2
+# gazebo_ros_camera publishes depth/camera_info with the same D (gazebo_ros_camera.cpp:697-703,
+# D from :407-414). Sensor types Classic creates a depth camera for:
+CLASSIC_DEPTH_TYPES = frozenset({"depth", "depth_camera"})
+CLASSIC_DEPTH_DISTORTION_SOURCE = (
+    "gazebo-classic 11.10.2 gazebo/rendering/Distortion.cc:467-473 (compositor on the main viewport), "
+    "DepthCamera.cc:658-669 (the depth viewport); gazebo_ros_camera.cpp:407-414, :697-703 (ros2)"
+)
 GZ_DISTORTION_NOT_RENDERED = frozenset({"depth", "depth_camera", "rgbd", "rgbd_camera"})
 GZ_DISTORTION_SOURCE = (
     "gz-sensors8 src/DepthCameraSensor.cc:416-418, :433 and RgbdCameraSensor.cc:374-376, "

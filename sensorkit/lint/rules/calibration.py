@@ -5,8 +5,9 @@ SK413: a stereo baseline (``hackBaseline``/``hack_baseline``, ROS 2 ``Tx``) on a
 Classic camera with no stereo partner: camera_info P[0][3] = -f * baseline, where a
 monocular camera has 0. SK414: distortion that camera_info D carries and the image does
 not have, or the other way round (ROS 1 camera utils publish their own distortion tags
-while Gazebo Classic renders the SDF ``<distortion>``; Gazebo Sim depth and RGBD cameras
-publish the SDF distortion without rendering it). SK417: a ROS principal point over 1.5 px
+while Gazebo Classic renders the SDF ``<distortion>``; Gazebo Sim depth and RGBD cameras,
+and Gazebo Classic's depth image under ROS 2, publish the SDF distortion without rendering
+it). SK417: a ROS principal point over 1.5 px
 from the centre Gazebo Classic renders, nearer than SK411's "far" (10 %). Sources in
 :mod:`sensorkit.knowledge.sensor_blocks` and :mod:`sensorkit.knowledge.gazebo_ros`. The
 focal length is SK409's, a partial lens SK412's.
@@ -29,6 +30,8 @@ from sensorkit.base.findings import Finding
 from sensorkit.knowledge import plugins as known
 from sensorkit.knowledge.gazebo_ros import PRINCIPAL_POINT_FAMILIES, PRINCIPAL_POINT_PARAMS
 from sensorkit.knowledge.sensor_blocks import (
+    CLASSIC_DEPTH_DISTORTION_SOURCE,
+    CLASSIC_DEPTH_TYPES,
     GZ_DISTORTION_NOT_RENDERED,
     GZ_DISTORTION_SOURCE,
     HACK_BASELINE_SOURCE,
@@ -196,8 +199,8 @@ def _show(d: dict[str, float]) -> tuple[float, ...]:
     "error/info",
     "camera_info D and the image's distortion disagree: a ROS 1 camera plugin publishes its "
     "<distortionK1..T2> (without <autoDistortion>) while Gazebo Classic renders the SDF "
-    "<distortion>; a Gazebo Sim depth or RGBD camera publishes the SDF <distortion> in D but "
-    "renders no distortion. An error when the image's corner moves by more than 1 px, info below",
+    "<distortion>; a Gazebo Sim depth or RGBD camera, or a Gazebo Classic depth camera's depth "
+    "image (ROS 2), carries the SDF <distortion> in D but is rendered undistorted. An error when the image's corner moves by more than 1 px, info below",
     "none",
     formats=("urdf", "sdf"),
 )
@@ -214,9 +217,23 @@ def distortion_not_rendered(ctx: Context) -> Iterator[Finding]:
                     f"D but renders its image undistorted ({GZ_DISTORTION_SOURCE})",
                     where=child(cam.element, "distortion"),
                     fix="remove <distortion> (a gz depth/RGBD image has none)",
+                    image="depth image",
                 )
         elif ctx.target == "ros1":
             yield from _ros1_distortion(ctx, s, cam)
+        elif s.type in CLASSIC_DEPTH_TYPES and any(cam.distortion.get(k) for k in _ORDER):
+            found = _camera_plugin(ctx, s)
+            if found is not None:
+                yield from _judge_distortion(
+                    ctx, s, cam, rendered={}, published=dict(cam.distortion),
+                    why="gazebo_ros_camera publishes depth/camera_info with the SDF <distortion> "
+                    "but Gazebo Classic renders the depth image undistorted "
+                    f"({CLASSIC_DEPTH_DISTORTION_SOURCE}); the color image is distorted and "
+                    "matches its camera_info",
+                    where=child(cam.element, "distortion"),
+                    fix="remove <distortion> from the depth camera (its depth image has none)",
+                    image="depth image",
+                )
 
 
 def _ros1_distortion(ctx: Context, s: Sensor, cam: CameraSpec) -> Iterator[Finding]:
@@ -259,6 +276,7 @@ def _judge_distortion(
     why: str,
     where: etree._Element | None,
     fix: str,
+    image: str = "image",
 ) -> Iterator[Finding]:
     f = _image_focal(cam)
     if f is None:
@@ -269,13 +287,13 @@ def _judge_distortion(
         "SK414",
         Consequence(
             Role.CALIBRATION,
-            f"D {list(_show(rendered))} (the image's)",
+            f"D {list(_show(rendered))} (the {image}'s)",
             f"D {list(_show(published))}",
             equal=shift <= PX,
         ),
-        f"camera {s.name!r}: camera_info D = {list(_show(published))} but the image is rendered with "
+        f"camera {s.name!r}: camera_info D = {list(_show(published))} but the {image} is rendered with "
         f"distortion {list(_show(rendered))} (k1 k2 p1 p2 k3): {why}; undistorting with D moves the "
-        f"image's corner by {shift:.3g} px",
+        f"{image}'s corner by {shift:.3g} px",
         where,
         sensor=s.name,
         fix=fix,
