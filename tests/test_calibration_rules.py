@@ -255,3 +255,17 @@ def test_sk414_classic_depth_image_is_not_distorted(check) -> None:
     assert f.severity is Severity.ERROR and "depth image" in f.message
     assert _of(check, robot(camera=camera_sensor(stype="camera", camera=dist)), "classic", "SK414") == []
     assert _of(check, robot(camera=camera_sensor(stype="depth", camera=_cam("<distortion><k1>0</k1></distortion>"))), "classic", "SK414") == []
+
+
+@pytest.mark.parametrize(
+    "camera",
+    [
+        _cam("<vertical_fov>1e-320</vertical_fov>", hfov=1e-320),
+        _cam("<vertical_fov>nan</vertical_fov><distortion><k1>1e308</k1></distortion>"),
+        _cam("<vertical_fov>3.2</vertical_fov><pose>nan 0 0 0 0 0</pose>", hfov=3.1),
+    ],
+)
+def test_hostile_numbers_give_findings_not_tracebacks(check, camera: str) -> None:
+    params = FRAME1 + "<hackBaseline>1e308</hackBaseline><focalLength>1e308</focalLength><distortionK1>inf</distortionK1><Cx>1e400</Cx>"
+    for target in ("ros1", "classic", "harmonic"):
+        check(robot(camera=camera_sensor(stype="depth", camera=camera, params=params)), target=target)

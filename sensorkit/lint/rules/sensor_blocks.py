@@ -161,6 +161,8 @@ def _vertical_fov(
     ):
         return None  # an unreadable value, or a lens that sets the projection itself
     effective = 2.0 * math.atan(math.tan(hfov / 2.0) * height / width)
+    if not math.tan(effective / 2.0) > 0.0 or not math.tan(written / 2.0) > 0.0:
+        return None  # a field of view too small to hold a row: not judged
     # The focal length each field of view gives the rows, and where the image's top edge
     # lands: half the height times their relative difference.
     fy_written = (height / 2.0) / math.tan(written / 2.0)
