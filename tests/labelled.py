@@ -28,6 +28,10 @@ the robot does (a sensor that publishes nothing, in the wrong frame, with a wron
 calibration), ``minor`` when it is true but harmless. An error is a promise that the
 sensor will not work as written, so an error labelled ``minor`` fails the tests.
 
+A ``defect`` label may also say its ``consequence``: one line naming what ROS receives and
+what it should receive (issue 35), e.g. "camera_info P[0][3] = -38.8 on a monocular camera;
+should be 0". Only a true defect carries one (``consequence_problem``).
+
 A finding that stops being reported keeps its label, with ``gone:`` saying why (the rule
 change and its source): the tests then hold that it stays gone, and the label is the
 record of why it went.
@@ -208,6 +212,19 @@ def table(robot: Robot) -> dict[Key, dict[str, Any]]:
 
 
 IMPACTS = ("defect", "minor")
+
+
+def consequence_problem(lab: dict[str, Any]) -> str | None:
+    """What is wrong with a label's ``consequence``, or None: it belongs to a true defect only
+    and is one line long enough to name what ROS receives and what it should."""
+    if "consequence" not in lab:
+        return None
+    text = lab["consequence"]
+    if lab.get("verdict") is not True or lab.get("impact") != "defect":
+        return "a consequence belongs to a true defect label only"
+    if not isinstance(text, str) or "\n" in text.strip() or len(text.strip()) < 15:
+        return "a consequence is one line naming what ROS receives and what it should receive"
+    return None
 
 
 def live(table: dict[Key, dict[str, Any]]) -> dict[Key, dict[str, Any]]:
