@@ -364,7 +364,7 @@ ROS1_CAMERA = """        <frameName>camera_optical_frame</frameName>
         <imageTopicName>color/image_raw</imageTopicName>
         <cameraInfoTopicName>/front/color/camera_info</cameraInfoTopicName>
         <updateRate>30</updateRate>
-        <hackBaseline>0.07</hackBaseline>
+        <hackBaseline>0</hackBaseline>
         <Cx>0</Cx>"""
 
 
@@ -388,7 +388,7 @@ def test_sk602_ros1_tags_take_their_ros2_form(here: Path) -> None:
         "          <remapping>front/camera_info:=/front/color/camera_info</remapping>\n"
         "        </ros>\n"
         "        <camera_name>front</camera_name>\n"
-        "        <hack_baseline>0.07</hack_baseline>\n"
+        "        <hack_baseline>0</hack_baseline>\n"
         "      </plugin>"
     )
     # The topics are where ROS 1 put them: /NS/CAMERA/TOPIC, an absolute name as it is.
@@ -862,3 +862,18 @@ def test_edits_apply_back_to_front_and_overlaps_are_seen() -> None:
     assert not overlaps(ins1, ins2) and not overlaps(ins1, swap)
     assert overlaps(swap, Edit("f", 5, 9, b"")) and overlaps(swap, Edit("f", 4, 4, b"z"))
     assert not overlaps(swap, Edit("g", 3, 7, b""))
+
+
+def test_sk602_keeps_a_stereo_baseline_off_a_monocular_camera(here: Path) -> None:
+    """Renaming ROS 1 <hackBaseline> 0.07 to ROS 2 <hack_baseline> on a camera with no stereo
+    partner would give its camera_info P[0][3] = -f * 0.07 (SK413; gazebo_ros_pkgs@ros2
+    d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:399, :458): the fixer rejects that
+    rename and applies the others."""
+    path = write(here, "rover.urdf", robot(params=ROS1_CAMERA.replace("<hackBaseline>0<", "<hackBaseline>0.07<")))
+    ff = fix(path)
+    rejected = [n for n in ff.notes if n.kind == "rejected"]
+    assert rejected and all("SK413" in n.text or "P[0][3]" in n.text for n in rejected), [n.text for n in ff.notes]
+    new = path.read_bytes()
+    assert b"<hackBaseline>0.07</hackBaseline>" in new and b"hack_baseline" not in new
+    assert b"<frame_name>camera_optical_frame</frame_name>" in new
+    assert rules(path).get("SK413", 0) == 0

@@ -9,6 +9,7 @@ interleave, so the order is written out here and ``put_in_order`` holds ``RULES`
 
 from sensorkit.lint.rules import (  # noqa: F401  (registration)
     bridge,
+    calibration,
     focal,
     frame_joints,
     frames,
@@ -23,6 +24,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     recording,
     ros1,
     sdf,
+    sensor_blocks,
     sensors,
     topics,
     tree,
@@ -42,6 +44,8 @@ RULE_ORDER = (
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
+    "SK413", "SK414", "SK417",  # calibration
+    "SK415", "SK416",  # sensor_blocks
     "SK801", "SK802", "SK803", "SK804", "SK805",  # recording (check-recording)
     "SK806", "SK807", "SK808", "SK809", "SK810",  # recording
 )  # fmt: skip

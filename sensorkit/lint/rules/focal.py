@@ -76,18 +76,21 @@ def _focal_severity(size: int | None, rendered: float, published: float) -> Seve
 def _classic_focal_length(
     ctx: Context, s: Sensor, cam: CameraSpec, hfov: float, expected: float
 ) -> Iterator[Finding]:
-    """No intrinsics: the image spans horizontal_fov, camera_info says <focal_length>."""
+    """No intrinsics: the image spans horizontal_fov, camera_info says the plugin's focal
+    length: ROS 2 <focal_length>, ROS 1 <focalLength> (noetic gazebo_ros_camera_utils.cpp
+    :183-189; each generation reads only its own tag: CLASSIC_FOCAL_LENGTH_PARAM)."""
+    tag = CLASSIC_FOCAL_LENGTH_PARAM[ros_generation(ctx.target)]
     for p in s.plugins:
-        f, _ = parse_float(p.param("focal_length"))
+        f, _ = parse_float(p.param(tag))
         if f is not None and f > 0 and abs(f - expected) > 1e-6 * max(1.0, expected):
             yield ctx.finding(
                 "SK409",
                 _focal_severity(cam.width, expected, f),
-                f"camera {s.name!r}: focal_length {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
+                f"camera {s.name!r}: {tag} {f:g} disagrees with width {cam.width} and horizontal_fov {hfov:g} "
                 f"(which give {expected:.6f}); camera_info and the rendered image will not match",
                 p.source,
                 sensor=s.name,
-                fix=f"remove <focal_length> or write {expected!r}",
+                fix=f"remove <{tag}> or write {expected!r}",
             )
 
 
