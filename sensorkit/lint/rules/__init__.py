@@ -16,6 +16,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     input,
     lidar,
     mass,
+    model_plugins,
     noise,
     placement,
     plugins,
@@ -41,6 +42,7 @@ RULE_ORDER = (
     "SK410", "SK411",  # placement, principal
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
+    "SK616",  # model_plugins
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_sim import gz_never_created
 from sensorkit.lint.rules.base import Context, rule
@@ -157,6 +158,17 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                     )
                 continue
             found = _gz_unbridged(ctx, s, topic, bridged)
+            if found is not None and owner is not None and found.severity > Severity.INFO:
+                # A model plugin may read it (ArduPilot's <imuName>, a <ros2_control> block):
+                # whether its data needs a bridge sensorkit cannot tell (issue 35).
+                found = ctx.judged(
+                    "SK607",
+                    Consequence(Role.OUTPUT, "published to ROS", UNKNOWN),
+                    f"sensor {s.name!r}: no bridge entry names its gz topics, and {owner.how}: "
+                    "sensorkit cannot tell whether its data reaches ROS that way",
+                    s.source,
+                    sensor=s.name,
+                )
             if found is not None:
                 yield found
         elif s.plugins or (owner is not None and owner.certain):
