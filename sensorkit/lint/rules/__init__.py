@@ -9,6 +9,7 @@ interleave, so the order is written out here and ``put_in_order`` holds ``RULES`
 
 from sensorkit.lint.rules import (  # noqa: F401  (registration)
     bridge,
+    bridge_flow,
     focal,
     frame_joints,
     frames,
@@ -43,6 +44,7 @@ RULE_ORDER = (
     "SK201", "SK202", "SK203", "SK204", "SK205", "SK206", "SK207",  # tree
     "SK107", "SK208", "SK209", "SK510",  # sdf
     "SK616",  # model_plugins
+    "SK617", "SK618", "SK619",  # bridge_flow
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 
