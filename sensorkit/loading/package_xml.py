@@ -48,7 +48,8 @@ def _tools(root: etree._Element) -> list[str]:
     for el in root.iter("buildtool_depend", "build_type"):
         if el.get("condition") is not None:
             continue
-        if el.tag == "build_type" and (el.getparent() is None or el.getparent().tag != "export"):  # type: ignore[union-attr]
+        parent = el.getparent()
+        if el.tag == "build_type" and (parent is None or parent.tag != "export"):
             continue
         text = (el.text or "").strip()
         if text:

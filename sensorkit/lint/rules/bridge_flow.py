@@ -179,7 +179,7 @@ def misspelt_topic(ctx: Context) -> Iterator[Finding]:
         )
 
 
-def misspelt_entries(ctx: Context) -> set[tuple[str, int | None]]:
+def misspelt_entries(ctx: Context) -> set[tuple[str | None, int | None]]:
     """(file, line) of the entries SK618 reports, so that SK612 does not say them twice."""
     return {(f.source.file, f.source.line) for f in misspelt_topic(ctx)}
 
