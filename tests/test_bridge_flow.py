@@ -110,3 +110,18 @@ def test_a_bad_bridge_argument_kills_the_whole_bridge(tmp_path: Path, kind: str)
 def test_a_well_formed_bridge_is_alive(tmp_path: Path, kind: str) -> None:
     report = validate_file(_workspace(tmp_path, kind), Options(target="harmonic"))
     assert not _of(report, "SK619") and not _of(report, "SK607")
+
+
+def test_a_bad_bridge_argument_on_an_sdf_model(tmp_path: Path) -> None:
+    # The same parameter_bridge exit (parameter_bridge.cpp:92-98) for a model read from SDF.
+    here = Path(__file__).parent / "robots" / "sdf" / "sensors"
+    launch = tmp_path / "sim.launch.py"
+    bad = KINDS["py"][1].format(scan="", name="m", tf="").replace("/front_camera/image_raw", "/cam")
+    launch.write_text(bad)
+    report = validate_file(here / "bridged.sdf", Options(target="harmonic", launch=(str(launch),)))
+    f = _of(report, "SK619")
+    assert [x.severity.label for x in f] == ["error"] and "'cam'" in f[0].message
+    # near miss: the well-formed bridge carries cam
+    launch.write_text(KINDS["py"][1].format(scan="/scan", name="m", tf="").replace("/front_camera/image_raw", "/cam"))
+    report = validate_file(here / "bridged.sdf", Options(target="harmonic", launch=(str(launch),)))
+    assert not _of(report, "SK619")
