@@ -13,6 +13,7 @@ from builders import gz_robot
 from test_launch_e2e import KINDS, _workspace
 
 from sensorkit.lint.engine import FileReport, Options, validate_file
+from sensorkit.loading.launch_facts import LaunchFacts
 
 
 def _entry(gz: str, ros_type: str, gz_type: str, direction: str = "GZ_TO_ROS") -> str:
@@ -27,12 +28,34 @@ INFO = ("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo")
 SCAN = ("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
 
 
-def _run(tmp_path: Path, bridge: str) -> FileReport:
+# A launch file that starts the bridge with that YAML as its config_file: what the launch
+# files start is then known, and a sensor no entry carries publishes nothing to ROS.
+LAUNCH = """\
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([Node(
+        package='ros_gz_bridge',
+        executable='parameter_bridge',
+        parameters=[{{'config_file': '{yaml}'}}],
+    )])
+"""
+
+
+def _run(tmp_path: Path, bridge: str, *, launch: bool = True) -> FileReport:
     tmp_path.mkdir(parents=True, exist_ok=True)
     path = tmp_path / "rover.urdf"
     path.write_text(gz_robot())
-    (tmp_path / "bridge.yaml").write_text(bridge)
-    report = validate_file(path, Options(target="harmonic", bridges=(str(tmp_path / "bridge.yaml"),)))
+    yaml = tmp_path / "bridge.yaml"
+    yaml.write_text(bridge)
+    if launch:
+        (tmp_path / "sim.launch.py").write_text(LAUNCH.format(yaml=yaml))
+        options = Options(target="harmonic", launch=(str(tmp_path / "sim.launch.py"),))
+    else:  # the YAML alone: a launch file may bridge the image some other way
+        options = Options(target="harmonic", bridges=(str(yaml),), launch_facts=LaunchFacts())
+    report = validate_file(path, options)
     assert not report.internal_errors and report.error is None, report.error
     return report
 
@@ -48,9 +71,12 @@ def test_ros_to_gz_on_a_sensor_topic_is_an_error(tmp_path: Path) -> None:
     # ROS_TO_GZ creates only the ROS->GZ handle (ros_gz_bridge/src/ros_gz_bridge.cpp:74-110 on
     # humble, :79-104 on jazzy): the image never reaches ROS.
     bridge = _entry("/front_camera/image_raw", *IMAGE, "ROS_TO_GZ") + _entry("/front_camera/camera_info", *INFO) + _entry("/scan", *SCAN)
-    f = _of(_run(tmp_path, bridge), "SK617")
+    f = _of(_run(tmp_path / "a", bridge), "SK617")
     assert [x.severity.label for x in f] == ["error"] and f[0].sensor == "front_camera"
-    assert "GZ_TO_ROS" in (f[0].fix or "")
+    assert "GZ_TO_ROS" in (f[0].fix or "") and "publishes nothing to ROS" in f[0].message
+    # the YAML alone, no launch file read: an image_bridge may carry the image (info)
+    f = _of(_run(tmp_path / "b", bridge, launch=False), "SK617")
+    assert [x.severity.label for x in f] == ["info"] and "image_bridge" in f[0].message
 
 
 def test_ros_to_gz_near_misses(tmp_path: Path) -> None:
@@ -71,12 +97,15 @@ def test_ros_to_gz_near_misses(tmp_path: Path) -> None:
 
 def test_misspelt_topic_is_an_error_with_did_you_mean(tmp_path: Path) -> None:
     bridge = _entry("/front_camera/image_rwa", *IMAGE) + _entry("/front_camera/camera_info", *INFO) + _entry("/scan", *SCAN)
-    report = _run(tmp_path, bridge)
+    report = _run(tmp_path / "a", bridge)
     f = _of(report, "SK618")
     assert [x.severity.label for x in f] == ["error"]
     assert "did you mean 'front_camera/image_raw'" in f[0].message and f[0].sensor == "front_camera"
     # SK612 does not say the same entry again
     assert not [x for x in _of(report, "SK612") if "image_rwa" in x.message]
+    # the YAML alone: another bridge may carry the image (info, as SK607 says of it)
+    f = _of(_run(tmp_path / "b", bridge, launch=False), "SK618")
+    assert [x.severity.label for x in f] == ["info"]
 
 
 def test_misspelt_topic_near_misses(tmp_path: Path) -> None:

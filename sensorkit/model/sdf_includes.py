@@ -107,6 +107,8 @@ def include_finding(inc: Include, doc: Document, target: str | None = None) -> F
             f"{CLASSIC_SEARCH_PATH} ({CLASSIC_INSTALLED_SOURCE}): it resolves on Gazebo "
             "Classic; sensorkit does not read it",
             where,
+            fix="nothing to change for Gazebo Classic (Gazebo Sim installs no such model: "
+            "define it in the world, or include it from Fuel)",
             consequence=Consequence(Role.GEOMETRY, inc.uri, inc.uri),
         )
     if not inc.uri:

@@ -168,6 +168,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                     "sensorkit cannot tell whether its data reaches ROS that way",
                     s.source,
                     sensor=s.name,
+                    fix="if ROS needs its data, add a GZ_TO_ROS entry for its gz topic",
                 )
             if found is not None:
                 yield found
@@ -181,6 +182,8 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 "whether it reads this sensor; if it does not, nothing publishes it to ROS",
                 s.source,
                 sensor=s.name,
+                fix="check in the running simulation that its data reaches ROS (ros2 topic list); "
+                "if not, add the gazebo_ros plugin for its type",
             )
         else:
             yield ctx.finding(

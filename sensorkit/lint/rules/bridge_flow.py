@@ -71,7 +71,25 @@ def _to_ros(ctx: Context) -> set[str]:
 
 
 def _unknown_bridge(ctx: Context) -> bool:
-    return ctx.launch is not None and ctx.launch.bridge_unknown
+    """Whether a sensor may reach ROS by a bridge sensorkit did not read: a launch bridge
+    it could not read, or no launch file read that starts a bridge at all. Projects bridge
+    camera images with ros_gz_image's image_bridge from a launch file beside a YAML
+    (MOGI-ROS/Week-9-10-Simple-arm@425c335:bme_ros2_simple_arm/launch/spawn_robot.launch.py:
+    133-138, as SK607 says): what the launch files start must be known before "nothing
+    reaches ROS" is said (the same test as SK607's)."""
+    launch = ctx.launch
+    return launch is None or not launch.bridges or launch.bridge_unknown
+
+
+def _unless(ctx: Context, elsewhere: bool) -> str:
+    if elsewhere:
+        return "; another entry carries it to ROS, so nothing is lost"
+    if _unknown_bridge(ctx):
+        return (
+            "; unless a bridge the launch files start (not read here) carries it another way "
+            "(ros_gz_image's image_bridge), the sensor's data never reaches ROS"
+        )
+    return "; no bridge the launch files start carries it either: the sensor publishes nothing to ROS"
 
 
 def _shares_world(ctx: Context) -> bool:
@@ -109,9 +127,10 @@ def wrong_direction(ctx: Context) -> Iterator[Finding]:
             Consequence(Role.OUTPUT, intended, effective),
             f"bridge entry for gz topic {entry.gz!r} runs ROS_TO_GZ, but sensor {hit.sensor.name!r} "
             "publishes there: ros_gz_bridge subscribes to the ROS topic and publishes into Gazebo, "
-            "so the sensor's data goes nowhere in ROS and anything published on the ROS topic "
-            "lands on the sensor's gz topic (gazebosim/ros_gz@humble 5cc92f8:ros_gz_bridge/src/"
-            "ros_gz_bridge.cpp:74-110; @jazzy 739cb42: :79-104)",
+            "so nothing of the sensor reaches ROS through this entry, and anything published on "
+            "the ROS topic lands on the sensor's gz topic (gazebosim/ros_gz@humble 5cc92f8:"
+            "ros_gz_bridge/src/ros_gz_bridge.cpp:74-110; @jazzy 739cb42: :79-104)"
+            + _unless(ctx, elsewhere),
             SourceRef(entry.file, entry.line),
             sensor=hit.sensor.name,
             fix="write direction: GZ_TO_ROS (in a launch argument: TOPIC@ROS_TYPE[GZ_TYPE)",
@@ -172,7 +191,7 @@ def misspelt_topic(ctx: Context) -> Iterator[Finding]:
             ),
             f"bridge entry for gz topic {entry.gz!r} matches no sensor of this robot, and sensor "
             f"{meant.sensor.name!r} publishes gz.msgs.{meant.msg} on {meant.topic!r}, which no "
-            f"entry bridges: did you mean {meant.topic.lstrip('/')!r}?",
+            f"entry bridges: did you mean {meant.topic.lstrip('/')!r}?" + _unless(ctx, False),
             SourceRef(entry.file, entry.line),
             sensor=meant.sensor.name,
             fix=f"gz_topic_name: {meant.topic.lstrip('/')}",
@@ -215,7 +234,7 @@ def dead_bridge(ctx: Context) -> Iterator[Finding]:
                 Consequence(
                     Role.OUTPUT,
                     "data in ROS",
-                    (UNKNOWN if _unknown_bridge(ctx) else None) if lost else "data in ROS",
+                    (UNKNOWN if launch.bridge_unknown else None) if lost else "data in ROS",
                 ),
                 f"{text}: sensor{'s' if len(names) > 1 else ''} "
                 f"{', '.join(repr(n) for n in names)} "
