@@ -59,6 +59,10 @@ def test_p3d_and_ft_sensor_lookups() -> None:
     assert {x.param for x in lookups_of("libgazebo_ros_p3d.so", "ros1")} == {"bodyName", "frameName"}
     assert {x.param for x in lookups_of("libgazebo_ros_ft_sensor.so", "ros2")} == {"body_name", "joint_name"}
     assert not lookups_of("libgazebo_ros_imu.so", "ros2")
+    # tu-darmstadt-ros-pkg/hector_gazebo@melodic-devel de947fb:hector_gazebo_plugins/src/
+    # gazebo_ros_imu.cpp:80-96, gazebo_ros_gps.cpp:75-89, gazebo_ros_magnetic.cpp:75-90
+    for lib in ("libhector_gazebo_ros_imu.so", "libhector_gazebo_ros_gps.so", "libhector_gazebo_ros_magnetic.so"):
+        assert [x.param for x in lookups_of(lib, "ros1")] == ["bodyName"]
 
 
 def test_ros2_ft_sensor_joint_lumped_away(check) -> None:

@@ -18,6 +18,7 @@ __all__ = ["LINK_LOOKUPS", "LinkLookup", "lookups_of"]
 
 GRP_NOETIC = "ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46"
 GRP_ROS2 = "ros-simulation/gazebo_ros_pkgs@ros2 d52f7c4"
+HECTOR = "tu-darmstadt-ros-pkg/hector_gazebo@melodic-devel de947fb"
 
 
 @dataclass(frozen=True)
@@ -78,6 +79,32 @@ LINK_LOOKUPS: tuple[LinkLookup, ...] = (
         "joint",
         "force-torque data",
         f"{GRP_NOETIC}:gazebo_plugins/src/gazebo_ros_ft_sensor.cpp:75-80",
+    ),
+    # hector_gazebo_plugins (ROS 1): bodyName looked up with _model->GetLink, else the
+    # model's canonical link; "bodyName: %s does not exist" and return
+    LinkLookup(
+        "hector_gazebo_ros_imu",
+        "ros1",
+        "bodyName",
+        "link",
+        "IMU data",
+        f"{HECTOR}:hector_gazebo_plugins/src/gazebo_ros_imu.cpp:80-96",
+    ),
+    LinkLookup(
+        "hector_gazebo_ros_gps",
+        "ros1",
+        "bodyName",
+        "link",
+        "GPS fixes",
+        f"{HECTOR}:hector_gazebo_plugins/src/gazebo_ros_gps.cpp:75-89",
+    ),
+    LinkLookup(
+        "hector_gazebo_ros_magnetic",
+        "ros1",
+        "bodyName",
+        "link",
+        "magnetic field data",
+        f"{HECTOR}:hector_gazebo_plugins/src/gazebo_ros_magnetic.cpp:75-90",
     ),
     LinkLookup(
         "gazebo_ros_p3d",
