@@ -307,7 +307,9 @@ def test_every_rule_has_a_case() -> None:
     # The loaders' rules: test_loading.py; SK612 and SK614 need a bridge file: test_trust.py
     # and test_sim_facts.py; SK615 needs a bridge too: test_launch_rules.py; SK106 a launch
     # file beside the robot: test_launch_e2e.py; the SDF-only rules: test_sdf_rules.py.
+    # SK616: test_model_plugins.py; SK617-SK619 need a bridge or a launch file: test_bridge_flow.py.
     covered = {c[0] for c in CASES} | {"SK101", "SK102", "SK103", "SK106", "SK612", "SK614", "SK615"}
+    covered |= {"SK616", "SK617", "SK618", "SK619"}
     covered |= {"SK107", "SK208", "SK209", "SK510"}
     # check-recording's rules read a bag: test_recording.py holds a trigger and a near miss
     # of each (test_every_recording_rule_has_a_trigger_and_a_near_miss).
@@ -324,6 +326,7 @@ def test_every_rule_that_runs_on_sdf_has_an_sdf_trigger_and_near_miss() -> None:
     from test_sdf_sensor_rules import CASES as SENSOR_CASES
 
     cased = set(SENSOR_CASES) | set(ON_SDF) | {"SK107", "SK208", "SK209", "SK510"}
+    cased |= {"SK619"}  # a launch file's bridge: test_bridge_flow.py's SDF case
     cased |= {"SK101", "SK102", "SK103", "SK104"}
     on_sdf = {rid for rid, info in RULES.items() if "sdf" in info.formats}
     assert on_sdf == cased, (sorted(on_sdf - cased), sorted(cased - on_sdf))

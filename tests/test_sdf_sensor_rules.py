@@ -48,6 +48,8 @@ CASES: dict[str, tuple[str, str, str | None]] = {
     "SK612": ("harmonic", "bridged", "bridge_sk612"),
     "SK614": ("harmonic", "bridged", "bridge_sk614"),
     "SK615": ("harmonic", "bridged", "bridge_sk615"),
+    "SK617": ("harmonic", "bridged", "bridge_sk617"),  # cam's entry runs ROS_TO_GZ
+    "SK618": ("harmonic", "bridged", "bridge_sk618"),  # /camm: did you mean cam?
 }
 
 

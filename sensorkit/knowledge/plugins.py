@@ -1100,6 +1100,22 @@ HARDWARE_SIMS: dict[str, SensorOwnership | None] = {
 }
 
 
+# The <ros2_control><hardware><plugin> classes of the ros2_control simulator plugins, whose
+# sensor reading the plugin specs above record (``owns``). gazebo_ros2_control and
+# gz_ros2_control load the class a block names by pluginlib; any other class (a fork's, a
+# project's own) decides what it reads, and sensorkit cannot tell (sensorkit.model.owners).
+ROS2_CONTROL_SYSTEMS = frozenset(
+    {
+        # ros-controls/gazebo_ros2_control@humble 42d875b:gazebo_ros2_control/gazebo_hardware_plugins.xml:3
+        "gazebo_ros2_control/GazeboSystem",
+        # ros-controls/gz_ros2_control@jazzy fa9ced4:gz_ros2_control/gz_hardware_plugins.xml:3,11
+        "gz_ros2_control/GazeboSimSystem",
+        # ros-controls/gz_ros2_control@humble 4cb90a2:ign_ros2_control/ign_hardware_plugins.xml:3
+        "ign_ros2_control/IgnitionSystem",
+    }
+)
+
+
 def lookup(filename_or_library: str, ros: str) -> PluginSpec | None:
     """The spec of a plugin for ``ros`` ("ros2", "ros1" or "gz"), or None when unknown."""
     base = filename_or_library.rsplit("/", 1)[-1]

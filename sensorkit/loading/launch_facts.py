@@ -58,6 +58,21 @@ class NodeRemap:
     source: SourceRef
 
 
+@dataclass(frozen=True)
+class DeadBridge:
+    """A parameter_bridge that exits at start: ``argument`` is one it cannot parse, and
+    ``topics`` every entry its arguments and config_file would have bridged, none of which
+    exist. ros_gz_bridge's main() prints its usage and returns -1 on such an argument,
+    before it spins the node (gazebosim/ros_gz@humble 5cc92f8 and @jazzy 739cb42:
+    ros_gz_bridge/src/parameter_bridge.cpp:92-98, the loop over the arguments, and :173,
+    the spin it never reaches); the config_file entries belong to that node
+    (ros_gz_bridge/src/ros_gz_bridge.cpp:47-55 on both branches), so they go with it."""
+
+    argument: str
+    topics: tuple[BridgeTopic, ...]
+    source: SourceRef
+
+
 @dataclass
 class LaunchProblem:
     """A launch file that could not be read, or a part of one that could not be resolved."""
@@ -90,6 +105,7 @@ class LaunchFacts:
     # A remapping that could not be resolved: a topic may have another name than written.
     remap_unknown: bool = False
     problems: list[LaunchProblem] = field(default_factory=list)
+    dead_bridges: list[DeadBridge] = field(default_factory=list)
 
     @property
     def empty(self) -> bool:

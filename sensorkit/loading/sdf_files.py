@@ -14,7 +14,9 @@ beside the including file are looked up, first hit wins, in:
 2. the package ``NAME`` as the resolver finds it (``--package-path``, the environment,
    the workspace), as ``PACKAGE/REST``;
 3. the folders beside the including model's own folder (a ``models/`` folder holding
-   several models), as ``PARENT/NAME/REST``.
+   several models), as ``PARENT/NAME/REST``;
+4. each folder of Gazebo Classic's ``GAZEBO_MODEL_PATH`` (the include records that it was
+   found only there: Gazebo Sim does not search it).
 
 Under ``--untrusted`` (a confined resolver) only places inside the workspace and the
 resolved packages are looked at, and nothing is said of what lies outside.
@@ -56,6 +58,9 @@ SDF_SUFFIXES = (".sdf", ".world")
 # ``FOLDER/PKG/REST`` (gazebosim/ros_gz@2.1.1:ros_gz_sim/README.md:96-113).
 SEARCHED_SCHEMES = ("model://", "package://")
 RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
+# Gazebo Classic's model path (sensorkit.knowledge.classic_models), searched last: a model
+# found only there is recorded with ``via`` so that a Gazebo Sim target can say it is not.
+CLASSIC_VARS = ("GAZEBO_MODEL_PATH",)
 
 
 def is_sdf_path(path: Path) -> bool:
@@ -122,11 +127,12 @@ class ModelUri:
     path: Path | None
     why: str = ""
     searched: tuple[str, ...] = ()
+    via: str = ""  # "GAZEBO_MODEL_PATH" when found only through Gazebo Classic's path
 
 
-def _resource_dirs() -> list[Path]:
+def _resource_dirs(names: tuple[str, ...] = RESOURCE_VARS) -> list[Path]:
     out: list[Path] = []
-    for var in RESOURCE_VARS:
+    for var in names:
         for part in os.environ.get(var, "").split(os.pathsep):
             if part:
                 out.append(Path(part))
@@ -185,15 +191,17 @@ def resolve_model_uri(uri: str, including: Path, resolver: PackageResolver) -> M
     model_dir = including.resolve().parent
     for folder in (model_dir.parent, model_dir):
         candidates.append(folder / name / rest if rest else folder / name)
-    allowed = [c for c in candidates if resolver.allows(c)]  # --untrusted: inside only
-    for cand in allowed:
+    first_classic = len(candidates)
+    candidates += [d / name / rest if rest else d / name for d in _resource_dirs(CLASSIC_VARS)]
+    allowed = [(i, c) for i, c in enumerate(candidates) if resolver.allows(c)]  # --untrusted: inside only
+    for i, cand in allowed:
         got = model_file(cand)
         if got is not None:
-            return ModelUri(got)
-    searched = tuple(str(c) for c in allowed)
+            return ModelUri(got, via=CLASSIC_VARS[0] if i >= first_classic else "")
+    searched = tuple(str(c) for _, c in allowed)
     if len(allowed) < len(candidates):  # not inside; what lies outside is not looked at
         return ModelUri(None, OUTSIDE, searched)
-    why = "not found in GZ_SIM_RESOURCE_PATH, the packages, or beside the including model"
+    why = "not found in the model paths, the packages, or beside the including model"
     return ModelUri(None, why, searched)
 
 

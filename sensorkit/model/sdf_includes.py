@@ -24,7 +24,17 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.knowledge.classic_models import (
+    CLASSIC_INSTALLED_MODELS,
+    CLASSIC_INSTALLED_SOURCE,
+    CLASSIC_SEARCH_PATH,
+    CLASSIC_SKIPS_SOURCE,
+    GZ_SEARCH_PATH,
+    GZ_SEARCH_SOURCE,
+    search_path,
+)
 from sensorkit.loading.uris import OUTSIDE
 
 if TYPE_CHECKING:
@@ -46,6 +56,8 @@ class Include(Protocol):
     def why(self) -> str: ...
     @property
     def searched(self) -> tuple[str, ...]: ...
+    @property
+    def via(self) -> str: ...
 
 
 FUEL_SCHEMES = ("http://", "https://")
@@ -63,13 +75,42 @@ def _model_name(uri: str) -> str:
     return ""
 
 
-def include_finding(inc: Include, doc: Document) -> Finding | None:
-    """The SK107 finding of an include that brought no file (None when it did)."""
-    if inc.path is not None:
-        return None
+def _classic(target: str | None) -> bool:
+    return target in ("classic", "ros1")
+
+
+def include_finding(inc: Include, doc: Document, target: str | None = None) -> Finding | None:
+    """The SK107 finding of an include that brought no file (None when it did), said for
+    ``target`` (None: not known, Gazebo Sim's words)."""
     uri_el = next((c for c in inc.element if c.tag == "uri"), None)
     where = doc.locate(uri_el if uri_el is not None else inc.element)
     shown = repr(inc.uri)
+    if inc.path is not None:
+        if inc.via == CLASSIC_SEARCH_PATH and target is not None and not _classic(target):
+            return Finding(
+                "SK107",
+                Severity.ERROR,
+                f"<include> {shown} is found only through {CLASSIC_SEARCH_PATH} ({inc.path}), "
+                f"Gazebo Classic's model path: Gazebo Sim searches {GZ_SEARCH_PATH} "
+                f"({GZ_SEARCH_SOURCE}), so libsdformat reports URI_LOOKUP, and {REFUSED}",
+                where,
+                fix=f"add the folder that holds {_model_name(inc.uri) or 'it'}/ to {GZ_SEARCH_PATH}",
+                consequence=Consequence(Role.GEOMETRY, inc.uri, None),
+            )
+        return None
+    name = _model_name(inc.uri)
+    if _classic(target) and inc.uri.startswith("model://") and name in CLASSIC_INSTALLED_MODELS:
+        return Finding(
+            "SK107",
+            Severity.INFO,
+            f"<include> {shown} is a model Gazebo 11 installs with itself, on its default "
+            f"{CLASSIC_SEARCH_PATH} ({CLASSIC_INSTALLED_SOURCE}): it resolves on Gazebo "
+            "Classic; sensorkit does not read it",
+            where,
+            fix="nothing to change for Gazebo Classic (Gazebo Sim installs no such model: "
+            "define it in the world, or include it from Fuel)",
+            consequence=Consequence(Role.GEOMETRY, inc.uri, inc.uri),
+        )
     if not inc.uri:
         return Finding(
             "SK107",
@@ -107,28 +148,35 @@ def include_finding(inc: Include, doc: Document) -> Finding | None:
             where,
             fix="include it with model:// or a path to have it checked",
         )
-    return _not_found(inc, where, shown)
+    return _not_found(inc, where, shown, target)
 
 
-def _not_found(inc: Include, where: SourceRef, shown: str) -> Finding:
+def _not_found(inc: Include, where: SourceRef, shown: str, target: str | None) -> Finding:
     found = f"searched: {'; '.join(inc.searched)}" if inc.searched else inc.why
     name = _model_name(inc.uri)
+    var = search_path(target)
     if name:
         fix = (
-            f"add the folder that holds {name}/ to GZ_SIM_RESOURCE_PATH, or pass "
+            f"add the folder that holds {name}/ to {var}, or pass "
             f"--package-path {name}=DIR (DIR the "
             f"{'package' if inc.uri.startswith('package://') else 'model'}'s folder)"
         )
     else:
         fix = (
-            "add the folder that holds it to GZ_SIM_RESOURCE_PATH, or fix the path "
+            f"add the folder that holds it to {var}, or fix the path "
             "(read relative to the including file)"
         )
+    then = (
+        f"libsdformat 9 reports URI_LOOKUP and skips the include ({CLASSIC_SKIPS_SOURCE}): "
+        "Gazebo Classic loads the world without that model"
+        if _classic(target)
+        else f"libsdformat reports URI_LOOKUP, and {REFUSED}"
+    )
     return Finding(
         "SK107",
         Severity.ERROR,
-        f"<include> {shown} does not resolve ({found}): libsdformat reports URI_LOOKUP, "
-        f"and {REFUSED}",
+        f"<include> {shown} does not resolve ({found}; {var} is the target's model path): {then}",
         where,
         fix=fix,
+        consequence=Consequence(Role.GEOMETRY, inc.uri, None),
     )

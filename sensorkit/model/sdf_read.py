@@ -51,6 +51,7 @@ class Include:
     path: Path | None
     why: str = ""
     searched: tuple[str, ...] = ()
+    via: str = ""  # "GAZEBO_MODEL_PATH": found only through Gazebo Classic's model path
 
 
 @dataclass
@@ -81,6 +82,9 @@ class SdfModel:
     world: etree._Element | None = None
     models: dict[str, etree._Element] = field(default_factory=dict)  # nested, by scope
     includes: list[Include] = field(default_factory=list)
+    # the world's own includes, on the world's first model only: SK107 says them with the
+    # target's search path (a world with no model says them when it is read)
+    world_includes: list[Include] = field(default_factory=list)
     links: list[Element] = field(default_factory=list)
     joints: list[Element] = field(default_factory=list)
     sensors: list[Element] = field(default_factory=list)
@@ -274,7 +278,7 @@ def _load_include(
         owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>"))
         return None
     got = resolve_model_uri(uri, including, ctx.resolver)
-    record = Include(uri, inc, got.path, got.why, got.searched)
+    record = Include(uri, inc, got.path, got.why, got.searched, got.via)
     owner.includes.append(record)
     if got.path is None:
         return None
@@ -424,6 +428,10 @@ def read_models(
         raise InputError(msg)
     from sensorkit.model.sdf_includes import include_finding
 
+    if out.models:  # the first model's SK107 says them, with the target's search path
+        owned = {id(inc) for sm in out.models for inc in sm.includes}  # a model's own
+        out.models[0].world_includes.extend(i for i in ctx.world_includes if id(i) not in owned)
+        return out
     said: set[str] = set()  # an info (a Fuel URI not read) once, however often included
     for inc in ctx.world_includes:  # a world's own includes belong to no model
         found = include_finding(inc, doc)

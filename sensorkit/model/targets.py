@@ -165,13 +165,24 @@ def detect_target(robot: Robot) -> tuple[str, str]:
     description written wholly for ROS 1 (at least ``ROS1_MIN_EVIDENCE`` ROS 1 plugins or
     tags and nothing only ROS 2 has): SK611 then says so once, instead of one SK602 per
     tag; a ROS 2 file with a few ROS 1 tags stays ``classic`` and each tag is reported.
-    Among gz versions: ``ignition_*`` names mean fortress, a sensor ``<frame_id>`` jetty,
+    A package.xml up from the file decides ROS 1 (``catkin``) or ROS 2 (``ament_*``) when
+    Gazebo Sim does not win (sensorkit.loading.package_xml). Among gz versions: ``ignition_*`` names mean fortress, a sensor ``<frame_id>`` jetty,
     anything else harmonic. An SDF model with no evidence either way gives a gz target
     (harmonic): SDF with gazebo_ros plugins is a Gazebo Classic model, and says so.
     """
+    from sensorkit.loading.package_xml import package_generation
+
     gz, classic, version = _evidence(robot)
     if len(gz) > len(classic):
         return version, f"auto: {gz[0]}"
+    package = package_generation(robot.document.path)
+    if package is not None and (classic or robot.sdf is None):
+        # The package says which ROS the description is built for; the plugins and tags
+        # only say it when nothing else does (macros copied from a ROS 2 package hold <ros>
+        # blocks in a catkin package: issue 35). An SDF model with no Classic plugin keeps
+        # its Gazebo Sim default (a catkin package may run Ignition: osrf/subt).
+        target = "ros1" if package.ros == "ros1" else "classic"
+        return target, f"auto: {package.why}" + (f"; {classic[0]}" if classic else "")
     if classic:
         ev = ros1_evidence(robot)
         if ev.is_ros1:

@@ -9,6 +9,7 @@ interleave, so the order is written out here and ``put_in_order`` holds ``RULES`
 
 from sensorkit.lint.rules import (  # noqa: F401  (registration)
     bridge,
+    bridge_flow,
     calibration,
     focal,
     frame_joints,
@@ -17,6 +18,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     input,
     lidar,
     mass,
+    model_plugins,
     noise,
     placement,
     plugins,
@@ -48,6 +50,8 @@ RULE_ORDER = (
     "SK415", "SK416",  # sensor_blocks
     "SK801", "SK802", "SK803", "SK804", "SK805",  # recording (check-recording)
     "SK806", "SK807", "SK808", "SK809", "SK810",  # recording
+    "SK616",  # model_plugins
+    "SK617", "SK618", "SK619",  # bridge_flow
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 

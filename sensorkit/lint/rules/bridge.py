@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_sim import gz_never_created
 from sensorkit.lint.rules.base import Context, rule
@@ -157,6 +158,18 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                     )
                 continue
             found = _gz_unbridged(ctx, s, topic, bridged)
+            if found is not None and owner is not None and found.severity > Severity.INFO:
+                # A model plugin may read it (ArduPilot's <imuName>, a <ros2_control> block):
+                # whether its data needs a bridge sensorkit cannot tell (issue 35).
+                found = ctx.judged(
+                    "SK607",
+                    Consequence(Role.OUTPUT, "published to ROS", UNKNOWN),
+                    f"sensor {s.name!r}: no bridge entry names its gz topics, and {owner.how}: "
+                    "sensorkit cannot tell whether its data reaches ROS that way",
+                    s.source,
+                    sensor=s.name,
+                    fix="if ROS needs its data, add a GZ_TO_ROS entry for its gz topic",
+                )
             if found is not None:
                 yield found
         elif s.plugins or (owner is not None and owner.certain):
@@ -169,6 +182,8 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 "whether it reads this sensor; if it does not, nothing publishes it to ROS",
                 s.source,
                 sensor=s.name,
+                fix="check in the running simulation that its data reaches ROS (ros2 topic list); "
+                "if not, add the gazebo_ros plugin for its type",
             )
         else:
             yield ctx.finding(
@@ -228,7 +243,12 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
             explicit.update(gz_topics(s))
         else:
             scoped.append(f"/sensor/{s.name}/")
+    from sensorkit.lint.rules.bridge_flow import misspelt_entries
+
+    misspelt = misspelt_entries(ctx)  # SK618 says these, with the sensor left unbridged
     for t in bridge.topics:
+        if (t.file, t.line) in misspelt:
+            continue
         if (t.ros_type or "").replace("/msg/", "/") not in {
             x.replace("/msg/", "/") for x in SENSOR_MSG_TYPES
         }:

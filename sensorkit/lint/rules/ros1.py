@@ -80,6 +80,8 @@ def written_for_ros1(ctx: Context) -> Iterator[Finding]:
     from sensorkit.model.targets import ros1_evidence
 
     ev = ros1_evidence(ctx.robot)
+    if not ev.is_ros1:
+        return  # ROS 1 because its package.xml says catkin, not because of its tags
     yield ctx.finding(
         "SK611",
         Severity.WARNING,

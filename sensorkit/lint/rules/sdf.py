@@ -59,9 +59,10 @@ SDF = ("sdf",)
     "SK107",
     "error/info",
     "an SDF `<include>` whose URI does not resolve (model://, package:// and paths through "
-    "GZ_SIM_RESOURCE_PATH, the packages and the models beside it; every place searched); "
-    "info when sensorkit "
-    "cannot read it (a Fuel URL, another scheme, outside the workspace with --untrusted)",
+    "the target's model path, GZ_SIM_RESOURCE_PATH or Classic's GAZEBO_MODEL_PATH, the "
+    "packages and the models beside it; every place searched); info when sensorkit "
+    "cannot read it (a Fuel URL, another scheme, outside the workspace with --untrusted) "
+    "or on Classic for a model Gazebo 11 installs (sun, ground_plane)",
     "libsdformat",
     formats=SDF,
 )
@@ -70,8 +71,8 @@ def unresolved_includes(ctx: Context) -> Iterator[Finding]:
     if sm is None:
         return
     said: set[str] = set()  # an info (a Fuel URI not read) once, however often included
-    for inc in sm.includes:
-        found = include_finding(inc, ctx.robot.document)
+    for inc in [*sm.includes, *sm.world_includes]:
+        found = include_finding(inc, ctx.robot.document, ctx.target)
         if found is not None and (found.severity > Severity.INFO or found.message not in said):
             said.add(found.message)
             yield found

@@ -34,7 +34,7 @@ from sensorkit.base.findings import SourceRef
 from sensorkit.loading.bridge import BridgeError, BridgeTopic, read_bridge
 from sensorkit.loading.launch.params import param
 from sensorkit.loading.launch.spec import NodeSpec, Reading, plain
-from sensorkit.loading.launch_facts import NodeRemap, Spawn, StaticTransform
+from sensorkit.loading.launch_facts import DeadBridge, NodeRemap, Spawn, StaticTransform
 
 BRIDGE_PACKAGES = {"ros_gz_bridge", "ros_ign_bridge"}
 IMAGE_PACKAGES = {"ros_gz_image", "ros_ign_image"}
@@ -146,6 +146,8 @@ def bridge(reading: Reading, spec: NodeSpec) -> None:
     if args is None:
         reading.facts.bridge_unknown = True
         args = []
+    start = len(reading.facts.bridges)
+    bad: tuple[str, int | None] | None = None
     for arg, line in args:
         if arg is None:
             reading.facts.bridge_unknown = True
@@ -154,10 +156,19 @@ def bridge(reading: Reading, spec: NodeSpec) -> None:
         if parsed == "service":
             continue
         if not isinstance(parsed, tuple):
-            reading.problem(spec.file, f"parameter_bridge prints its usage and exits on {arg!r}", line)
+            bad = bad or (arg, line)
             continue
         _add_topic(reading, spec, parsed[0], parsed[1], parsed[2], line)
     config_file(reading, spec, *param(reading, spec, "config_file"))
+    if bad is not None:
+        # parameter_bridge prints its usage and exits on the first argument it cannot parse
+        # (gazebosim/ros_gz@humble 5cc92f8, @jazzy 739cb42:ros_gz_bridge/src/
+        # parameter_bridge.cpp:92-98): none of this node's bridges exist.
+        dead = tuple(reading.facts.bridges[start:])
+        del reading.facts.bridges[start:]
+        reading.facts.dead_bridges.append(
+            DeadBridge(bad[0], dead, SourceRef(spec.file, bad[1] if bad[1] is not None else spec.line))
+        )
 
 
 def config_file(reading: Reading, spec: NodeSpec, given: bool, value: str | None) -> None:
