@@ -231,7 +231,23 @@ GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"
 # 145-149). So on Gazebo Sim such a GPU lidar never renders. The CPU Lidar base class only
 # clamps ranges to [min, max] with it (gz-sensors@gz-sensors8:src/Lidar.cc:523), and gz-sim
 # never creates a CPU lidar anyway (GZ_NEVER_CREATED above).
+# Nothing catches that exception: Ogre2GpuRays::PreRender creates the textures and calls
+# ConfigureCamera (gz-rendering8 ff0c5b8:ogre2/src/Ogre2GpuRays.cc:1273-1276, :1184, :783;
+# ign-rendering6 c39b130: :1361-1364, :1276), called from the Sensors system's render thread,
+# a std::thread running `this->scene->PreRender()` with no try
+# (gazebosim/gz-sim@ign-gazebo6 aab5556:src/systems/sensors/Sensors.cc:349, :407-433;
+# @gz-sim8 b81e26d: :469, :528-559; no `catch` in Sensors.cc, gz-sensors8
+# src/GpuLidarSensor.cc or src/RenderingSensor.cc), so std::terminate aborts the whole
+# `gz sim` server process, every other sensor and the physics with it.
 GZ_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_lidar", "gpu_ray"})
+# Jetty's gz-rendering10 refuses a near clip <= 0 before it reaches Ogre: BaseCamera::
+# SetNearClipPlane logs "Near clip distance must be a finite number greater than 0." and
+# returns, keeping the near clip it had, 0.01 m (gazebosim/gz-rendering@gz-rendering10
+# af28689:include/gz/rendering/base/BaseCamera.hh:731-740, default `nearClip = 0.01` at :227;
+# added by gazebosim/gz-rendering#1082, 1f4def6). Ogre2GpuRays does not override it. Harmonic's
+# gz-rendering8 (ff0c5b8: :724-727) and Fortress's ign-rendering6 (c39b130: :699-702) store 0.
+# By target: the near clip in metres a requested 0 leaves.
+GZ_NEAR_CLIP_KEPT: dict[str, float] = {"jetty": 0.01}
 
 
 # sdformat's defaults for the values a <lens><intrinsics> or <lens><projection> block leaves
