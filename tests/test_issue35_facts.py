@@ -74,3 +74,86 @@ def test_gz_vertical_samples_zero_stays_an_error(check: Callable) -> None:
     found = _sk406(check, _vertical("0", "1"))
     assert [s for s, _ in found] == [Severity.ERROR]
     assert "vertical samples 0 < 1" in found[0][1]
+
+
+# --- segmentation and bounding-box cameras publish on their own sub-topics -----------------
+# gz-sensors8 c8159af: src/SegmentationCameraSensor.cc:78-81 (suffixes "/colored_map",
+# "/labels_map"), :197-213 (advertised on TOPIC + suffix), :238 (camera_info on
+# TOPIC/camera_info); src/BoundingBoxCameraSensor.cc:190-212 (boxes on TOPIC, Image on
+# TOPIC + "_image"), :237 (sibling camera_info). ros_gz_bridge pairs the boxes with
+# vision_msgs Detection2DArray / Detection3DArray (ros_gz@jazzy 739cb42:
+# ros_gz_bridge/ros_gz_bridge/mappings.py:114,116).
+
+
+def _entry(gz: str, ros_type: str, gz_type: str) -> str:
+    return (
+        f"- ros_topic_name: {gz}\n  gz_topic_name: {gz}\n  ros_type_name: {ros_type}\n"
+        f"  gz_type_name: {gz_type}\n  direction: GZ_TO_ROS\n"
+    )
+
+
+SCAN = _entry("scan", "sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
+IMAGE = ("sensor_msgs/msg/Image", "gz.msgs.Image")
+INFO = ("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo")
+
+
+def _cam(stype: str, box: str = "") -> str:
+    text = gz_robot(camera_type=stype, camera_tags="<topic>cam</topic><gz_frame_id>camera_optical_frame</gz_frame_id>")
+    return text.replace("</clip></camera>", f"</clip>{box}</camera>") if box else text
+
+
+def _bridge(tmp_path, *entries: str) -> str:  # type: ignore[no-untyped-def]
+    path = tmp_path / "bridge.yaml"
+    path.write_text(SCAN + "".join(entries))
+    return str(path)
+
+
+def test_segmentation_camera_sub_topics(check: Callable, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from sensorkit.lint.rules.topic_names import gz_topics
+
+    bridge = _bridge(tmp_path, _entry("cam/labels_map", *IMAGE), _entry("cam/camera_info", *INFO))
+    report = check(_cam("segmentation_camera"), target="harmonic", bridges=(bridge,))
+    assert not {"SK607", "SK612", "SK615"} & {f.rule for f in report.findings}
+    sensor = next(s for s in report.robot.sensors if s.name == "front_camera")  # type: ignore[attr-defined]
+    assert gz_topics(sensor) == ["/cam/colored_map", "/cam/labels_map", "/cam/camera_info"]
+    # Near miss: bridging TOPIC itself, as for a plain camera, carries nothing.
+    bad = _bridge(tmp_path, _entry("cam", *IMAGE), _entry("camera_info", *INFO))
+    found = check(_cam("segmentation_camera"), target="harmonic", bridges=(bad,)).findings
+    sk607 = [f for f in found if f.rule == "SK607"]
+    assert [f.severity for f in sk607] == [Severity.WARNING]
+    assert {f.rule for f in found if f.severity is Severity.INFO} >= {"SK612"}
+
+
+def test_bounding_box_camera_sub_topics(check: Callable, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    boxes2d = _entry("cam", "vision_msgs/msg/Detection2DArray", "gz.msgs.AnnotatedAxisAligned2DBox_V")
+    ok = _bridge(tmp_path, boxes2d, _entry("cam_image", *IMAGE), _entry("camera_info", *INFO))
+    report = check(_cam("boundingbox_camera"), target="harmonic", bridges=(ok,))
+    assert not {"SK607", "SK612", "SK615"} & {f.rule for f in report.findings}
+    # Near miss: a 3d <box_type> publishes AnnotatedOriented3DBox_V on TOPIC (box types
+    # BoundingBoxCameraSensor.cc:150-165, :205-213), so the 2D entry carries nothing (SK615).
+    found = check(_cam("boundingbox_camera", "<box_type>3d</box_type>"), target="harmonic", bridges=(ok,)).findings
+    assert [f.severity for f in found if f.rule == "SK615"] == [Severity.ERROR]
+
+
+def test_topics_and_bridge_export_know_the_sub_topics(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from lxml import etree
+
+    from sensorkit.describe.bridge import published_entries
+
+    seg = etree.fromstring('<sensor name="s" type="segmentation"><topic>cam</topic><camera/></sensor>')
+    got = [(e.gz_topic_name, e.ros_type_name) for e in published_entries(seg, "harmonic")]
+    assert got == [
+        ("cam/colored_map", "sensor_msgs/msg/Image"),
+        ("cam/labels_map", "sensor_msgs/msg/Image"),
+        ("cam/camera_info", "sensor_msgs/msg/CameraInfo"),
+    ]
+    box = etree.fromstring('<sensor name="b" type="boundingbox_camera"><topic>a/cam</topic><camera><box_type>3d</box_type></camera></sensor>')
+    got = [(e.gz_topic_name, e.ros_type_name, e.gz_type_name) for e in published_entries(box, "fortress")]
+    assert got == [
+        ("a/cam", "vision_msgs/msg/Detection3DArray", "ignition.msgs.AnnotatedOriented3DBox_V"),
+        ("a/cam_image", "sensor_msgs/msg/Image", "ignition.msgs.Image"),
+        ("a/camera_info", "sensor_msgs/msg/CameraInfo", "ignition.msgs.CameraInfo"),
+    ]
+    # Near miss: a plain camera keeps TOPIC and a sibling camera_info.
+    cam = etree.fromstring('<sensor name="c" type="camera"><topic>a/cam</topic><camera/></sensor>')
+    assert [e.gz_topic_name for e in published_entries(cam, "harmonic")] == ["a/cam", "a/camera_info"]

@@ -123,10 +123,22 @@ def _ros1_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], l
 
 
 def _gz_roles(sensor: Sensor, entries: Iterable[BridgeEntry]) -> dict[str, str]:
+    from sensorkit.knowledge.gazebo_sim import gz_own_subtopics
+
     topics: dict[str, str] = {}
+    own = {
+        name.strip("/"): role
+        for entry in entries
+        for name, role, _ in gz_own_subtopics(sensor.type, entry.gz_topic_name.strip("/"))
+    }
     for entry in entries:
         ros = _abs(entry.ros_topic_name)
         kind = entry.ros_type_name.rsplit("/", 1)[-1]
+        if own:  # segmentation / bounding-box camera: colored_map, labels_map, boxes, image
+            role = own.get(entry.gz_topic_name.strip("/"))
+            if role is not None:
+                topics[role] = ros
+            continue
         if kind == "Image":
             depth = sensor.kind == "depth" or entry.gz_topic_name.endswith("depth_image")
             topics["depth_image" if depth else "image"] = ros

@@ -48,6 +48,7 @@ __all__ = [
 
 CAMERA_ROLES = frozenset(
     {"image", "camera_info", "depth_image", "depth_camera_info", "points", "trigger"}
+    | {"colored_map", "labels_map", "boxes"}  # segmentation and bounding-box cameras (gz)
 )
 IMAGE_ROLES = frozenset({"image", "depth_image"})
 
@@ -327,6 +328,7 @@ def _classic_topics(info: SensorInfo, target: str, notes: list[str]) -> list[Top
 def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str | None:
     """What a gz sensor without ``<topic>`` publishes on: its scoped name plus the suffix
     gz-sim gives its kind (see ``sensorkit.lint.rules.topic_names.GZ_DEFAULT_SUFFIX``)."""
+    from sensorkit.knowledge.gazebo_sim import GZ_TYPE_DEFAULT_SUFFIX
     from sensorkit.lint.rules.topic_names import GZ_DEFAULT_SUFFIX
 
     kind = info.sensor.kind
@@ -334,6 +336,7 @@ def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str |
         return None
     # rgbd_camera's suffix is "": it publishes BASE/image, BASE/depth_image, ...
     suffix = "" if kind == "rgbd" else GZ_DEFAULT_SUFFIX[kind]
+    suffix = GZ_TYPE_DEFAULT_SUFFIX.get(info.sensor.type, suffix)
     link = survivor or info.sensor.reference or "LINK"
     world, model = "WORLD", "MODEL"
     if robot.sdf is not None:
