@@ -98,6 +98,14 @@ def _ros1_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], l
     ns = (plugin.param("robotNamespace") or "").strip("/")
 
     def full(*parts: str) -> str:
+        # The camera utils advertise on a NodeHandle in robotNamespace/cameraName
+        # (ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46:gazebo_plugins/src/
+        # gazebo_ros_camera_utils.cpp:288, :321-340), the others on one in robotNamespace;
+        # ROS 1 resolves a name that starts with "/" as global, in no namespace
+        # (http://wiki.ros.org/Names, "Resolving"): an absolute topic name is not nested.
+        last = parts[-1].strip() if parts else ""
+        if last.startswith("/"):
+            return _abs(last)
         return _abs("/".join(p.strip("/") for p in (ns, *parts) if p.strip("/")))
 
     if sensor.is_camera:
