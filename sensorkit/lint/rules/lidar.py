@@ -35,8 +35,9 @@ def _backwards_sweep(
     "SK406",
     "error/warning/info",
     "lidar: samples >= 1, min_angle < max_angle (a warning for a Gazebo Classic CPU ray, which sweeps "
-    "backwards), 0 <= range min < max (min 0 is an error only on a "
-    "Gazebo Sim gpu_lidar); vertical block sane; "
+    "backwards), 0 <= range min < max (min 0, written or not, is an error only on a "
+    "Fortress/Harmonic gpu_lidar, whose near-clip exception aborts gz sim; a warning on Jetty, "
+    "which keeps a 0.01 m near clip); vertical block sane (gz rows at least 1); "
     "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
     formats=("urdf", "sdf"),
 )
