@@ -288,6 +288,7 @@ def test_json_document(tmp_path: Path) -> None:
                 }
             ],
             "note": None,
+            "stamps_nothing": False,  # added (issue 35 item 9): only true when nothing publishes it
             "optical_frame": "camera_optical_frame",
         }
     ]

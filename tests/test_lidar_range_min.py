@@ -56,17 +56,47 @@ def test_gz_gpu_lidar_min_zero_is_an_error(check) -> None:
     # gz-rendering scales it to nearClipCube = min / sqrt(3) (gazebosim/gz-rendering@gz-rendering8
     # ff0c5b8:ogre2/src/Ogre2GpuRays.cc:1181-1182) and sets it on Ogre cameras (:783, :1048);
     # ogre-next throws for nearPlane <= 0 (ignition-forks/ogre-next@7449a36 and @40dcea7:
-    # OgreMain/src/OgreFrustum.cpp:145-149).
-    for target in ("fortress", "harmonic", "jetty"):
+    # OgreMain/src/OgreFrustum.cpp:145-149), in gz-sim's render thread with no catch
+    # (gazebosim/gz-sim@gz-sim8 b81e26d:src/systems/sensors/Sensors.cc:469, :528-559): the
+    # whole server aborts (issue 35 item 8).
+    for target in ("fortress", "harmonic"):
         found = _sk406(check(_gz("0"), target=target))
         assert [sev for sev, _ in found] == [Severity.ERROR], target
         assert "near clip" in found[0][1]
+        assert "whole `gz sim` server aborts" in found[0][1]
         # Near miss: a small positive min.
         assert _sk406(check(_gz("0.05"), target=target)) == []
     # sdformat reads type "gpu_ray" as GPU_LIDAR too (gazebosim/sdformat@sdf14 8512585:
     # src/Sensor.cc:352-354), with a <ray> block.
     found = _sk406(check(_gz("0", stype="gpu_ray", tag="ray"), target="harmonic"))
     assert [sev for sev, _ in found] == [Severity.ERROR]
+
+
+def test_jetty_keeps_a_near_clip_of_one_centimetre(check) -> None:
+    # Changed on purpose (issue 35 item 8): Jetty was an error like Harmonic. gz-rendering10's
+    # BaseCamera::SetNearClipPlane refuses a near clip <= 0 and keeps 0.01 m
+    # (gazebosim/gz-rendering@gz-rendering10 af28689:include/gz/rendering/base/BaseCamera.hh:
+    # 731-740, :227; gazebosim/gz-rendering#1082): the lidar works, blind under 1 cm (a limit:
+    # warning).
+    found = _sk406(check(_gz("0"), target="jetty"))
+    assert [sev for sev, _ in found] == [Severity.WARNING]
+    assert "keeps 0.01 m" in found[0][1] and "aborts" not in found[0][1]
+    # Near miss: a small positive min says nothing on Jetty either.
+    assert _sk406(check(_gz("0.05"), target="jetty")) == []
+
+
+def test_gz_gpu_lidar_without_min_is_min_zero(check) -> None:
+    # <min> is required with default 0 (gazebosim/sdformat@sdf12 b9417e5:sdf/1.9/lidar.sdf:50)
+    # and sdformat's parser adds it when missing (@sdf12:src/parser.cc:1903-1925): the same
+    # near clip 0 as a written 0.
+    text = _gz("0").replace("<min>0</min>", "")
+    assert "<range><max>" in text
+    for target, sev in (("fortress", Severity.ERROR), ("harmonic", Severity.ERROR), ("jetty", Severity.WARNING)):
+        found = _sk406(check(text, target=target))
+        assert [s for s, _ in found] == [sev], target
+        assert "not written" in found[0][1]
+    # Near miss: a written positive min.
+    assert _sk406(check(_gz("0.05"), target="harmonic")) == []
 
 
 def test_gz_cpu_lidar_min_zero_is_not_an_sk406_error(check) -> None:

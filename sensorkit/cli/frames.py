@@ -16,10 +16,14 @@ import typer
 
 from sensorkit.cli.common import Reading, handle_errors, note, reads_robot
 from sensorkit.cli.options import OUTPUT, Command, FileArg, TargetOpt, examples
+from sensorkit.cli.topics import LaunchOpt, read_launch_facts
 from sensorkit.cli.world_models import described_models, models_json
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from sensorkit.describe.frames_tree import Frame, FrameTree, SensorFrame, Stamp
+    from sensorkit.describe.sensorinfo import RobotInfo
 
 FORMATS = ("text", "json", "dot")
 
@@ -59,6 +63,7 @@ def frames(
     file: FileArg,
     fmt: FormatOpt = "text",
     target: TargetOpt = None,
+    launch: LaunchOpt = None,
     *,
     reading: Reading,
 ) -> None:
@@ -70,10 +75,25 @@ def frames(
     """
     from sensorkit.base.errors import UsageError
     from sensorkit.describe.frames_tree import frame_tree
+    from sensorkit.describe.sensorinfo import spawned_as
+    from sensorkit.model.targets import is_gz
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
-    _file, infos = described_models(file, reading, target=target)
+    file, infos = described_models(file, reading, target=target)
+    if launch and not any(is_gz(info.target) for info in infos):
+        note(
+            f"sensorkit: note: --launch ignored: target {infos[0].target} is not Gazebo Sim",
+            reading.quiet,
+        )
+    # On Gazebo Sim a sensor without a frame tag is stamped MODEL::LINK::SENSOR, MODEL the
+    # name its launch file spawns the robot under: the launch files validate reads say it.
+    infos = [
+        spawned_as(info, _spawn_name(file, info, launch, reading))
+        if is_gz(info.target)
+        else info
+        for info in infos
+    ]
     trees = [frame_tree(info) for info in infos]  # a world: one tree per model
     writer = {"text": frames_text, "json": frames_json, "dot": frames_dot}[fmt]
     if fmt == "json" and len(trees) > 1:
@@ -84,6 +104,14 @@ def frames(
         note(f"sensorkit: note: {LUMPING_NOTE}", reading.quiet)
     for tree in trees:
         note(f"sensorkit: {_summary(tree)}", reading.quiet)
+
+
+def _spawn_name(
+    file: Path, info: RobotInfo, launch: list[Path] | None, reading: Reading
+) -> str | None:
+    """The name the launch files validate reads spawn the robot under, or None."""
+    facts = read_launch_facts(file, info, launch, reading)
+    return facts.spawn_name() if facts is not None else None
 
 
 def _plural(n: int, word: str, words: str | None = None) -> str:
@@ -173,7 +201,9 @@ def _sensor_line(s: SensorFrame, simulator: str) -> str:
     where = f"on {s.link}" if s.link is not None else f"on {s.reference!r}, which is no link"
     head = f"sensor {s.name} ({s.type}) {where}: "
     if not s.stamps:
-        return head + f"stamps nothing ({s.note})"
+        if s.stamps_nothing:
+            return head + f"stamps nothing ({s.note})"
+        return head + f"frame_id not known ({s.note})"
     line = head + "frame_id " + ", ".join(stamp_text(t, s, simulator) for t in s.stamps)
     if s.camera and s.stamps[-1].frame != s.optical:
         line += "; " + (
@@ -225,6 +255,7 @@ def _sensor_json(s: SensorFrame) -> dict[str, Any]:
             for t in s.stamps
         ],
         "note": s.note,
+        "stamps_nothing": s.stamps_nothing,
         "optical_frame": s.optical,
     }
 

@@ -30,6 +30,7 @@ from sensorkit.cli.world_models import described_models, models_json
 if TYPE_CHECKING:
     from sensorkit.describe.sensorinfo import RobotInfo
     from sensorkit.describe.topics import RobotTopics
+    from sensorkit.loading.launch_facts import LaunchFacts
 
 FORMATS = ("text", "json")
 
@@ -130,19 +131,37 @@ def topic_lists(
     for info in infos:
         config_read = None
         if is_gz(info.target):
-            from sensorkit.cli.common import launch_files
-            from sensorkit.lint.config import load_config
+            from sensorkit.describe.sensorinfo import spawned_as
 
-            cfg = load_config(file, explicit=reading.flags.config)
+            facts = read_launch_facts(file, info, launch, reading)
             config_read = load_bridge(
                 info.robot,
                 info.target,
                 files,
-                launch_files(launch, cfg),
-                tuple(reading.flags.package_path or ()),
+                facts=facts,
             )
+            # the robot under the name its launch file spawns it, as validate sees it
+            info = spawned_as(info, facts.spawn_name() if facts is not None else None)  # noqa: PLW2901
         results.append(robot_topics(info, config_read))
     return results
+
+
+def read_launch_facts(
+    file: Path, info: RobotInfo, launch: list[Path] | None, reading: Reading
+) -> LaunchFacts | None:
+    """The launch files validate reads for ``info``'s robot (``--launch``, else the
+    settings file's, else those beside the robot); None when none was read."""
+    from sensorkit.cli.common import launch_files
+    from sensorkit.describe.topics import read_launch
+    from sensorkit.lint.config import load_config
+
+    cfg = load_config(file, explicit=reading.flags.config)
+    return read_launch(
+        info.robot,
+        info.target,
+        launch_files(launch, cfg),
+        tuple(reading.flags.package_path or ()),
+    )
 
 
 def _say_notes_and_summary(result: RobotTopics) -> None:

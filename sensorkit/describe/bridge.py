@@ -32,10 +32,13 @@ from lxml import etree
 
 from sensorkit.describe.intrinsics import InvalidValue
 from sensorkit.knowledge.gazebo_sim import (
+    GZ_BOUNDINGBOX_TYPES,
     GZ_NO_WIDE_ANGLE_RELEASES,
     GZ_READS_CAMERA_INFO_TOPIC,
+    GZ_SEGMENTATION_TYPES,
     GZ_WIDE_ANGLE_TYPES,
     GZ_XFORWARD_CLOUD_TYPES,
+    gz_own_subtopics,
 )
 
 if TYPE_CHECKING:
@@ -52,7 +55,7 @@ __all__ = [
     "sensor_entries",
 ]
 
-MessageKind = Literal["image", "camera_info", "laser_scan", "points", "imu"]
+MessageKind = Literal["image", "camera_info", "laser_scan", "points", "imu", "boxes_2d", "boxes_3d"]
 
 _TYPES: dict[str, tuple[str, str]] = {
     "image": ("sensor_msgs/msg/Image", "Image"),
@@ -60,6 +63,9 @@ _TYPES: dict[str, tuple[str, str]] = {
     "laser_scan": ("sensor_msgs/msg/LaserScan", "LaserScan"),
     "points": ("sensor_msgs/msg/PointCloud2", "PointCloudPacked"),
     "imu": ("sensor_msgs/msg/Imu", "IMU"),
+    # ros_gz_bridge's pairs for a bounding-box camera's boxes (knowledge/gazebo_sim.py)
+    "boxes_2d": ("vision_msgs/msg/Detection2DArray", "AnnotatedAxisAligned2DBox_V"),
+    "boxes_3d": ("vision_msgs/msg/Detection3DArray", "AnnotatedOriented3DBox_V"),
 }
 _IGNITION_RELEASES = frozenset({"fortress", "citadel", "edifice"})
 _GZ_RELEASES = frozenset({"garden", "harmonic", "ionic", "jetty"})
@@ -74,6 +80,8 @@ _SENSOR_TYPES = {
     "gpu_lidar",
     "gpu_ray",
     "imu",
+    *GZ_SEGMENTATION_TYPES,  # their own sub-topics (knowledge.gazebo_sim.gz_own_subtopics)
+    *GZ_BOUNDINGBOX_TYPES,
 }  # not ray/lidar/multicamera: gz-sim never creates them (sensorkit/knowledge/gazebo_sim.py)
 
 
@@ -124,7 +132,9 @@ def _sibling_camera_info(topic: str) -> str:
     return "".join(f"/{p}" for p in parts) + "/camera_info"
 
 
-def sensor_bridge_entries(sensor_type: str, gz_topic: str, *, gz_version: str) -> list[BridgeEntry]:
+def sensor_bridge_entries(
+    sensor_type: str, gz_topic: str, *, gz_version: str, box_type: str | None = None
+) -> list[BridgeEntry]:
     """The GZ_TO_ROS entries for everything a gz-sensors sensor publishes on ``gz_topic``.
 
     ROS topic names are the gz names. Topics (gz-sensors): ``camera`` (and
@@ -160,6 +170,14 @@ def sensor_bridge_entries(sensor_type: str, gz_topic: str, *, gz_version: str) -
         kinds = [(topic, "laser_scan"), (f"{topic}/points", "points")]
     elif sensor_type == "imu":
         kinds = [(topic, "imu")]
+    elif sensor_type in GZ_SEGMENTATION_TYPES or sensor_type in GZ_BOUNDINGBOX_TYPES:
+        by_msg: dict[str, MessageKind] = {
+            "Image": "image",
+            "CameraInfo": "camera_info",
+            "AnnotatedAxisAligned2DBox_V": "boxes_2d",
+            "AnnotatedOriented3DBox_V": "boxes_3d",
+        }
+        kinds = [(name, by_msg[m]) for name, _, m in gz_own_subtopics(sensor_type, topic, box_type)]
     else:
         msg = (
             "sensor_type must be camera, wideanglecamera, depth_camera, rgbd_camera, gpu_lidar, "
@@ -224,7 +242,8 @@ def published_entries(
         _text(sensor, "camera/camera_info_topic") if stype in GZ_READS_CAMERA_INFO_TOPIC else None
     )
     out: list[BridgeEntry] = []
-    for entry in sensor_bridge_entries(stype, _rel(topic), gz_version=gz_version):
+    box_type = _text(sensor, "camera/box_type")
+    for entry in sensor_bridge_entries(stype, _rel(topic), gz_version=gz_version, box_type=box_type):
         gz_name = _rel(entry.gz_topic_name)
         if entry.ros_type_name.endswith("/CameraInfo") and info_topic is not None:
             gz_name = _rel(info_topic)

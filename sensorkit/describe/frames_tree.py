@@ -59,7 +59,10 @@ class SensorFrame:
     link: str | None  # that reference when it is a link
     plugin: str | None  # the publishing plugin's filename (None on Gazebo Sim, or none)
     stamps: list[Stamp] = field(default_factory=list)
-    note: str | None = None  # why it stamps nothing
+    note: str | None = None  # why it has no frame sensorkit can name
+    # True only when nothing publishes its data (no plugin, no model-level plugin reading
+    # it); a plugin whose frame sensorkit cannot tell still stamps one
+    stamps_nothing: bool = False
     camera: bool = False
     optical: str | None = None  # a camera: the link placed as its optical frame, if any
 
@@ -195,13 +198,24 @@ def _sensor(info: SensorInfo, robot: Robot, target: str) -> SensorFrame:
         camera=sensor.is_camera,
     )
     if not out.stamps:
-        if info.frame_how == "no plugin":
-            out.note = "no plugin publishes it to ROS"
-        elif info.frame_how == "unknown plugin":
-            out.note = f"sensorkit does not know where {out.plugin} stamps its data"
-        else:
-            out.note = "its frame cannot be told"
+        out.note, out.stamps_nothing = _no_stamp(info, robot, target, out.plugin)
     return out
+
+
+def _no_stamp(info: SensorInfo, robot: Robot, target: str, plugin: str | None) -> tuple[str, bool]:
+    """Why a sensor has no frame sensorkit can name, and whether its data is stamped at all:
+    only a sensor no plugin publishes (and no model-level plugin reads) stamps nothing; a
+    plugin sensorkit does not know, or whose frame it cannot tell, still stamps a frame."""
+    from sensorkit.model.owners import sensor_owner
+
+    if info.frame_how == "no plugin":
+        owner = sensor_owner(robot, info.sensor, target)
+        if owner is not None:
+            return f"{owner.how}; sensorkit does not know the frame it stamps", False
+        return "no plugin publishes it to ROS", True
+    if info.frame_how == "unknown plugin":
+        return f"sensorkit does not know where {plugin} stamps its data", False
+    return "its frame cannot be told", False
 
 
 def frame_tree(info: RobotInfo) -> FrameTree:

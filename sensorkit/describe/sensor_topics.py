@@ -98,6 +98,14 @@ def _ros1_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], l
     ns = (plugin.param("robotNamespace") or "").strip("/")
 
     def full(*parts: str) -> str:
+        # The camera utils advertise on a NodeHandle in robotNamespace/cameraName
+        # (ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46:gazebo_plugins/src/
+        # gazebo_ros_camera_utils.cpp:288, :321-340), the others on one in robotNamespace;
+        # ROS 1 resolves a name that starts with "/" as global, in no namespace
+        # (http://wiki.ros.org/Names, "Resolving"): an absolute topic name is not nested.
+        last = parts[-1].strip() if parts else ""
+        if last.startswith("/"):
+            return _abs(last)
         return _abs("/".join(p.strip("/") for p in (ns, *parts) if p.strip("/")))
 
     if sensor.is_camera:
@@ -123,10 +131,22 @@ def _ros1_topics(sensor: Sensor, robot: Robot | None) -> tuple[dict[str, str], l
 
 
 def _gz_roles(sensor: Sensor, entries: Iterable[BridgeEntry]) -> dict[str, str]:
+    from sensorkit.knowledge.gazebo_sim import gz_own_subtopics
+
     topics: dict[str, str] = {}
+    own = {
+        name.strip("/"): role
+        for entry in entries
+        for name, role, _ in gz_own_subtopics(sensor.type, entry.gz_topic_name.strip("/"))
+    }
     for entry in entries:
         ros = _abs(entry.ros_topic_name)
         kind = entry.ros_type_name.rsplit("/", 1)[-1]
+        if own:  # segmentation / bounding-box camera: colored_map, labels_map, boxes, image
+            role = own.get(entry.gz_topic_name.strip("/"))
+            if role is not None:
+                topics[role] = ros
+            continue
         if kind == "Image":
             depth = sensor.kind == "depth" or entry.gz_topic_name.endswith("depth_image")
             topics["depth_image" if depth else "image"] = ros

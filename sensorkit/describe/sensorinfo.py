@@ -101,6 +101,9 @@ class RobotInfo:
     convention: Convention
     sensors: list[SensorInfo]
     stereo_pairs: list[StereoPair] = field(default_factory=list)  # see sensorkit.describe.stereo
+    # The name a launch file spawns the robot under (the MODEL of Gazebo Sim's scoped frames
+    # and topics), as validate uses it; None: not known, the robot's own name stands for it.
+    model: str | None = None
 
     @property
     def cameras(self) -> list[CameraView]:
@@ -222,11 +225,15 @@ def _camera_views(
     return views
 
 
-def describe(robot: Robot, target: str, *, convention: Convention | None = None) -> RobotInfo:
+def describe(
+    robot: Robot, target: str, *, convention: Convention | None = None, model: str | None = None
+) -> RobotInfo:
     """Every sensor of ``robot`` under ``target`` (``auto`` is detected).
 
     ``convention`` overrides the target's camera_info convention for the intrinsics
-    (topics and frames stay the target's).
+    (topics and frames stay the target's). ``model``: the name a launch file spawns the
+    robot under (validate's ``LaunchFacts.spawn_name``), the MODEL of Gazebo Sim's default
+    frames and scoped topics.
 
     Raises:
         UsageError: an unknown target or convention.
@@ -244,7 +251,7 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
     conversion = convert(robot)
     infos: list[SensorInfo] = []
     for sensor in robot.sensors:
-        frames = sensor_frames(robot, sensor, chosen, conversion)
+        frames = sensor_frames(robot, sensor, chosen, conversion, model=model)
         topics, notes = sensor_topics(sensor, chosen, robot)
         info = SensorInfo(
             sensor=sensor,
@@ -275,4 +282,16 @@ def describe(robot: Robot, target: str, *, convention: Convention | None = None)
         infos.append(info)
     from sensorkit.describe.stereo import stereo_pairs
 
-    return RobotInfo(robot, chosen, why, conv, infos, stereo_pairs(robot, chosen, infos))
+    return RobotInfo(robot, chosen, why, conv, infos, stereo_pairs(robot, chosen, infos), model)
+
+
+def spawned_as(info: RobotInfo, model: str | None) -> RobotInfo:
+    """``info`` for the robot spawned under ``model`` (a launch file's name for it), as
+    validate sees it; ``info`` itself when no name is known or the file is a world, whose
+    models are named in it."""
+    robot = info.robot
+    if model is None or model == info.model or (robot.sdf is not None and robot.sdf.world is not None):
+        return info
+    out = describe(robot, info.target, convention=info.convention, model=model)
+    out.target_reason = info.target_reason
+    return out

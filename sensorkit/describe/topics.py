@@ -41,6 +41,7 @@ __all__ = [
     "classic_encoding",
     "gz_encoding",
     "load_bridge",
+    "read_launch",
     "robot_topics",
     "topics_json",
     "topics_text",
@@ -48,6 +49,7 @@ __all__ = [
 
 CAMERA_ROLES = frozenset(
     {"image", "camera_info", "depth_image", "depth_camera_info", "points", "trigger"}
+    | {"colored_map", "labels_map", "boxes"}  # segmentation and bounding-box cameras (gz)
 )
 IMAGE_ROLES = frozenset({"image", "depth_image"})
 
@@ -182,12 +184,24 @@ def gz_encoding(
 # --------------------------------------------------------------------------- bridge
 
 
+def read_launch(
+    robot: Robot, target: str, launch: Sequence[str] = (), package_paths: Sequence[str] = ()
+) -> LaunchFacts | None:
+    """The robot's launch files as ``sensorkit validate`` reads them (``launch``, else those
+    the launch reader finds); None when none was read."""
+    from sensorkit.lint.engine import Options, load_launch
+
+    options = Options(target=target, launch=tuple(launch), package_paths=tuple(package_paths))
+    return load_launch(robot, options)
+
+
 def load_bridge(
     robot: Robot,
     target: str,
     files: Sequence[str] = (),
     launch: Sequence[str] = (),
     package_paths: Sequence[str] = (),
+    facts: LaunchFacts | None = None,
 ) -> BridgeConfig:
     """The bridge configuration for ``robot``: ``files``, else the package's ``config/``
     parameter_bridge YAMLs, and the bridges of its launch files (``launch``, else those
@@ -204,7 +218,8 @@ def load_bridge(
         launch=tuple(launch),
         package_paths=tuple(package_paths),
     )
-    facts = load_launch(robot, options)
+    if facts is None:
+        facts = load_launch(robot, options)
     found = load_bridges(robot, options, facts)
     config = BridgeConfig(list(found.files), list(found.topics))
     if facts is not None:
@@ -324,9 +339,12 @@ def _classic_topics(info: SensorInfo, target: str, notes: list[str]) -> list[Top
     return out
 
 
-def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str | None:
+def _scoped_topic(
+    robot: Robot, info: SensorInfo, survivor: str | None, spawned: str | None = None
+) -> str | None:
     """What a gz sensor without ``<topic>`` publishes on: its scoped name plus the suffix
     gz-sim gives its kind (see ``sensorkit.lint.rules.topic_names.GZ_DEFAULT_SUFFIX``)."""
+    from sensorkit.knowledge.gazebo_sim import GZ_TYPE_DEFAULT_SUFFIX
     from sensorkit.lint.rules.topic_names import GZ_DEFAULT_SUFFIX
 
     kind = info.sensor.kind
@@ -334,8 +352,9 @@ def _scoped_topic(robot: Robot, info: SensorInfo, survivor: str | None) -> str |
         return None
     # rgbd_camera's suffix is "": it publishes BASE/image, BASE/depth_image, ...
     suffix = "" if kind == "rgbd" else GZ_DEFAULT_SUFFIX[kind]
+    suffix = GZ_TYPE_DEFAULT_SUFFIX.get(info.sensor.type, suffix)
     link = survivor or info.sensor.reference or "LINK"
-    world, model = "WORLD", "MODEL"
+    world, model = "WORLD", spawned or "MODEL"
     if robot.sdf is not None:
         # gz-sim's scoped name: every entity from the world down as TYPE/NAME, nested
         # models too (gazebosim/gz-sim@gz-sim8_8.14.0:src/Util.cc:138-183, used with
@@ -356,6 +375,7 @@ def _gz_topics(
     bridge: BridgeConfig,
     survivor: str | None,
     notes: list[str],
+    spawned: str | None = None,
 ) -> list[Topic]:
     from sensorkit.describe.bridge import published_entries
     from sensorkit.describe.sensor_topics import gz_roles
@@ -369,7 +389,7 @@ def _gz_topics(
             f"sensor, so it publishes nothing (use {never.use})"
         )
         return []
-    scoped = None if sensor.topic else _scoped_topic(robot, info, survivor)
+    scoped = None if sensor.topic else _scoped_topic(robot, info, survivor, spawned)
     entries: list[BridgeEntry] = published_entries(sensor.element, target, topic=scoped)
     if not entries:
         why = (
@@ -457,7 +477,9 @@ def robot_topics(info: RobotInfo, bridge: BridgeConfig | None = None) -> RobotTo
         }
     for s in info.sensors:
         if gz:
-            topics += _gz_topics(info.robot, s, target, config, survivors.get(s.name), notes)
+            topics += _gz_topics(
+                info.robot, s, target, config, survivors.get(s.name), notes, info.model
+            )
         else:
             if not s.topics:
                 notes += [f"sensor {s.name!r}: {n}" for n in s.topic_notes]

@@ -231,7 +231,23 @@ GZ_SENSOR_POSE_PARAM = "publish_sensor_pose"
 # 145-149). So on Gazebo Sim such a GPU lidar never renders. The CPU Lidar base class only
 # clamps ranges to [min, max] with it (gz-sensors@gz-sensors8:src/Lidar.cc:523), and gz-sim
 # never creates a CPU lidar anyway (GZ_NEVER_CREATED above).
+# Nothing catches that exception: Ogre2GpuRays::PreRender creates the textures and calls
+# ConfigureCamera (gz-rendering8 ff0c5b8:ogre2/src/Ogre2GpuRays.cc:1273-1276, :1184, :783;
+# ign-rendering6 c39b130: :1361-1364, :1276), called from the Sensors system's render thread,
+# a std::thread running `this->scene->PreRender()` with no try
+# (gazebosim/gz-sim@ign-gazebo6 aab5556:src/systems/sensors/Sensors.cc:349, :407-433;
+# @gz-sim8 b81e26d: :469, :528-559; no `catch` in Sensors.cc, gz-sensors8
+# src/GpuLidarSensor.cc or src/RenderingSensor.cc), so std::terminate aborts the whole
+# `gz sim` server process, every other sensor and the physics with it.
 GZ_LIDAR_NEAR_CLIP_TYPES = frozenset({"gpu_lidar", "gpu_ray"})
+# Jetty's gz-rendering10 refuses a near clip <= 0 before it reaches Ogre: BaseCamera::
+# SetNearClipPlane logs "Near clip distance must be a finite number greater than 0." and
+# returns, keeping the near clip it had, 0.01 m (gazebosim/gz-rendering@gz-rendering10
+# af28689:include/gz/rendering/base/BaseCamera.hh:731-740, default `nearClip = 0.01` at :227;
+# added by gazebosim/gz-rendering#1082, 1f4def6). Ogre2GpuRays does not override it. Harmonic's
+# gz-rendering8 (ff0c5b8: :724-727) and Fortress's ign-rendering6 (c39b130: :699-702) store 0.
+# By target: the near clip in metres a requested 0 leaves.
+GZ_NEAR_CLIP_KEPT: dict[str, float] = {"jetty": 0.01}
 
 
 # sdformat's defaults for the values a <lens><intrinsics> or <lens><projection> block leaves
@@ -313,6 +329,57 @@ _CAMERA_MSGS = ("Image", "CameraInfo")
 _DEPTH_MSGS = ("Image", "PointCloudPacked", "CameraInfo")
 _RGBD_MSGS = ("Image", "Image", "PointCloudPacked", "CameraInfo")
 _LIDAR_MSGS = ("LaserScan", "PointCloudPacked")
+# Segmentation and bounding-box cameras publish on topics of their own, not TOPIC and a
+# sibling camera_info (issue 35 item 8):
+# - SegmentationCameraSensor: Image on TOPIC/colored_map and TOPIC/labels_map, CameraInfo on
+#   TOPIC/camera_info, a child, not a sibling (gazebosim/gz-sensors@gz-sensors8 c8159af:
+#   src/SegmentationCameraSensor.cc:78-81 suffixes, :197-213 advertised, :238 camera_info;
+#   @gz-sensors10 ff8c92b the same lines; @ign-sensors6 7cfaddf :76-79, :196-211, :225);
+# - BoundingBoxCameraSensor: the boxes on TOPIC (AnnotatedOriented3DBox_V for <box_type> 3d,
+#   else AnnotatedAxisAligned2DBox_V), Image on TOPIC + "_image" (gz-sensors8
+#   src/BoundingBoxCameraSensor.cc:190-212; box types :150-165; ign-sensors6 :183-207), and
+#   CameraInfo as a sibling "camera_info" (AdvertiseInfo() with no topic, :237).
+# With no <topic>, gz-sim names them scopedName + "/segmentation" and "/boundingbox"
+# (gazebosim/gz-sim@gz-sim8 b81e26d:src/rendering/RenderUtil.cc:1742-1743, :1723-1725;
+# @ign-gazebo6 aab5556 :1692-1693; @gz-sim10 ccd6694 :1742-1743). sdformat reads
+# "segmentation" and "boundingbox" as the same types (@sdf14 8512585:src/Sensor.cc:315-324).
+# ros_gz_bridge pairs the boxes with vision_msgs Detection2DArray / Detection3DArray
+# (gazebosim/ros_gz@humble 5cc92f8:ros_gz_bridge/ros_gz_bridge/mappings.py:111,113; @jazzy
+# 739cb42 :114,116).
+GZ_SEGMENTATION_TYPES = frozenset({"segmentation_camera", "segmentation"})
+GZ_BOUNDINGBOX_TYPES = frozenset({"boundingbox_camera", "boundingbox"})
+GZ_TYPE_DEFAULT_SUFFIX: dict[str, str] = {
+    **dict.fromkeys(GZ_SEGMENTATION_TYPES, "/segmentation"),
+    **dict.fromkeys(GZ_BOUNDINGBOX_TYPES, "/boundingbox"),
+}
+
+
+def gz_boxes_msg(box_type: str | None) -> str:
+    """The gz message a bounding-box camera publishes its boxes in, by <box_type>
+    (sdformat's default is "2d")."""
+    return "AnnotatedOriented3DBox_V" if (box_type or "").strip() == "3d" else "AnnotatedAxisAligned2DBox_V"
+
+
+def gz_own_subtopics(stype: str, base: str, box_type: str | None = None) -> list[tuple[str, str, str]]:
+    """``(gz topic, role, gz message)`` of a segmentation or bounding-box camera publishing
+    under ``base`` (its <topic>, or scoped name and suffix); empty for any other type."""
+    if stype in GZ_SEGMENTATION_TYPES:
+        return [
+            (f"{base}/colored_map", "colored_map", "Image"),
+            (f"{base}/labels_map", "labels_map", "Image"),
+            (f"{base}/camera_info", "camera_info", "CameraInfo"),
+        ]
+    if stype in GZ_BOUNDINGBOX_TYPES:
+        parts = [p for p in base.split("/")[:-1] if p]  # CameraSensor::AdvertiseInfo's sibling
+        info = ("/" if base.startswith("/") else "") + "/".join([*parts, "camera_info"])
+        return [
+            (base, "boxes", gz_boxes_msg(box_type)),
+            (f"{base}_image", "image", "Image"),
+            (info, "camera_info", "CameraInfo"),
+        ]
+    return []
+
+
 GZ_SENSOR_TOPIC_MSGS: dict[str, tuple[str, ...]] = {
     "camera": _CAMERA_MSGS,
     "depth_camera": _DEPTH_MSGS,
@@ -343,6 +410,8 @@ GZ_TO_ROS_TYPES: dict[str, frozenset[str]] = {
     "Magnetometer": frozenset({"sensor_msgs/MagneticField"}),
     "FluidPressure": frozenset({"sensor_msgs/FluidPressure"}),
     "Altimeter": frozenset({"ros_gz_interfaces/Altimeter"}),
+    "AnnotatedAxisAligned2DBox_V": frozenset({"vision_msgs/Detection2DArray"}),
+    "AnnotatedOriented3DBox_V": frozenset({"vision_msgs/Detection3DArray"}),
 }
 
 # A subscriber of another type gets nothing: gz-transport runs a subscription's callback

@@ -80,8 +80,10 @@ _CHILDREN: dict[str, dict[str, dict[str, int]]] = {
 # not in every version), so never reported as lost: the gz frame tags, read from <sensor>
 # by gz-sensors (gazebosim/gz-sensors@ign-sensors6 7cfaddf:src/Sensor.cc:148-158,
 # @gz-sensors8 c8159af:src/Sensor.cc:188, @gz-sensors10 ff8c92b:src/Sensor.cc:187) and
-# checked where they are by SK608.
-READ_ANYWAY = frozenset({"gz_frame_id", "ignition_frame_id", "frame_id", "optical_frame_id"})
+# checked where they are by SK608. Not <optical_frame_id>: sdformat reads it from <camera>
+# only (gazebosim/sdformat@sdf12 b9417e5:src/Camera.cc:383-388, @sdf14 8512585:385-390), so
+# one written directly under <sensor> is lost like any other camera setting there (SK410).
+READ_ANYWAY = frozenset({"gz_frame_id", "ignition_frame_id", "frame_id"})
 
 # What the camera runs with when a setting is missing from <camera> (sdf/<v>/camera.sdf:
 # horizontal_fov default 1.047 @sdf9:12, @sdf12/@sdf14/@sdf16:20; image width 320, height
@@ -121,6 +123,9 @@ SETTING_ROLE: dict[str, Role] = {
     "visualize": Role.COSMETIC,
     "pose": Role.GEOMETRY,
     "frame": Role.FRAME,
+    # <optical_frame_id> is read from <camera> only (sdformat Camera.cc:383-388 sdf12,
+    # :385-390 sdf14): misplaced, the images keep the frame the sensor would stamp anyway.
+    "optical_frame_id": Role.FRAME,
 }
 
 

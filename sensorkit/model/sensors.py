@@ -26,6 +26,7 @@ CAMERA_TYPES = {
     "segmentation_camera": "camera",
     "segmentation": "camera",
     "boundingbox_camera": "camera",
+    "boundingbox": "camera",  # sdformat reads both names (sdf14 8512585:src/Sensor.cc:322-324)
 }
 LIDAR_TYPES = {"ray", "gpu_ray", "lidar", "gpu_lidar"}
 DEPTH_KINDS = {"depth", "rgbd"}

@@ -40,14 +40,22 @@ def _scoped_path(ctx: Context, s: Sensor) -> str:
 def _camera_split(s: Sensor, topics: list[str]) -> tuple[list[str], str] | None:
     """``(image topics, camera_info topic)`` of a gz camera, from :func:`gz_topics` order
     (or the scoped default); None for a sensor that is not a camera."""
+    from sensorkit.knowledge.gazebo_sim import GZ_BOUNDINGBOX_TYPES, GZ_SEGMENTATION_TYPES
+
     if s.kind not in ("camera", "depth", "rgbd", "multicamera"):
         return None
+    own = s.type in GZ_SEGMENTATION_TYPES or s.type in GZ_BOUNDINGBOX_TYPES
     if not s.topic:
         name = f"/sensor/{s.name}"
         images = [f"{name}/image", f"{name}/depth_image"] if s.kind == "rgbd" else [topics[0]]
-        return images, f"{name}/camera_info"
+        if s.type in GZ_BOUNDINGBOX_TYPES:
+            images.append(f"{topics[0]}_image")
+        info = f"{topics[0]}/camera_info" if s.type in GZ_SEGMENTATION_TYPES else f"{name}/camera_info"
+        return images, info
     if s.kind == "rgbd":
         return topics[:2], topics[3]
+    if own:  # colored and labels maps, or boxes and their image (gz_own_subtopics)
+        return topics[:2], topics[2]
     return [topics[0]], topics[-1]
 
 
@@ -276,8 +284,14 @@ def _published_types(ctx: Context) -> dict[str, tuple[set[str], list[str]]]:
     from sensorkit.knowledge.gazebo_sim import GZ_SENSOR_TOPIC_MSGS
 
     out: dict[str, tuple[set[str], list[str]]] = {}
+    from sensorkit.knowledge.gazebo_sim import gz_own_subtopics
+    from sensorkit.model.parse import text_of
+
     for s in ctx.robot.sensors:
         msgs = GZ_SENSOR_TOPIC_MSGS.get(s.type)
+        if s.topic and s.camera is not None and gz_own_subtopics(s.type, "x"):
+            box_type = text_of(s.camera.element, "box_type")
+            msgs = tuple(m for _, _, m in gz_own_subtopics(s.type, "x", box_type))
         if msgs is None or not s.topic or gz_never_created(ctx.target, s.type):
             continue
         topics = gz_topics(s)

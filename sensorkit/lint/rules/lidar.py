@@ -37,8 +37,9 @@ def _backwards_sweep(
     "SK406",
     "error/warning/info",
     "lidar: samples >= 1, min_angle < max_angle (a warning for a Gazebo Classic CPU ray, which sweeps "
-    "backwards), 0 <= range min < max (min 0 is an error only on a "
-    "Gazebo Sim gpu_lidar); vertical block sane; "
+    "backwards), 0 <= range min < max (min 0, written or not, is an error only on a "
+    "Fortress/Harmonic gpu_lidar, whose near-clip exception aborts gz sim; a warning on Jetty, "
+    "which keeps a 0.01 m near clip); vertical block sane (gz rows at least 1); "
     "resolution yields a whole beam count (warning); over 1e6 rays per scan (warning)",
     formats=("urdf", "sdf"),
 )
@@ -70,6 +71,12 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
         ):
             if label == "vertical" and not spec.has_vertical:
                 continue
+            # A vertical count of 0 is not saved by gz-sensors' clamp of the rows to 1
+            # (_fractional_beams): Lidar::Load logs "Lidar: Image has 0 size!" and goes on
+            # (gazebosim/gz-sensors@gz-sensors8 c8159af:src/Lidar.cc:145-148), the GPU rays
+            # render 0 rows (src/GpuLidarSensor.cc:213-214), and the scan holds
+            # samples x 0 ranges while the publishing loop writes one row into it
+            # (src/Lidar.cc:272-296): no usable scan. An error on every target.
             if samples is not None and samples < 1:
                 yield err(f"{label} samples {samples} < 1", "use at least 1 sample")
             if lo is not None and hi is not None and (lo > hi or (lo == hi and (samples or 1) > 1)):
@@ -85,15 +92,7 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 if res <= 0:
                     yield err(f"{label} resolution {res:g} must be > 0", "use 1")
                 elif math.isfinite(beams) and abs(beams - round(beams)) > 1e-6:
-                    yield ctx.finding(
-                        "SK406",
-                        Severity.WARNING,
-                        f"lidar {s.name!r}: {label} samples {samples} x resolution {res:g} = {beams:g} is not a whole beam count "
-                        f"(Gazebo publishes {math.floor(beams)})",
-                        spec.source,
-                        sensor=s.name,
-                        fix="pick samples and resolution whose product is whole",
-                    )
+                    yield _fractional_beams(ctx, s, spec, label, samples, res)
         rays = (spec.samples or 0) * (spec.v_samples or 1 if spec.has_vertical else 1)
         if rays > PLAUSIBLE_LIDAR_RAYS:
             rays_f = as_float(rays)
@@ -117,7 +116,7 @@ def lidar_block(ctx: Context) -> Iterator[Finding]:
                 f"range min {rmin:g} / max {rmax:g} must satisfy 0 <= min < max",
                 "e.g. <min>0.12</min><max>12</max>",
             )
-        elif rmin == 0:
+        elif rmin == 0 or (rmin is None and spec.raw.get("range_min") is None):
             yield from _range_min_zero(ctx, s, spec)
 
 
@@ -162,27 +161,83 @@ def _truncated_samples(ctx: Context, s: Sensor, spec: LidarSpec, problem: str) -
     return None
 
 
+def _fractional_beams(
+    ctx: Context, s: Sensor, spec: LidarSpec, label: str, samples: int, res: float
+) -> Finding:
+    """Samples x resolution that is not whole: Gazebo publishes floor(product) beams.
+
+    A gz lidar's vertical rows are at least 1: Lidar::VerticalRangeCount returns
+    max(1, floor(samples x resolution)) (gazebosim/gz-sensors@ign-sensors6 7cfaddf:
+    src/Lidar.cc:378-386; @gz-sensors8 c8159af and @gz-sensors10 ff8c92b: :389-397), and the
+    GPU rays render <samples> rows, never told the resolution (gz-sensors8
+    src/GpuLidarSensor.cc:212-214). Where those rows are the samples written (one sample,
+    resolution under 1), what is cast is what is published: info.
+    """
+    beams = samples * res
+    published = math.floor(beams)
+    clamp = ""
+    if label == "vertical" and is_gz(ctx.target) and published < 1:
+        published, clamp = 1, ", at least one row"
+    sev = Severity.INFO if clamp and published == samples else Severity.WARNING
+    return ctx.finding(
+        "SK406",
+        sev,
+        f"lidar {s.name!r}: {label} samples {samples} x resolution {res:g} = {beams:g} is not a "
+        f"whole beam count (Gazebo publishes {published}{clamp})",
+        spec.source,
+        sensor=s.name,
+        fix="pick samples and resolution whose product is whole",
+    )
+
+
 def _range_min_zero(ctx: Context, s: Sensor, spec: LidarSpec) -> Iterator[Finding]:
     """Range min 0 is the SDF default and legal, except as a GPU lidar's near clip.
 
-    Sources beside GZ_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_sim.py: ogre-next throws on a
-    near clip <= 0) and CLASSIC_LIDAR_NEAR_CLIP_TYPES (knowledge/gazebo_ros.py: unverified).
+    A <min> not written is 0 too: it is a required element with default 0
+    (gazebosim/sdformat@sdf12 b9417e5:sdf/1.9/lidar.sdf:50 and sdf/1.6/ray.sdf:50), which
+    sdformat's parser adds when it is missing (@sdf12:src/parser.cc:1903-1925, @sdf14 8512585:
+    :2073-2074), so sdf::Lidar reads 0 (@sdf12:src/Lidar.cc:162-163).
+
+    Sources beside GZ_LIDAR_NEAR_CLIP_TYPES and GZ_NEAR_CLIP_KEPT (knowledge/gazebo_sim.py:
+    ogre-next throws on a near clip <= 0 and nothing catches it on Fortress and Harmonic;
+    Jetty's gz-rendering10 refuses the 0 and keeps 0.01 m) and CLASSIC_LIDAR_NEAR_CLIP_TYPES
+    (knowledge/gazebo_ros.py: unverified).
     """
     from sensorkit.knowledge.gazebo_ros import CLASSIC_LIDAR_NEAR_CLIP_TYPES
-    from sensorkit.knowledge.gazebo_sim import GZ_LIDAR_NEAR_CLIP_TYPES
+    from sensorkit.knowledge.gazebo_sim import GZ_LIDAR_NEAR_CLIP_TYPES, GZ_NEAR_CLIP_KEPT
 
     fix = "use a small positive min, e.g. <min>0.05</min>"
-    if is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES:
+    written = (
+        "range min 0"
+        if spec.raw.get("range_min") is not None
+        else "range <min> is not written, so sdformat gives it its required default 0; it"
+    )
+    kept = GZ_NEAR_CLIP_KEPT.get(ctx.target)
+    if is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES and kept is not None:
+        c = Consequence(Role.LIMIT, "near clip 0 m", f"near clip {kept:g} m")
+        yield ctx.judged(
+            "SK406",
+            c,
+            f"lidar {s.name!r}: {written} becomes the GPU ray camera's near clip; "
+            f"gz-rendering on {ctx.target} refuses a near clip of 0 (it logs 'Near clip "
+            f"distance must be a finite number greater than 0') and keeps {kept:g} m, so the "
+            "lidar works and sees nothing nearer",
+            spec.source,
+            sensor=s.name,
+            fix=fix,
+        )
+    elif is_gz(ctx.target) and s.type in GZ_LIDAR_NEAR_CLIP_TYPES:
         msg = (
-            "range min 0 becomes the GPU ray camera's near clip, and Ogre throws "
-            "'Near clip distance must be greater than zero': the lidar never renders"
+            f"{written} becomes the GPU ray camera's near clip, and Ogre throws "
+            "'Near clip distance must be greater than zero' in the render thread, which "
+            "nothing catches: the whole `gz sim` server aborts, not just this lidar"
         )
         yield ctx.finding(
             "SK406", Severity.ERROR, f"lidar {s.name!r}: {msg}", spec.source, sensor=s.name, fix=fix
         )
     elif not is_gz(ctx.target) and s.type in CLASSIC_LIDAR_NEAR_CLIP_TYPES:
         msg = (
-            "range min 0 becomes the GPU laser's near clip; sensorkit has not verified "
+            f"{written} becomes the GPU laser's near clip; sensorkit has not verified "
             "that Gazebo Classic (gazebo11) accepts a near clip of 0"
         )
         yield ctx.finding(

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import re
 
-from sensorkit.knowledge.gazebo_sim import GZ_NAVSAT_SUFFIX, GZ_NAVSAT_TYPES
+from sensorkit.knowledge.gazebo_sim import GZ_NAVSAT_SUFFIX, GZ_NAVSAT_TYPES, GZ_TYPE_DEFAULT_SUFFIX
+from sensorkit.model.parse import text_of
 from sensorkit.model.sensors import Plugin, Sensor
 
 
@@ -85,6 +86,9 @@ def gz_topics(s: Sensor) -> list[str]:
     if not s.topic:
         return []
     base = "/" + s.topic.strip("/")
+    own = _own_subtopics(s, base)
+    if own:
+        return own
     if s.kind == "rgbd":
         return [f"{base}/image", f"{base}/depth_image", f"{base}/points", f"{base}/camera_info"]
     if s.kind == "depth":
@@ -94,6 +98,15 @@ def gz_topics(s: Sensor) -> list[str]:
     if s.kind == "lidar":
         return [base, f"{base}/points"]
     return [base]
+
+
+def _own_subtopics(s: Sensor, base: str) -> list[str]:
+    """A segmentation or bounding-box camera's topics (knowledge.gazebo_sim.gz_own_subtopics)."""
+    from sensorkit.knowledge.gazebo_sim import gz_own_subtopics
+
+    cam = s.camera
+    box_type = text_of(cam.element, "box_type") if cam is not None else None
+    return [topic for topic, _, _ in gz_own_subtopics(s.type, base, box_type)]
 
 
 def _info_topic(s: Sensor, base: str) -> str:
@@ -125,7 +138,7 @@ def norm_topic(topic: str) -> str:
 
 def gz_primary_topic(s: Sensor) -> str | None:
     """The gz topic that carries a sensor's main data (None for kinds sensorkit does not know)."""
-    suffix = GZ_DEFAULT_SUFFIX.get(s.kind)
+    suffix = GZ_TYPE_DEFAULT_SUFFIX.get(s.type) or GZ_DEFAULT_SUFFIX.get(s.kind)
     if suffix is None and s.type in GZ_NAVSAT_TYPES:
         # NavSat (kind "other"): gz-sim's NavSat system publishes scopedName + "/navsat"
         # (gazebosim/gz-sim@gz-sim8:src/systems/navsat/NavSat.cc:182-186), with a <topic>
