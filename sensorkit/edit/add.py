@@ -27,6 +27,8 @@ from sensorkit.base.errors import EditRefused, InputError, UsageError, WriteFail
 from sensorkit.edit.check import (
     Verdict,
     check_names,
+    check_not_generated,
+    check_optical_parent,
     check_parent,
     compare_added,
     describe,
@@ -145,6 +147,11 @@ class _Source:
     robot: Robot
 
 
+# The command of each kind, for a next step that names it.
+_COMMANDS = {"camera": "add-camera", "depth_camera": "add-depth-camera", "lidar_2d": "add-lidar",
+             "lidar_3d": "add-lidar", "stereo_camera": "add-stereo", "imu": "add-imu"}  # fmt: skip
+
+
 def _read_source(req: AddRequest) -> _Source:
     """Read, parse and load the robot file; refuse one that does not load."""
     from sensorkit.model import Loaded, build_robot, load_robot
@@ -159,6 +166,8 @@ def _read_source(req: AddRequest) -> _Source:
             f"write the <sensor> into the SDF by hand (`sensorkit validate {where}` checks it)"
         )
         raise EditRefused(msg)
+    if req.path.resolve() == req.target.resolve():
+        check_not_generated(data, where, _COMMANDS.get(req.kind, "add-" + req.kind))
     layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
     if xacro_style:
@@ -205,6 +214,7 @@ def plan_add(req: AddRequest) -> AddResult:
     used = names_in_use(src.robot)
     check_names(src.robot, req.name, (), src.where, used)
     check_parent(src.robot, req.parent, src.where)
+    check_optical_parent(src.robot, req.parent, req.rpy, src.where)
 
     notes: list[str] = []
     pkg = _read_package(req, src, notes)

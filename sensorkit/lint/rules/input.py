@@ -12,12 +12,19 @@ from sensorkit.model.urdf import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN
 
 # SDF: parse_sdf reports SK101 (sensorkit.loading.sdf_files); a .sdf.xacro expands first
 declare(
-    "SK101", "error", "XML is well-formed; report file:line:column", "all parsers", ("urdf", "sdf")
+    "SK101",
+    "error",
+    "XML is well-formed; report file:line:column; a UTF-16/32 file or a prefixed root "
+    "(`<urdf:robot>`), which xacro and check_urdf refuse",
+    "all parsers",
+    ("urdf", "sdf"),
 )
 declare(
     "SK102",
-    "error",
-    "xacro expands; report the include and macro stack, with line where possible",
+    "error/warning",
+    "xacro expands; report the include and macro stack, with line where possible (error); "
+    "an arg given that no file declares or reads, which xacro ignores, with the closest name, "
+    "and an arg value whose white space ends up in link names (warning)",
     "xacro (no line)",
     ("urdf", "sdf"),
 )
