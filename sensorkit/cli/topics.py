@@ -30,15 +30,15 @@ from sensorkit.cli.world_models import described_models, models_json
 if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
 
-FORMATS = ("text", "json")
+FORMATS = ("text", "list", "json")
 
 FormatOpt = Annotated[
     str,
     typer.Option(
         "--format",
         "-f",
-        help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
-        "sensor of each topic) or json",
+        help="text (a row per topic: name, type, frame_id, encoding, rate, sensor), list "
+        "(the lines `ros2 topic list -t` will print) or json",
         rich_help_panel=OUTPUT,
     ),
 ]
@@ -88,7 +88,13 @@ def topics(
     Exit status: 0, or 2 when it could not run.
     """
     from sensorkit.base.errors import UsageError
-    from sensorkit.describe.topics import load_bridge, robot_topics, topics_json, topics_text
+    from sensorkit.describe.topics import (
+        load_bridge,
+        robot_topics,
+        topics_json,
+        topics_list,
+        topics_text,
+    )
     from sensorkit.model.targets import is_gz
 
     if fmt not in FORMATS:
@@ -117,12 +123,13 @@ def topics(
                 tuple(reading.flags.package_path or ()),
             )
         results.append(robot_topics(info, config_read))
+    show = topics_list if fmt == "list" else topics_text
     if len(results) == 1:
-        sys.stdout.write(topics_json(results[0]) if fmt == "json" else topics_text(results[0]))
+        sys.stdout.write(topics_json(results[0]) if fmt == "json" else show(results[0]))
     elif fmt == "json":
         sys.stdout.write(models_json(infos, [topics_json(r) for r in results]))
     else:  # a world: one table per model
-        sys.stdout.write("\n".join(f"model {r.robot}:\n{topics_text(r)}" for r in results))
+        sys.stdout.write("\n".join(f"model {r.robot}:\n{show(r)}" for r in results))
     if not reading.quiet:
         for result in results:
             _say_notes_and_summary(result)

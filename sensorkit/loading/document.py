@@ -218,6 +218,29 @@ def _refuse_what_is_not_xml(path: Path, data: bytes) -> None:
     raise InputError(msg)
 
 
+# Keys only a ros_gz_bridge YAML's entries hold (ros_gz_bridge's README, "Example 4":
+# ros_topic_name, gz_topic_name, ros_type_name, gz_type_name, direction).
+_BRIDGE_KEYS = re.compile(rb"^\s*-?\s*(ros_topic_name|gz_topic_name|ros_type_name|gz_type_name)\s*:", re.M)
+
+
+def _yaml_refusal(path: Path, size: int) -> str:
+    """Where a YAML given as the robot goes: a ros_gz_bridge YAML to ``--bridge``, any
+    other (a robot YAML) to ``sensorkit new``."""
+    where = display_path(path)
+    head = b""
+    if size <= MAX_FILE_BYTES:
+        try:
+            head = path.read_bytes()[:65536]
+        except OSError:
+            head = b""
+    if _BRIDGE_KEYS.search(head):
+        return (
+            f"{where}: not a URDF/xacro: it is a ros_gz_bridge YAML; pass it with "
+            f"`--bridge {where}` (validate, topics) beside the robot's URDF/xacro"
+        )
+    return f"{where}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+
+
 def read_input(path: Path) -> bytes:
     """The bytes of ``path`` or an InputError that names it and says why."""
     try:
@@ -226,8 +249,7 @@ def read_input(path: Path) -> bytes:
             raise InputError(msg)
         size = path.stat().st_size
         if path.suffix.lower() in (".yaml", ".yml"):
-            msg = f"{display_path(path)}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
-            raise InputError(msg)
+            raise InputError(_yaml_refusal(path, size))
         if size > MAX_FILE_BYTES:
             msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
             raise InputError(msg)
