@@ -94,6 +94,7 @@ class Settings:
         """As :meth:`describe`, for every model of an SDF world (one for other files)."""
         from sensorkit.describe.sensorinfo import describe, load_models
 
+        said: list[Any] = []
         robots = load_models(
             file,
             args=self.args,
@@ -101,7 +102,10 @@ class Settings:
             untrusted=self.untrusted,
             overlay=overlay,
             cache=self.cache,
+            said=said,
         )
+        for finding in said:  # a misspelt xacro arg: said here, as validate reports it
+            typer.echo(f"sensorkit: warning: {finding.message}; {finding.fix}", err=True)
         infos = []
         for robot in robots:
             info = describe(robot, self.target, convention=convention)

@@ -57,6 +57,7 @@ from sensorkit.loading.document import (
     Document,
     display_path,
     drop_default_namespace,
+    encoding_finding,
     looks_like_xacro,
     plain_document,
     read_input,
@@ -159,6 +160,9 @@ def _read_source(req: AddRequest) -> _Source:
     source = req.path
     where = display_path(source)
     data = read_input(source)
+    refused = encoding_finding(where, data)  # xacro and check_urdf refuse it: so does add
+    if refused is not None:
+        raise EditRefused(f"{where}: {refused.message}; {refused.fix}")
     root = _parse(data, where)
     if is_sdf_path(source) or etree.QName(root).localname == "sdf":
         msg = (
