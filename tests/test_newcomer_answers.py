@@ -191,3 +191,84 @@ def test_add_into_a_urdf_xacro_generated_is_refused_naming_the_xacro(tmp_path: P
     robot.write_text(text)
     res = run_cli("add-imu", "r.urdf", "--name", "imu", "--parent", "base_link", cwd=tmp_path)
     assert res.returncode == 0, res.stderr
+
+
+# --------------------------------------------------------------------------- misleading
+
+
+LIDAR = f"""<?xml version="1.0"?>
+<robot name="r">
+  <link name="base_link">{INERTIAL}</link>
+  <link name="laser_link">{INERTIAL}</link>
+  <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser_link"/><origin xyz="0.1 0 0.2"/></joint>
+  <gazebo reference="laser_link">
+    <sensor name="laser" type="ray">
+      <update_rate>10</update_rate>
+      <ray><scan><horizontal><samples>360</samples><min_angle>-3.14</min_angle><max_angle>3.14</max_angle></horizontal></scan><range><min>0.1</min><max>10</max></range></ray>
+      <plugin name="laser_plugin" filename="libgazebo_ros_ray_sensor.so">
+        <output_type>sensor_msgs/LaserScan</output_type>
+        <frame_name>FRAME</frame_name>
+      </plugin>
+    </sensor>
+  </gazebo>
+</robot>
+"""
+
+
+def test_sk503_fix_line_says_what_fix_does_for_a_lidar_stamped_base_link(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(LIDAR.replace("FRAME", "base_link"))
+    (f,) = [f for f in _findings(run_cli("validate", "-f", "json", str(path))) if f["rule"] == "SK503"]
+    assert f["fix"] == (
+        "publish in 'laser_link', the link at the sensor (<frame_name>laser_link</frame_name>; "
+        "--fix does this)"
+    ), f
+    assert "move 'base_link'" not in str(f["fix"])
+    res = run_cli("validate", "--diff", str(path))
+    assert "+        <frame_name>laser_link</frame_name>" in res.stdout  # and --fix does it
+    # near miss: the sensor placed off its link, no link sits where it renders: move the frame
+    path.write_text(LIDAR.replace("FRAME", "base_link").replace(
+        '<sensor name="laser" type="ray">', '<sensor name="laser" type="ray"><pose>0.05 0 0 0 0 0</pose>'))
+    (f,) = [f for f in _findings(run_cli("validate", "-f", "json", str(path))) if f["rule"] == "SK503"]
+    assert str(f["fix"]).startswith("move 'base_link' to the sensor's origin"), f
+
+
+def test_a_missing_mesh_of_a_macro_called_twice_is_one_finding(tmp_path: Path) -> None:
+    macro = (
+        '  <xacro:macro name="standoff" params="n">\n'
+        '    <link name="standoff_${n}"><visual><geometry><mesh filename="MESH"/></geometry></visual></link>\n'
+        '    <joint name="j_${n}" type="fixed"><parent link="base_link"/><child link="standoff_${n}"/></joint>\n'
+        "  </xacro:macro>\n"
+    )
+    text = PREFIXED.replace('  <xacro:arg name="prefix" default=""/>\n', macro).replace("$(arg prefix)", "")
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(text.replace("</robot>", '<xacro:standoff n="1"/><xacro:standoff n="2"/></robot>')
+                    .replace("MESH", "meshes/standoff.dae"))  # fmt: skip
+    found = [f for f in _findings(run_cli("validate", "-f", "json", str(path))) if f["rule"] == "SK104"]
+    assert len(found) == 1 and "(2 uses of it)" in str(found[0]["message"]), found
+    # near miss: two different missing meshes are two findings, neither says uses
+    path.write_text(text.replace("</robot>", '<xacro:standoff n="1"/></robot>')
+                    .replace("MESH", "meshes/standoff.dae")
+                    .replace("</robot>", '<link name="x"><visual><geometry><mesh filename="meshes/other.dae"/>'
+                             '</geometry></visual></link><joint name="jx" type="fixed"><parent link="base_link"/>'
+                             '<child link="x"/></joint></robot>'))  # fmt: skip
+    found = [f for f in _findings(run_cli("validate", "-f", "json", str(path))) if f["rule"] == "SK104"]
+    assert len(found) == 2 and not any("uses of it" in str(f["message"]) for f in found), found
+
+
+def test_a_bridge_yaml_given_as_the_robot_is_sent_to_bridge(tmp_path: Path) -> None:
+    bridge = HARMONIC / "config" / "bridge.yaml"
+    line = _one_line(run_cli("topics", str(bridge)))
+    assert "it is a ros_gz_bridge YAML; pass it with `--bridge " in line and "sensorkit new" not in line
+    # near miss: a robot YAML is still sent to new
+    line = _one_line(run_cli("validate", str(ROOT / "examples" / "harmonic_robot" / "robot.yaml")))
+    assert line.endswith("robot YAMLs go to `sensorkit new`"), line
+
+
+def test_topics_says_a_misspelt_arg_too() -> None:
+    robot = HARMONIC / "urdf" / "harmonic_robot.urdf.xacro"
+    res = run_cli("topics", str(robot), "--arg", "simm:=gz")
+    assert res.returncode == 0
+    assert "sensorkit: warning: arg simm:=gz is given" in res.stderr and "(did you mean 'sim'?)" in res.stderr
+    res = run_cli("topics", str(robot), "--arg", "sim:=gz")
+    assert "warning: arg" not in res.stderr
