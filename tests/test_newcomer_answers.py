@@ -269,6 +269,21 @@ def test_topics_says_a_misspelt_arg_too() -> None:
     robot = HARMONIC / "urdf" / "harmonic_robot.urdf.xacro"
     res = run_cli("topics", str(robot), "--arg", "simm:=gz")
     assert res.returncode == 0
-    assert "sensorkit: warning: arg simm:=gz is given" in res.stderr and "(did you mean 'sim'?)" in res.stderr
+    assert "sensorkit: warning: SK102: arg simm:=gz is given" in res.stderr and "(did you mean 'sim'?)" in res.stderr
     res = run_cli("topics", str(robot), "--arg", "sim:=gz")
     assert "warning: arg" not in res.stderr
+
+
+def test_topics_says_a_world_include_that_does_not_resolve(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    world = ROOT / "tests" / "robots" / "sdf" / "world.sdf"
+    monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", str(world.parent / "models"))  # as gz-sim finds it
+    broken = tmp_path / "world.sdf"
+    broken.write_text(world.read_text().replace("model://sk_sensor_head", "model://sk_sensor_heda"))
+    res = run_cli("topics", str(broken))
+    assert res.returncode == 0
+    assert "SK107: <include> 'model://sk_sensor_heda' does not resolve" in res.stderr, res.stderr
+    assert "(what it holds is not listed)" in res.stderr
+    # near miss: the world as it is, its include found
+    assert "warning" not in run_cli("topics", str(world)).stderr

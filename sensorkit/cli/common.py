@@ -104,8 +104,14 @@ class Settings:
             cache=self.cache,
             said=said,
         )
-        for finding in said:  # a misspelt xacro arg: said here, as validate reports it
-            typer.echo(f"sensorkit: warning: {finding.message}; {finding.fix}", err=True)
+        for finding in said:  # e.g. a misspelt xacro arg: said here, as validate reports it
+            where = f"{finding.source}: " if finding.source.line is not None else ""
+            what = f"; {finding.fix}" if finding.rule == "SK102" and finding.fix else ""
+            missing = "" if finding.rule == "SK102" else " (what it holds is not listed)"
+            typer.echo(
+                f"sensorkit: warning: {where}{finding.rule}: {finding.message}{what}{missing}",
+                err=True,
+            )
         infos = []
         for robot in robots:
             info = describe(robot, self.target, convention=convention)

@@ -138,6 +138,12 @@ def load(
     )[0]
 
 
+# What loading finds about a robot it still loads, which every command describing the robot
+# says (validate reports them as findings): a misspelt xacro arg (SK102), a package or an
+# SDF include that does not resolve (SK103, SK107: what it holds is missing from the list).
+SAID_ON_LOAD = ("SK102", "SK103", "SK107")
+
+
 def load_models(
     path: Path,
     *,
@@ -150,7 +156,7 @@ def load_models(
 ) -> list[Robot]:
     """Every robot of ``path``: each model of an SDF world, else the one robot (the
     errors of :func:`load`). ``said`` receives what loading found about a robot it did
-    load (a misspelt xacro arg, SK102), for the command to say."""
+    load (:data:`SAID_ON_LOAD`), for the command to say."""
     from sensorkit.model import load_robot
 
     loaded = load_robot(
@@ -167,7 +173,7 @@ def load_models(
         msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
         raise InputError(msg)
     if said is not None:
-        said.extend(f for f in loaded.findings if f.rule == "SK102")
+        said.extend(f for f in loaded.findings if f.rule in SAID_ON_LOAD)
     return list(loaded.robots) or [loaded.robot]
 
 
