@@ -234,8 +234,8 @@ def validate_mistakes() -> list[Mistake]:
           words=("sim.launch.py",)),
         m("V12", "a robot YAML among robots", "validate r.urdf robot.yaml", files={**BAD, **YAML},
           words=("robot.yaml", "sensorkit new")),
-        m("V13", "an SDF model given to validate", "validate model.sdf", files={"model.sdf": SDF},
-          words=("model.sdf",)),
+        m("V13", "an SDF model given to validate (read since issue 28)", "validate model.sdf", 0,
+          files={"model.sdf": SDF}, words=("model.sdf", "no findings")),
         m("V14", "validate with no file", "validate", words=("FILE",)),
         m("V15", "xacro's habit: name:=value after the file", "validate robot.xacro prefix:=left_", 0,
           files={"robot.xacro": XACRO_ARG}),
@@ -549,6 +549,25 @@ BRIDGE_YAML = (
 )
 
 
+LIDAR_ON_BASE = f"""<?xml version="1.0"?>
+<robot name="r">
+  <link name="base_link">{INERTIAL}</link>
+  <link name="laser_link">{INERTIAL}</link>
+  <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser_link"/>
+    <origin xyz="0.1 0 0.2"/></joint>
+  <gazebo reference="laser_link">
+    <sensor name="laser" type="ray"><update_rate>10</update_rate>
+      <ray><scan><horizontal><samples>360</samples><min_angle>-3.14</min_angle>
+        <max_angle>3.14</max_angle></horizontal></scan><range><min>0.1</min><max>10</max></range></ray>
+      <plugin name="laser_plugin" filename="libgazebo_ros_ray_sensor.so">
+        <output_type>sensor_msgs/LaserScan</output_type><frame_name>base_link</frame_name>
+      </plugin>
+    </sensor>
+  </gazebo>
+</robot>
+"""
+
+
 def second_hour_mistakes() -> list[Mistake]:
     """Issue 38's list: silent wrongs and misleading messages met following the README."""
     u16 = {"r.urdf": FIXED.encode("utf-16")}
@@ -597,6 +616,12 @@ def second_hour_mistakes() -> list[Mistake]:
         m("K20", "rpy in degrees on the command line (the near miss of K09)",
           "add-camera r.urdf --name c2 --parent base_link --rpy 0 15 0", files=BAD,
           words=("more than 2π",), unchanged=("r.urdf",)),
+        m("K21", "topics on a world whose include does not resolve", "topics world.sdf", 0,
+          files={"world.sdf": (ROOT / "tests/robots/sdf/world.sdf").read_text()},
+          words=("SK107", "does not resolve", "not listed"), one_line=False),
+        m("K22", "a lidar stamped base_link: the fix line", "validate lidar.urdf", 1,
+          files={"lidar.urdf": LIDAR_ON_BASE}, words=("publish in 'laser_link'", "--fix does this"),
+          forbid=("move 'base_link'",)),
     ]
 
 
