@@ -160,9 +160,6 @@ def _read_source(req: AddRequest) -> _Source:
     source = req.path
     where = display_path(source)
     data = read_input(source)
-    refused = encoding_finding(where, data)  # xacro and check_urdf refuse it: so does add
-    if refused is not None:
-        raise EditRefused(f"{where}: {refused.message}; {refused.fix}")
     root = _parse(data, where)
     if is_sdf_path(source) or etree.QName(root).localname == "sdf":
         msg = (
@@ -221,6 +218,11 @@ def plan_add(req: AddRequest) -> AddResult:
     check_optical_parent(src.robot, req.parent, req.rpy, src.where)
 
     notes: list[str] = []
+    # A UTF-16/32 file is edited in its own encoding, byte for byte, but xacro and
+    # check_urdf refuse it (validate's SK101): said, not hidden.
+    foreign = encoding_finding(src.where, src.data)
+    if foreign is not None:
+        notes.append(f"warning: {src.where}: {foreign.message}; {foreign.fix}")
     pkg = _read_package(req, src, notes)
     params = dict(req.params)
     if pkg is not None and pkg.spec is not None:
