@@ -11,7 +11,7 @@ contracts in pyproject.toml; tests/test_layers.py runs it). Bottom up:
 5. ``lint``: the rules and the engine that runs them, report formats, settings;
 6. ``describe``: what a robot publishes (camera_info, topics, frames, bridges);
 7. ``recording``: ``check-recording``, a bag checked against what ``describe`` predicts
-   (the only layer that imports rosbags, the extra ``sensorkit[recording]``);
+   (the only layer that imports rosbags, the extra ````sensorkit-ros[recording]````);
 8. ``exporters``: config files for other tools (camera_info, ORB-SLAM3, Kalibr, ...);
 9. ``generate``: ``sensorkit new``, whole packages from a robot YAML;
 10. ``edit``: ``sensorkit add-*``, byte-preserving edits of a user's robot;

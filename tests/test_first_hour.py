@@ -58,8 +58,11 @@ def test_readme_says_how_to_run_and_install_sensorkit() -> None:
     )
     assert "```sh\nbash tests/run\n```" in setup
     assert ". .venv/bin/activate" in setup and "`.venv/bin/sensorkit`" in setup
+    # install from a clone (issue 38: the name `sensorkit` on PyPI is another project's);
+    # tests/test_setup_recipes.py runs both
     sh = "".join(_readme_blocks("sh"))
-    assert "pip install git+https://" in sh and "pipx install git+https://" in sh
+    assert "pipx install ./sensorkit\n" in sh and "`pip install ./sensorkit`" in readme
+    assert "pip install sensorkit" not in readme.replace("`pip install sensorkit` does", "")
     jobs = [yaml.safe_load(b) for b in _readme_blocks("yaml") if "jobs:" in b and "pre-commit" in b]
     assert jobs, "README has no GitHub Actions job running the hook"
     steps = jobs[0]["jobs"]["sensors"]["steps"]

@@ -407,8 +407,8 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], said:
     assert res.stderr.startswith(said) and res.stderr.count("\n") == 1, res.stderr
 
 
-def test_readme_example_is_what_frames_prints() -> None:
-    readme = (ROOT / "README.md").read_text()
+def test_docs_example_is_what_frames_prints() -> None:
+    readme = (ROOT / "docs" / "topics-frames.md").read_text()  # moved from the README (issue 38)
     cmd = "$ sensorkit frames tests/robots/acceptance/sk605_fixed.urdf\n"
     assert cmd in readme
     shown = readme.split(cmd, 1)[1].split("```", 1)[0]

@@ -81,6 +81,11 @@ def test_sk607_unreadable_launch_bridge_is_info_never_not_bridged(tmp_path: Path
     assert "could not be read" in sk607[0].message
     # Near miss: the same launch read fully says the lidar is not bridged (warning).
     assert _of(_run(tmp_path / "b", _facts(IMAGE, INFO)), "SK607")[0].severity.label == "warning"
+    # issue 38: of several launch files read, the one whose bridge could not be read is named
+    facts = LaunchFacts(files=[LAUNCH, "other.launch.py"], bridges=[IMAGE, INFO],
+                        bridge_unknown=True, bridge_unknown_in=["other.launch.py"])  # fmt: skip
+    (f,) = _of(_run(tmp_path / "c", facts), "SK607")
+    assert "a bridge started in other.launch.py could not be read" in f.message, f.message
 
 
 def test_sk607_camera_info_only_is_warning_when_the_launch_bridges_are_known(tmp_path: Path) -> None:

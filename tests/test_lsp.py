@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("pygls", reason="sensorkit[lsp] is part of the test extra")
+pytest.importorskip("pygls", reason="sensorkit-ros[lsp] is part of the test extra")
 
 from lsp_client import Client, Message, apply_edits, uri
 from test_fix import CAMERA_XACRO, OPTICAL, _package, _top, robot
@@ -213,7 +213,8 @@ def test_without_pygls_lsp_says_how_to_install_it(monkeypatch: pytest.MonkeyPatc
     result = CliRunner().invoke(app, ["lsp"])
     assert result.exit_code == 2
     assert result.stderr.strip().splitlines() == [
-        "sensorkit: lsp needs pygls, which is not installed: pip install 'sensorkit[lsp]'"
+        "sensorkit: lsp needs pygls, which is not installed: pip install 'sensorkit-ros[lsp]' "
+        "(from a clone: pip install './sensorkit[lsp]'; with pipx: pipx inject sensorkit-ros pygls)"
     ]
 
 

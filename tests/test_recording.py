@@ -590,7 +590,7 @@ def test_without_rosbags_the_error_says_how_to_install(monkeypatch: pytest.Monke
     from sensorkit.recording import bag
 
     monkeypatch.setitem(sys.modules, "rosbags", None)
-    with pytest.raises(UsageError, match=re.escape("pip install 'sensorkit[recording]'")):
+    with pytest.raises(UsageError, match=re.escape("pip install 'sensorkit-ros[recording]'")):
         bag._rosbags()
 
 

@@ -532,8 +532,14 @@ def test_rviz_places_data_by_the_stamped_frame() -> None:
     np.testing.assert_allclose(m.stamped_world(pts), [[0, 2, 1], [-1, 3, 1]], atol=1e-12)
     np.testing.assert_allclose(m.forward(), [[1, 0, 1], [0, 1, 1]], atol=1e-12)
     assert m.to_dict()["centre_moved_m"] == pytest.approx(math.hypot(3.0, 2.0))
-    image = draw_rviz(m, (31, 119, 180))
+    image, panels = draw_rviz(m, (31, 119, 180))
     assert image.shape == (PANEL[1], 2 * PANEL[0] + 6, 3)
+    # each panel's scale, for the axes and scale bar index.html draws over it (issue 38):
+    # the top view spans the 4 x 3 m of truth, sample and axes within its margins
+    assert [p["view"] for p in panels] == ["top", "side"]
+    assert [p["x0"] for p in panels] == [0, PANEL[0] + 6]
+    assert panels[0]["px_per_m"] == pytest.approx(min((320 - 28) / 4.0, (240 - 28) / 3.0))
+    assert panels[1]["heading"] == pytest.approx([1.0, 0.0])
     magenta = (image == MISMATCH).all(axis=2)
     assert magenta[:, : PANEL[0]].sum() > 20 and magenta[:, PANEL[0] + 6 :].sum() > 20
     # a camera's depth as points in its optical frame: a flat wall 2 m ahead

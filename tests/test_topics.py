@@ -127,12 +127,11 @@ def test_classic_depth_camera_publishes_exactly_five_topics(tmp_path: Path) -> N
     assert all(t["gz_topic"] is None and t["bridged"] is None for t in got.values())
 
 
-def test_text_output_starts_with_ros2_topic_list_lines(tmp_path: Path) -> None:
-    result = run("topics", write(tmp_path, robot(classic_depth_camera())))
-    assert result.exit_code == 0, result.stderr
-    lines = result.stdout.splitlines()
-    blank = lines.index("")
-    listing = lines[:blank]
+def test_list_format_is_ros2_topic_list_and_text_prints_each_row_once(tmp_path: Path) -> None:
+    # issue 38: the text output printed the `ros2 topic list -t` lines and then the same
+    # topics again as rows; the lines moved to --format list, the rows gained the type
+    path = write(tmp_path, robot(classic_depth_camera()))
+    listing = run("topics", path, "--format", "list").stdout.splitlines()
     assert listing == [
         "/camera/camera_info [sensor_msgs/msg/CameraInfo]",
         "/camera/depth/camera_info [sensor_msgs/msg/CameraInfo]",
@@ -141,10 +140,14 @@ def test_text_output_starts_with_ros2_topic_list_lines(tmp_path: Path) -> None:
         "/camera/points [sensor_msgs/msg/PointCloud2]",
     ]
     assert all(ROS2_LIST_LINE.match(line) for line in listing)
-    header, *rows = lines[blank + 1 :]
-    assert header.split() == ["topic", "frame_id", "encoding", "rate", "sensor"]
+    result = run("topics", path)
+    assert result.exit_code == 0, result.stderr
+    header, *rows = result.stdout.splitlines()
+    assert header.split() == ["topic", "type", "frame_id", "encoding", "rate", "sensor"]
     row = next(r for r in rows if r.startswith("/camera/image_raw "))
-    assert row.split()[:5] == ["/camera/image_raw", "camera_link_optical", "bgr8", "15", "Hz"]
+    assert row.split()[:6] == ["/camera/image_raw", "sensor_msgs/msg/Image", "camera_link_optical", "bgr8", "15", "Hz"]
+    for name in (line.split()[0] for line in listing):  # each topic once
+        assert result.stdout.count(name + " ") == 1, name
     assert "5 ROS topics from 1 sensor of rover (target classic" in result.stderr
 
 
@@ -364,6 +367,7 @@ def test_gz_robot_without_bridge_is_not_bridged(tmp_path: Path) -> None:
     text = run("topics", path)
     assert text.stdout.splitlines()[0].split() == [
         "topic",
+        "type",
         "gz",
         "topic",
         "frame_id",
@@ -371,7 +375,7 @@ def test_gz_robot_without_bridge_is_not_bridged(tmp_path: Path) -> None:
         "rate",
         "sensor",
     ]
-    assert "(not bridged)  /front/image" in text.stdout
+    assert re.search(r"^\(not bridged\)  sensor_msgs/msg/Image +/front/image ", text.stdout, re.M)
 
 
 def test_gz_bridge_file_names_the_ros_topics(tmp_path: Path) -> None:
@@ -395,7 +399,7 @@ def test_gz_bridge_file_names_the_ros_topics(tmp_path: Path) -> None:
     assert got["/front/image"]["bridged"] is True
     assert got["/front/image"]["bridge_entry"].endswith("bridge.yaml:1")
     assert got["/front/camera_info"]["topic"] is None
-    text = run("topics", path, "--bridge", bridge).stdout
+    text = run("topics", path, "--bridge", bridge, "--format", "list").stdout
     assert text.splitlines()[0] == "/camera/image_raw [sensor_msgs/msg/Image]"
 
 

@@ -94,6 +94,7 @@ class Settings:
         """As :meth:`describe`, for every model of an SDF world (one for other files)."""
         from sensorkit.describe.sensorinfo import describe, load_models
 
+        said: list[Any] = []
         robots = load_models(
             file,
             args=self.args,
@@ -101,7 +102,16 @@ class Settings:
             untrusted=self.untrusted,
             overlay=overlay,
             cache=self.cache,
+            said=said,
         )
+        for finding in said:  # e.g. a misspelt xacro arg: said here, as validate reports it
+            where = f"{finding.source}: " if finding.source.line is not None else ""
+            what = f"; {finding.fix}" if finding.rule == "SK102" and finding.fix else ""
+            missing = "" if finding.rule == "SK102" else " (what it holds is not listed)"
+            typer.echo(
+                f"sensorkit: warning: {where}{finding.rule}: {finding.message}{what}{missing}",
+                err=True,
+            )
         infos = []
         for robot in robots:
             info = describe(robot, self.target, convention=convention)

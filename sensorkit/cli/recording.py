@@ -2,7 +2,7 @@
 
 Thin: parse options, describe the robot and its topics as ``sensorkit topics`` does, call
 :func:`sensorkit.recording.check.check_recording`, print its findings in validate's
-formats. rosbags (the extra ``sensorkit[recording]``) is imported only when the command
+formats. rosbags (the extra ````sensorkit-ros[recording]````) is imported only when the command
 runs. Findings go to stdout; notes, the summary and the progress bar to stderr.
 """
 

@@ -32,15 +32,15 @@ if TYPE_CHECKING:
     from sensorkit.describe.topics import RobotTopics
     from sensorkit.loading.launch_facts import LaunchFacts
 
-FORMATS = ("text", "json")
+FORMATS = ("text", "list", "json")
 
 FormatOpt = Annotated[
     str,
     typer.Option(
         "--format",
         "-f",
-        help="text (the `ros2 topic list -t` lines, then frame_id, encoding, rate and "
-        "sensor of each topic) or json",
+        help="text (a row per topic: name, type, frame_id, encoding, rate, sensor), list "
+        "(the lines `ros2 topic list -t` will print) or json",
         rich_help_panel=OUTPUT,
     ),
 ]
@@ -90,18 +90,19 @@ def topics(
     Exit status: 0, or 2 when it could not run.
     """
     from sensorkit.base.errors import UsageError
-    from sensorkit.describe.topics import topics_json, topics_text
+    from sensorkit.describe.topics import topics_json, topics_list, topics_text
 
     if fmt not in FORMATS:
         raise UsageError(f"--format {fmt!r}: use " + ", ".join(FORMATS))
     file, infos = described_models(file, reading, target=target)
     results = topic_lists(file, infos, bridge, launch, reading)
+    show = topics_list if fmt == "list" else topics_text
     if len(results) == 1:
-        sys.stdout.write(topics_json(results[0]) if fmt == "json" else topics_text(results[0]))
+        sys.stdout.write(topics_json(results[0]) if fmt == "json" else show(results[0]))
     elif fmt == "json":
         sys.stdout.write(models_json(infos, [topics_json(r) for r in results]))
     else:  # a world: one table per model
-        sys.stdout.write("\n".join(f"model {r.robot}:\n{topics_text(r)}" for r in results))
+        sys.stdout.write("\n".join(f"model {r.robot}:\n{show(r)}" for r in results))
     if not reading.quiet:
         for result in results:
             _say_notes_and_summary(result)

@@ -318,6 +318,7 @@ def _options(
     cfg = st.config
     sep = [s for item in (rules.select or []) for s in item.split(",") if s] or cfg.select
     ign = [s for item in (rules.ignore or []) for s in item.split(",") if s] or cfg.ignore
+    _refuse_select_all_ignored(sep, ign)
     threshold = fail_on_threshold(rules.fail_on, cfg)
     launch = launch_files(rules.launch, cfg)
     given = (
@@ -342,6 +343,21 @@ def _options(
         overlay=overlay,
         cache=st.cache,
     )
+
+
+def _refuse_select_all_ignored(select: list[str], ignore: list[str]) -> None:
+    """--select whose every rule an --ignore prefix takes away checks nothing, and would
+    print "ok: no findings" over any error: refused, naming both."""
+    if not select or not ignore:
+        return
+    covered = [s for s in select if any(s.upper().startswith(i.upper()) for i in ignore)]
+    if len(covered) == len(select):
+        from sensorkit.cli.common import die
+
+        die(
+            f"--ignore {','.join(ignore)} takes away every rule --select {','.join(select)} "
+            "chose, so nothing would be checked: drop the --ignore, or --select other rules"
+        )
 
 
 def _expand_folders(items: list[Path], *, quiet: bool = False) -> list[Path]:

@@ -36,6 +36,7 @@ from sensorkit.describe.sensor_topics import sensor_topics
 from sensorkit.describe.views import CameraView, SensorInfo
 
 if TYPE_CHECKING:
+    from sensorkit.base.findings import Finding
     from sensorkit.describe.stereo import StereoPair
     from sensorkit.loading.cache import ExpansionCache
     from sensorkit.loading.untrusted import Untrusted
@@ -140,6 +141,12 @@ def load(
     )[0]
 
 
+# What loading finds about a robot it still loads, which every command describing the robot
+# says (validate reports them as findings): a misspelt xacro arg (SK102), a package or an
+# SDF include that does not resolve (SK103, SK107: what it holds is missing from the list).
+SAID_ON_LOAD = ("SK102", "SK103", "SK107")
+
+
 def load_models(
     path: Path,
     *,
@@ -148,9 +155,11 @@ def load_models(
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
     cache: ExpansionCache | None = None,
+    said: list[Finding] | None = None,
 ) -> list[Robot]:
     """Every robot of ``path``: each model of an SDF world, else the one robot (the
-    errors of :func:`load`)."""
+    errors of :func:`load`). ``said`` receives what loading found about a robot it did
+    load (:data:`SAID_ON_LOAD`), for the command to say."""
     from sensorkit.model import load_robot
 
     loaded = load_robot(
@@ -166,6 +175,8 @@ def load_models(
         first = loaded.findings[0] if loaded.findings else None
         msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
         raise InputError(msg)
+    if said is not None:
+        said.extend(f for f in loaded.findings if f.rule in SAID_ON_LOAD)
     return list(loaded.robots) or [loaded.robot]
 
 

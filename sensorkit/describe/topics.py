@@ -44,6 +44,7 @@ __all__ = [
     "read_launch",
     "robot_topics",
     "topics_json",
+    "topics_list",
     "topics_text",
 ]
 
@@ -534,18 +535,24 @@ def _table(rows: list[list[str]]) -> list[str]:
     return ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip() for r in rows]
 
 
-def topics_text(result: RobotTopics) -> str:
+def topics_list(result: RobotTopics) -> str:
     """The ``ros2 topic list -t`` lines (``/name [type]``, sorted by name: the shape
-    ros2/ros2cli@humble 28d73d25:ros2topic/ros2topic/verb/list.py:74-79 prints), then a blank
-    line and one row per topic: frame_id, encoding, rate, sensor (and, on Gazebo Sim, the
-    gz topic; a gz topic no bridge entry carries shows ``(not bridged)``)."""
+    ros2/ros2cli@humble 28d73d25:ros2topic/ros2topic/verb/list.py:74-79 prints)."""
     lines = [
         f"{name} [{', '.join(types)}]" for name, types in sorted(_type_list(result.topics).items())
     ]
+    return "".join(line + "\n" for line in lines)
+
+
+def topics_text(result: RobotTopics) -> str:
+    """One row per topic, each printed once: the ROS name, its message type, (on Gazebo
+    Sim the gz topic; a gz topic no bridge entry carries shows ``(not bridged)``),
+    frame_id, encoding, rate and sensor. The ``ros2 topic list -t`` lines are
+    :func:`topics_list` (``--format list``)."""
     if not result.topics:
         return ""
     gz = result.bridge_files is not None
-    head = ["topic", *(["gz topic"] if gz else []), "frame_id", "encoding", "rate", "sensor"]
+    head = ["topic", "type", *(["gz topic"] if gz else []), "frame_id", "encoding", "rate", "sensor"]
     rows = [head]
     for t in result.topics:
         who = f"{t.sensor} ({t.sensor_type})"
@@ -554,6 +561,7 @@ def topics_text(result: RobotTopics) -> str:
         rows.append(
             [
                 t.name or "(not bridged)",
+                t.type or "-",
                 *([t.gz_name or "-"] if gz else []),
                 t.frame or "-",
                 t.encoding or "-",
@@ -561,10 +569,7 @@ def topics_text(result: RobotTopics) -> str:
                 who,
             ]
         )
-    if lines:
-        lines.append("")
-    lines += _table(rows)
-    return "\n".join(lines) + "\n"
+    return "\n".join(_table(rows)) + "\n"
 
 
 def _topic_json(t: Topic) -> dict[str, Any]:

@@ -27,6 +27,8 @@ from sensorkit.base.errors import EditRefused, InputError, UsageError, WriteFail
 from sensorkit.edit.check import (
     Verdict,
     check_names,
+    check_not_generated,
+    check_optical_parent,
     check_parent,
     compare_added,
     describe,
@@ -55,6 +57,7 @@ from sensorkit.loading.document import (
     Document,
     display_path,
     drop_default_namespace,
+    encoding_finding,
     looks_like_xacro,
     plain_document,
     read_input,
@@ -145,6 +148,11 @@ class _Source:
     robot: Robot
 
 
+# The command of each kind, for a next step that names it.
+_COMMANDS = {"camera": "add-camera", "depth_camera": "add-depth-camera", "lidar_2d": "add-lidar",
+             "lidar_3d": "add-lidar", "stereo_camera": "add-stereo", "imu": "add-imu"}  # fmt: skip
+
+
 def _read_source(req: AddRequest) -> _Source:
     """Read, parse and load the robot file; refuse one that does not load."""
     from sensorkit.model import Loaded, build_robot, load_robot
@@ -159,6 +167,8 @@ def _read_source(req: AddRequest) -> _Source:
             f"write the <sensor> into the SDF by hand (`sensorkit validate {where}` checks it)"
         )
         raise EditRefused(msg)
+    if req.path.resolve() == req.target.resolve():
+        check_not_generated(data, where, _COMMANDS.get(req.kind, "add-" + req.kind))
     layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
     if xacro_style:
@@ -205,8 +215,14 @@ def plan_add(req: AddRequest) -> AddResult:
     used = names_in_use(src.robot)
     check_names(src.robot, req.name, (), src.where, used)
     check_parent(src.robot, req.parent, src.where)
+    check_optical_parent(src.robot, req.parent, req.rpy, src.where)
 
     notes: list[str] = []
+    # A UTF-16/32 file is edited in its own encoding, byte for byte, but xacro and
+    # check_urdf refuse it (validate's SK101): said, not hidden.
+    foreign = encoding_finding(src.where, src.data)
+    if foreign is not None:
+        notes.append(f"warning: {src.where}: {foreign.message}; {foreign.fix}")
     pkg = _read_package(req, src, notes)
     params = dict(req.params)
     if pkg is not None and pkg.spec is not None:

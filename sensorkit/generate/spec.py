@@ -28,6 +28,7 @@ one ``FILE:LINE:COLUMN: where: what`` line and no partial robot is ever produced
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -364,6 +365,7 @@ def _sensor(
         xyz = r.vector(entry["xyz"][1], f"{where}.xyz", 3)
     if "rpy" in entry:
         rpy = r.vector(entry["rpy"][1], f"{where}.rpy", 3)
+        _check_radians(r, entry["rpy"][1], f"{where}.rpy", rpy)
     options = _params(
         r,
         entry["options"][1] if "options" in entry else None,
@@ -374,6 +376,20 @@ def _sensor(
     )
     spec = SensorSpec(stype, sname, parent, xyz, rpy, options, r.mark(item), smarks)
     return spec, parent_node
+
+
+def _check_radians(r: Reader, node: yaml.Node, where: str, rpy: str) -> None:
+    """An angle over 2π is degrees by habit (90 for a quarter turn): refused as add-*'s
+    --rpy refuses it, with the radians it likely meant."""
+    for text in rpy.split():
+        angle = float(text)
+        if abs(angle) > 2 * math.pi:
+            r.fail(
+                node,
+                where,
+                f"{angle:g} is more than 2π; angles are in radians "
+                f"(radians? {angle:g}° is {math.radians(angle):.6g})",
+            )
 
 
 def _sensors(

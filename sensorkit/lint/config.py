@@ -147,11 +147,14 @@ def load_config(start: Path | None = None, *, explicit: Path | None = None) -> C
             msg = f"--config {explicit}: no such file"
             raise UsageError(msg)
         data = _read(explicit)
-        found: tuple[Path, dict[str, Any]] | None = (
-            (explicit, _tool_table(data) or {})
-            if explicit.name == "pyproject.toml"
-            else (explicit, data)
-        )
+        table = _tool_table(data) if explicit.name == "pyproject.toml" else data
+        if table is None:  # found upward it is passed over; named, it is a mistake
+            msg = (
+                f"--config {explicit} has no [tool.sensorkit] table, so it holds no settings: "
+                "add the table, or name a sensorkit.toml"
+            )
+            raise UsageError(msg)
+        found: tuple[Path, dict[str, Any]] | None = (explicit, table)
     else:
         folder = (start or Path.cwd()).resolve()
         if folder.is_file() or not folder.exists():

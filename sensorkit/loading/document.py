@@ -218,6 +218,29 @@ def _refuse_what_is_not_xml(path: Path, data: bytes) -> None:
     raise InputError(msg)
 
 
+# Keys only a ros_gz_bridge YAML's entries hold (ros_gz_bridge's README, "Example 4":
+# ros_topic_name, gz_topic_name, ros_type_name, gz_type_name, direction).
+_BRIDGE_KEYS = re.compile(rb"^\s*-?\s*(ros_topic_name|gz_topic_name|ros_type_name|gz_type_name)\s*:", re.M)
+
+
+def _yaml_refusal(path: Path, size: int) -> str:
+    """Where a YAML given as the robot goes: a ros_gz_bridge YAML to ``--bridge``, any
+    other (a robot YAML) to ``sensorkit new``."""
+    where = display_path(path)
+    head = b""
+    if size <= MAX_FILE_BYTES:
+        try:
+            head = path.read_bytes()[:65536]
+        except OSError:
+            head = b""
+    if _BRIDGE_KEYS.search(head):
+        return (
+            f"{where}: not a URDF/xacro: it is a ros_gz_bridge YAML; pass it with "
+            f"`--bridge {where}` (validate, topics) beside the robot's URDF/xacro"
+        )
+    return f"{where}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+
+
 def read_input(path: Path) -> bytes:
     """The bytes of ``path`` or an InputError that names it and says why."""
     try:
@@ -226,8 +249,7 @@ def read_input(path: Path) -> bytes:
             raise InputError(msg)
         size = path.stat().st_size
         if path.suffix.lower() in (".yaml", ".yml"):
-            msg = f"{display_path(path)}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
-            raise InputError(msg)
+            raise InputError(_yaml_refusal(path, size))
         if size > MAX_FILE_BYTES:
             msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
             raise InputError(msg)
@@ -267,6 +289,56 @@ def _limit_finding(rule: str, file: str, message: str, line: int | None) -> Find
     )
 
 
+# Byte order marks of the encodings ROS's own readers refuse: xacro opens the file as
+# UTF-8 text (xacro 2.0.8 __init__.py parse: open(filename), "'utf-8' codec can't decode
+# byte 0xff"), and urdfdom's TinyXML-2 reads UTF-8 only (check_urdf on a UTF-16 file:
+# "Error document empty"). UTF-32 first: its little-endian mark starts as UTF-16's does.
+_FOREIGN_BOMS = (
+    (b"\xff\xfe\x00\x00", "UTF-32"),
+    (b"\x00\x00\xfe\xff", "UTF-32"),
+    (b"\xff\xfe", "UTF-16"),
+    (b"\xfe\xff", "UTF-16"),
+)
+
+
+def encoding_finding(where: str, data: bytes) -> Finding | None:
+    """SK101 for a file in UTF-16 or UTF-32 (a byte order mark, or a NUL in its first
+    bytes), which xacro, check_urdf, robot_state_publisher and libsdformat refuse."""
+    name = next((enc for bom, enc in _FOREIGN_BOMS if data.startswith(bom)), None)
+    if name is None and b"\x00" in data[:4]:
+        name = "UTF-16"
+    if name is None:
+        return None
+    return Finding(
+        "SK101",
+        Severity.ERROR,
+        f"the file is {name}: xacro, check_urdf and robot_state_publisher read UTF-8 only and "
+        "refuse it",
+        SourceRef(where, 1),
+        column=1,
+        fix="save the file as UTF-8 (iconv -f " + name + " -t UTF-8 FILE > NEW, or your editor's encoding menu)",
+    )
+
+
+def prefixed_root_finding(root: etree._Element, where: str) -> Finding | None:
+    """SK101 for a ``<urdf:robot xmlns:urdf=...>`` root: urdfdom looks for an element named
+    exactly ``robot`` (check_urdf: "Could not find the 'robot' element in the xml file")."""
+    if not isinstance(root.tag, str) or not root.prefix:
+        return None
+    local = etree.QName(root).localname
+    if local not in ("robot", "sdf"):
+        return None
+    tool = "check_urdf and robot_state_publisher (urdfdom)" if local == "robot" else "libsdformat"
+    return Finding(
+        "SK101",
+        Severity.ERROR,
+        f"the root element is <{root.prefix}:{local}>: {tool} look for an element named "
+        f"exactly '{local}' and refuse the file (\"Could not find the '{local}' element\")",
+        SourceRef(where, root.sourceline),
+        fix=f"write the root as <{local}> with no prefix (a default xmlns=\"...\" is fine)",
+    )
+
+
 def drop_default_namespace(root: etree._Element) -> etree._Element:
     """Remove a default xmlns from element tags, as urdfdom (TinyXML) ignores it too."""
     ns = root.nsmap.get(None)
@@ -298,6 +370,9 @@ def parse_plain(path: Path, data: bytes, sdf: bool = False) -> LoadResult:
     where = display_path(path)
     if not data.strip():
         return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
+    refused = encoding_finding(where, data)
+    if refused is not None:
+        return LoadResult(None, [refused])
     reason = forbid_entities(data)
     if reason:
         return LoadResult(None, [_xml_finding(where, reason, 1, 1)])
@@ -309,6 +384,9 @@ def parse_plain(path: Path, data: bytes, sdf: bool = False) -> LoadResult:
     except OverLimit as exc:
         return LoadResult(None, [_limit_finding("SK101", where, str(exc), exc.line)])
     _check_root(root, where, sdf)
+    refused = prefixed_root_finding(root, where)
+    if refused is not None:
+        return LoadResult(None, [refused])
     return LoadResult(Document(path=path, root=drop_default_namespace(root)))
 
 
@@ -369,6 +447,7 @@ def load_description(
         return LoadResult(None, [_limit_finding("SK102", where, f"xacro output: {exc}", None)])
     del xml
     _check_root(root, where, sdf)
+    said = _arg_findings(where, data, args or {}, outcome.files, overlay, root)
     doc = Document(
         path=path,
         root=drop_default_namespace(root),
@@ -377,7 +456,26 @@ def load_description(
         includes=outcome.includes,
         reads=sorted(outcome.deps.files) if outcome.deps is not None else [],
     )
-    return LoadResult(doc)
+    return LoadResult(doc, said)
+
+
+def _arg_findings(
+    where: str,
+    data: bytes,
+    args: Mapping[str, str],
+    files: list[str],
+    overlay: Mapping[str, bytes] | None,
+    root: etree._Element,
+) -> list[Finding]:
+    """SK102 warnings for given args the robot never declares or reads (xacro ignores
+    them) and for arg values with white space that end up in link names."""
+    if not args:
+        return []
+    from sensorkit.loading.xacro_args import arg_findings, file_texts, robot_args, space_findings
+
+    known = robot_args(file_texts(data, files, overlay))
+    links = (el.get("name", "") for el in root.iter("link", "{*}link"))
+    return arg_findings(where, args, known) + space_findings(where, args, links)
 
 
 def _expansion(

@@ -91,6 +91,7 @@ class LaunchFacts:
     # A bridge whose arguments or config file could not be resolved: what it carries is
     # unknown, so no rule may say a topic is not bridged.
     bridge_unknown: bool = False
+    bridge_unknown_in: list[str] = field(default_factory=list)  # the files that start one
     static_transforms: list[StaticTransform] = field(default_factory=list)
     # A static_transform_publisher whose frames could not be resolved: it may publish any
     # frame, so no rule may say a frame is missing from TF.

@@ -44,7 +44,9 @@ from sensorkit.loading.document import (
     _xml_finding,
     display_path,
     drop_default_namespace,
+    encoding_finding,
     parse_bounded,
+    prefixed_root_finding,
     read_input,
 )
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
@@ -86,6 +88,9 @@ def parse_sdf(
     where = display_path(path)
     if not data.strip():
         return None, [_xml_finding(where, "the file is empty", 1, 1)]
+    refused = encoding_finding(where, data)
+    if refused is not None:
+        return None, [refused]
     reason = forbid_entities(data)
     if reason:
         return None, [_xml_finding(where, reason, 1, 1)]
@@ -100,6 +105,9 @@ def parse_sdf(
     if tag != "sdf":
         msg = f"{where}: root element is <{tag}>, not <sdf>: not an SDF description"
         raise InputError(msg)
+    refused = prefixed_root_finding(root, where)
+    if refused is not None:
+        return None, [refused]
     return drop_default_namespace(root), []
 
 

@@ -14,6 +14,6 @@ Bottom up:
 - :mod:`~sensorkit.lsp.fixes`: quick fixes, the fixers of ``validate --fix`` in memory;
 - :mod:`~sensorkit.lsp.server`: the pygls server (the only module importing pygls).
 
-pygls is an optional dependency (``pip install 'sensorkit[lsp]'``); only
+pygls is an optional dependency (``pip install 'sensorkit-ros[lsp]'``); only
 ``sensorkit lsp`` imports this package, so the plain CLI never loads it.
 """

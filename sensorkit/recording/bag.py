@@ -2,7 +2,7 @@
 
 :func:`read_recording` opens a ROS 1 ``.bag``, a rosbag2 folder (sqlite3 or MCAP) or a
 bare ``.mcap``/``.db3`` with rosbags (imported here only: the extra
-``sensorkit[recording]``). From the index it takes every topic, its message type and
+````sensorkit-ros[recording]````). From the index it takes every topic, its message type and
 count, without reading a message; then, per topic asked for, the first
 :attr:`Limits.stamps` messages, of which only the header (stamp and frame_id) is parsed
 from the raw bytes, and the first :attr:`Limits.decoded` decoded whole for their content.
@@ -36,7 +36,7 @@ __all__ = [
     "read_recording",
 ]
 
-INSTALL_HINT = "pip install 'sensorkit[recording]'"
+INSTALL_HINT = "pip install 'sensorkit-ros[recording]' (from a clone: pip install './sensorkit[recording]')"
 
 TF_TOPICS = ("/tf_static", "/tf")
 TF_TYPES = frozenset({"tf2_msgs/msg/TFMessage", "tf/msg/tfMessage"})

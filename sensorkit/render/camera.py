@@ -348,7 +348,7 @@ def orb_check(rgb: npt.NDArray[np.uint8], kind: str) -> Check:
         import cv2
     except ImportError:
         return Check(
-            "orb_features", "skipped", "OpenCV is not installed (pip install 'sensorkit[orb]')"
+            "orb_features", "skipped", "OpenCV is not installed (pip install 'sensorkit-ros[orb]')"
         )
     need = ORB_NEEDED["rgbd" if kind in ("depth", "rgbd") else "mono"]
     gray = cv2.cvtColor(np.ascontiguousarray(rgb), cv2.COLOR_RGB2GRAY)

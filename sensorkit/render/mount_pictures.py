@@ -88,7 +88,7 @@ def imu_figure(
     ``VIEW_YAW``/``VIEW_PITCH``."""
     right, up = view_axes()
     orbit = _Orbit(size / 2.0, size * 0.36, right, up)
-    svg = Svg(size + 200, size)
+    svg = Svg(size + 250, size + 20)
     _draw_world_axes(svg, orbit)
     axes = _draw_imu_axes(svg, orbit, R_world_imu)
     if R_world_stamped is not None:
@@ -169,13 +169,13 @@ def _imu_legend(svg: Svg, x: float, stamped_label: str | None, check_status: str
         lines += [f"dashed x' y' z': {stamped_label},", "the frame its data is stamped with"]
     lines += ["thin grey: the world", "seen from ahead-left, above", "(RViz's default view)"]
     for k, text in enumerate(lines):
-        svg.text(x, 18 + 14 * k, text, size=10)
+        svg.text(x, 18 + 17 * k, text, size=12)
     status_colour = {"ok": "#17702a", "warn": "#a05a00", "fail": "#b3171b"}.get(
         check_status, "#777"
     )
     svg.text(
         x,
-        18 + 14 * len(lines) + 8,
+        18 + 17 * len(lines) + 8,
         f"frame check: {check_status}",
         size=11,
         fill=status_colour,

@@ -24,9 +24,10 @@ if TYPE_CHECKING:
 
 __all__ = ["FrameLabel", "overview_figure", "spread"]
 
-ROW = 14.0  # px between two frame names
+ROW = 16.0  # px between two frame names
 LEFT, BOTTOM = 44.0, 22.0  # the tick labels' margins
-CHAR = 6.0  # px a character of 10 px text takes, at most (for the column's width)
+CHAR = 7.2  # px a character of 12 px text takes, at most (for the column's width)
+KEY_ROW = 18.0  # px between two rows of the colour key
 
 
 @dataclass
@@ -69,8 +70,13 @@ def _ticks(svg: Svg, half: float, k: float, size: float) -> list[float]:
     return values
 
 
+def _key_columns(width: float) -> int:
+    """Entries a row of the colour key: 300 px each at least (12 px text)."""
+    return max(1, min(3, int(width // 300.0)))
+
+
 def _legend(svg: Svg, y0: float, width: float, mismatch: bool) -> None:
-    """The colour key, up to three entries a row (250 px each at least)."""
+    """The colour key, up to three entries a row (300 px each at least)."""
     entries: list[tuple[str, str, str]] = [
         ("line", "#1f77b4", "where a sensor looks (its own colour)"),
         ("faint", "#c7ddec", "lidar beams, to their returns"),
@@ -79,10 +85,10 @@ def _legend(svg: Svg, y0: float, width: float, mismatch: bool) -> None:
         ("dot", hex_colour(MARKER_COLOUR), "scene markers (reprojection)"),
         ("dash", hex_colour(MISMATCH), "magenta: where RViz puts the data"),
     ]
-    col = max(width / 3, 250.0)
-    per_row = max(1, int(width // col))
+    per_row = _key_columns(width)
+    col = width / per_row
     for i, (kind, colour, text) in enumerate(entries):
-        x, y = (i % per_row) * col, y0 + (i // per_row) * 16
+        x, y = (i % per_row) * col, y0 + (i // per_row) * KEY_ROW
         if kind == "dot":
             svg.add("circle", cx=x + 7, cy=y - 3.5, r=4.0, fill=colour, class_="key-swatch")
         elif kind == "box":
@@ -109,8 +115,8 @@ def overview_figure(
     k = display / (2.0 * half)
     longest = max((len(f"{lb.sensor}: {lb.frame}") for lb in labels), default=0)
     width = LEFT + display + max(250.0, 40 + CHAR * longest)
-    per_row = max(1, int(width // max(width / 3, 250.0)))
-    svg = Svg(width, display + BOTTOM + 24 + 16 * -(-6 // per_row))
+    per_row = _key_columns(width)
+    svg = Svg(width, display + BOTTOM + 24 + KEY_ROW * -(-6 // per_row))
     svg.image(png, LEFT, 0, display, display)
     values = _ticks(svg, half, k, display)
     for m in markers:  # drawn again over the picture: the browser can tell their colour

@@ -151,11 +151,11 @@ def depth_figure(
             data_end=end,
         )
     legend_y = bottom + 18 if h > 150 else 150.0
-    svg.height = max(svg.height, legend_y + 30)
+    svg.height = max(svg.height, legend_y + 34)
     svg.add("rect", x=0, y=legend_y - 9, width=10, height=10, fill="#e1e1e1", stroke="#999")
-    svg.text(14, legend_y, f"nothing within {metres(far)} (+inf, or the far clip plane)", size=10)
-    svg.add("rect", x=0, y=legend_y + 5, width=10, height=10, fill="#000")
-    svg.text(14, legend_y + 14, f"nearer than {metres(near)} (-inf)", size=10)
+    svg.text(14, legend_y, f"nothing within {metres(far)} (+inf, or the far clip plane)", size=12)
+    svg.add("rect", x=0, y=legend_y + 9, width=10, height=10, fill="#000")
+    svg.text(14, legend_y + 18, f"nearer than {metres(near)} (-inf)", size=12)
     facts: dict[str, Any] = {"colour_min_m": lo, "colour_max_m": hi, "near_m": near, "far_m": far}
     if percentiles is not None:
         p2, p98 = percentiles
@@ -407,7 +407,7 @@ def draw_side(
 def side_figure(png: bytes, view: SideView, facts: dict[str, Any]) -> Figure:
     """The side view with distance and height ticks in metres, the sensor's height and the
     nearest ground hit ahead and behind labelled."""
-    svg = Svg(view.width + 56, view.height + 34)
+    svg = Svg(view.width + 56, view.height + 54)
     ox = 48.0
     svg.image(png, ox, 0, view.width, view.height)
     for d in ticks(-view.d_max, view.d_max, 8):
@@ -445,12 +445,10 @@ def side_figure(png: bytes, view: SideView, facts: dict[str, Any]) -> Figure:
             class_="ground",
             fill=hex_colour(GROUND_HIT),
         )
-    svg.text(
-        ox,
-        view.height + 30,
-        "horizontal distance from the sensor (ahead +, behind -) against height; green: ground hits, red: the robot itself",
-        size=10,
-    )
+    svg.text(ox, view.height + 32, "horizontal distance from the sensor (ahead +, behind -)",
+             size=12)  # fmt: skip
+    svg.text(ox, view.height + 48, "against height; green: ground hits, red: the robot itself",
+             size=12)  # fmt: skip
     ratio = view.sz / view.sx
     caption = "side.png: every return from the side" + (
         f" (heights stretched {ratio:.1f}x)" if ratio > 1.5 else ""

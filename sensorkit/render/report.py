@@ -154,11 +154,10 @@ code{font-size:12px;background:#f1f1f1;padding:1px 4px;border-radius:3px}
 .rviz{border-color:#e600c8 !important}
 .findings{font-size:13px;margin:4px 0 10px;padding-left:20px}
 .sensors{display:grid;grid-template-columns:repeat(auto-fill,minmax(620px,1fr));gap:10px 18px}
-.sensors .imgs img{max-width:280px} .sensors figure.rviz img{max-width:600px} .sensors figure.picture svg{max-width:330px !important;max-height:300px}
-figure[data-figure=closeup] svg{max-width:520px !important;max-height:280px} .sensors figcaption{max-width:330px}
+.sensors .imgs img{max-width:280px} .sensors figure.rviz img{max-width:646px}
+.sensors figcaption{max-width:646px}
 .top-list{list-style:none;padding-left:0} .top-list li{margin:2px 0}
-.finding summary,.verdict li{white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
-.finding[open] summary{white-space:normal}
+.finding summary,.verdict li{white-space:normal;overflow-wrap:anywhere}
 .top{display:flex;gap:18px;align-items:flex-start} .top-findings{flex:1 1 0;min-width:320px}
 details summary{cursor:pointer;font-size:13px;color:#333;margin:4px 0}
 details summary h2{display:inline;border:0}
@@ -392,20 +391,72 @@ def _sensor_findings_html(s: SensorPreview) -> str:
 
 
 def _rviz_html(s: SensorPreview) -> str:
-    """What RViz will show, for a sensor whose data is stamped with another frame."""
+    """What RViz will show, for a sensor whose data is stamped with another frame: rviz.png
+    with, in each panel, its axes, a scale bar and the stamped frame's name."""
     if "rviz_png" not in s.files:
         return ""
     e = html.escape
-    frame = s.info.get("rviz", {}).get("frame", "?")
+    rviz = s.info.get("rviz", {})
+    frame = rviz.get("frame", "?")
     caption = (
         f"What RViz will show: {s.name}'s data placed by the frame it is stamped with, "
         f"{frame!r} (magenta), beside where the sensor really sees it (its colour). Left: "
         "from above; right: from the side, along the sensor's heading."
     )
+    panels = rviz.get("panels")
+    picture = (
+        _rviz_svg(s.files["rviz_png"].read_bytes(), frame, panels)
+        if panels
+        else _img(s.files["rviz_png"], "what RViz will show")
+    )
     return (
         f"<div class='imgs'><figure class='rviz' id='rviz-{e(s.name)}'>"
-        f"{_img(s.files['rviz_png'], 'what RViz will show')}<figcaption>{_text(caption)}</figcaption></figure></div>"
+        f"{picture}<figcaption>{_text(caption)}</figcaption></figure></div>"
     )
+
+
+def _bar_length(room: float, px_per_m: float) -> float:
+    """The longest 1, 2 or 5 x 10^k metres whose bar fits in ``room`` pixels (0: none)."""
+    if not px_per_m > 0 or not math.isfinite(px_per_m):
+        return 0.0
+    raw = room / px_per_m
+    base = 10.0 ** math.floor(math.log10(raw))
+    return max(m * base for m in (1.0, 2.0, 5.0) if m * base <= raw * 1.0001)
+
+
+def _rviz_svg(png: bytes, frame: str, panels: list[dict[str, Any]]) -> str:
+    """rviz.png under a band of labels: per panel the view, the stamped frame, its two
+    axes as arrows and a scale bar of a round length."""
+    from sensorkit.render.rviz import PANEL
+    from sensorkit.render.svg import Svg, metres
+
+    w, h = PANEL
+    band = 46  # below the picture: axes, scale bar, frame
+    width = panels[-1]["x0"] + w
+    svg = Svg(width, 20 + h + band)
+    svg.image(png, 0, 20, width, h)
+    for panel in panels:
+        x0 = float(panel["x0"])
+        view = "from above" if panel["view"] == "top" else "from the side"
+        svg.text(x0 + 2, 14, f"{view}; magenta: in {frame!r}", size=12,
+                 class_="rviz-frame")  # fmt: skip
+        y = 20 + h + 20
+        right, up = panel["axes"]
+        svg.line((x0 + 8, y), (x0 + 38, y), "#222", 1.5, class_="axis")
+        svg.line((x0 + 8, y), (x0 + 8, y - 16), "#222", 1.5, class_="axis")
+        svg.text(x0 + 42, y + 4, right, size=12, class_="axis-name")
+        svg.text(x0 + 12, y - 6, up, size=12, class_="axis-name")
+        k = float(panel["px_per_m"])
+        step = _bar_length(w - 8 - 110, k)  # right of the axis names
+        if step > 0:
+            bar = step * k
+            xr = x0 + w - 8
+            svg.line((xr - bar, y), (xr, y), "#222", 2.0, class_="scale-bar")
+            svg.line((xr - bar, y - 4), (xr - bar, y + 4), "#222", 1.0)
+            svg.line((xr, y - 4), (xr, y + 4), "#222", 1.0)
+            svg.text(xr - bar / 2, y + 18, metres(step), size=12, anchor="middle",
+                     class_="scale-label")  # fmt: skip
+    return str(svg)
 
 
 def _verdict_html(result: PreviewResult) -> str:
@@ -493,9 +544,9 @@ def write_index(result: PreviewResult) -> None:
 {f"<p class='warning' id='placement'>{e(result.placement)}</p>" if result.placement else ""}
 <div class="top"><div class="top-findings"><h2 id="findings">validate's findings</h2>
 {_findings_html(result)}
-<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table>
-{"".join(f.html() for f in result.figures if f.key == "closeup")}</div>
+<table><tr><th>sensor</th><th>type</th><th>status</th></tr>{legend}{skipped}</table></div>
 <div><h2>Overview</h2>{_overview_html(result)}</div></div>
+<div class="imgs">{"".join(f.html() for f in result.figures if f.key == "closeup")}</div>
 {_pictures_html(result)}
 <h2>Sensors</h2>
 <div class="sensors">{"".join(_sensor_html(s, base) for s in result.sensors) or "<p class='meta'>The robot has no sensors to render.</p>"}</div>

@@ -28,6 +28,7 @@ FloatArray = npt.NDArray[np.float64]
 MISMATCH = (230, 0, 200)  # the overview's colour for a frame that differs
 MAX_POINTS = 1500  # a sample of the data is enough to see where it lands
 PANEL = (320, 240)  # width, height of each of rviz.png's two panels
+GAP = 6  # white columns between them
 _GRID = (40, 30)  # image points sampled across a camera's image
 
 
@@ -148,7 +149,7 @@ def _panel(
     colour: tuple[int, int, int],
     project: Any,
     ground: float | None,
-) -> npt.NDArray[np.uint8]:
+) -> tuple[npt.NDArray[np.uint8], _Fit]:
     w, h = PANEL
     canvas = Canvas(w, h, (250, 250, 248))
     true_pts = m.true_world(m.points)
@@ -179,15 +180,17 @@ def _panel(
     canvas.polygon(
         np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]]), None, (200, 200, 200)
     )
-    return canvas.image
+    return canvas.image, fit
 
 
 def draw_rviz(
     m: Misplaced, colour: tuple[int, int, int], ground: float | None = 0.0
-) -> npt.NDArray[np.uint8]:
+) -> tuple[npt.NDArray[np.uint8], list[dict[str, Any]]]:
     """rviz.png: from above (+x right, +y up), then from the side (the sensor's heading
     right, up up; the floor at ``ground``), the truth in ``colour`` and what RViz will
-    show in magenta, each with its forward axis (dashed: the stamped frame's)."""
+    show in magenta, each with its forward axis (dashed: the stamped frame's); and each
+    panel's scale (pixels per metre, where it starts in the image), for the labels
+    index.html draws over it: axes, a scale bar and the stamped frame's name."""
     heading = _heading(m)
 
     def top(p: FloatArray) -> FloatArray:
@@ -197,11 +200,17 @@ def draw_rviz(
         a = np.asarray(p)
         return np.stack([a[:, :2] @ heading, a[:, 2]], axis=1)
 
-    gap = np.full((PANEL[1], 6, 3), 255, dtype=np.uint8)
-    image: npt.NDArray[np.uint8] = np.concatenate(
-        [_panel(m, colour, top, None), gap, _panel(m, colour, side, ground)], axis=1
-    )
-    return image
+    gap = np.full((PANEL[1], GAP, 3), 255, dtype=np.uint8)
+    above, fit_above = _panel(m, colour, top, None)
+    beside, fit_beside = _panel(m, colour, side, ground)
+    image: npt.NDArray[np.uint8] = np.concatenate([above, gap, beside], axis=1)
+    panels = [
+        {"view": "top", "x0": 0, "px_per_m": float(fit_above.scale),
+         "axes": ["x", "y"], "heading": None},
+        {"view": "side", "x0": PANEL[0] + GAP, "px_per_m": float(fit_beside.scale),
+         "axes": ["forward", "z"], "heading": [float(v) for v in heading]},
+    ]  # fmt: skip
+    return image, panels
 
 
 def moved_text(m: Misplaced) -> str:

@@ -182,8 +182,10 @@ def _show_misplaced(out: SensorPreview, drawing: SensorDrawing, seen: Misplaced)
         drawing.published_edges = list(seen.stamped_world(seen.frustum))
     assert out.directory is not None
     out.files["rviz_png"] = out.directory / "rviz.png"
-    write_png(out.files["rviz_png"], draw_rviz(seen, drawing.colour))
+    image, panels = draw_rviz(seen, drawing.colour)
+    write_png(out.files["rviz_png"], image)
     out.info["rviz"] = seen.to_dict()
+    out.info["rviz"]["panels"] = panels
     out.notes.append(
         f"RViz will place this data in {seen.frame!r}, not where the sensor sees it: "
         f"{moved_text(seen)} (rviz.png)"

@@ -111,7 +111,8 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
             "SK607",
             Severity.INFO,
             f"sensor {s.name!r} publishes on gz topic {shown}, which no bridge entry sensorkit "
-            f"read names; a bridge in {', '.join(ctx.launch.files)} could not be read, so "
+            f"read names; a bridge started in {', '.join(ctx.launch.bridge_unknown_in or ctx.launch.files)} "
+            "could not be read, so "
             "sensorkit cannot tell whether it reaches ROS",
             s.source,
             sensor=s.name,

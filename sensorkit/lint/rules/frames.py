@@ -317,9 +317,31 @@ def frame_position(ctx: Context) -> Iterator[Finding]:
                 else f'stamp a link placed where the sensor renders (<pose relative_to="{fr.link}"> the '
                 f"sensor's <pose>, with a fixed joint), or move the sensor to {frame!r}"
                 if robot.sdf is not None
-                else f'move {frame!r} to the sensor\'s origin: xyz="0 0 0" on its joint (and the same <pose> as the sensor)'
+                else _publish_at_sensor(robot, s, fr, frame)
             ),
         )
+
+
+def _publish_at_sensor(robot: Robot, s: Sensor, fr: SensorFrames, frame: str | None) -> str:
+    """SK503's fix on URDF: what ``--fix`` does where a link sits at the sensor already
+    (the camera's optical frame, or the lidar's own link turned as it renders), else to
+    move the stamped frame there. A lidar stamped ``base_link`` was told to move the base."""
+    at = optical_frame_at(robot, fr.T_world_render) if s.is_camera else _own_link_at(robot, fr)
+    if at is not None and at != frame:
+        return f"publish in {at!r}, the link at the sensor (<frame_name>{at}</frame_name>; --fix does this)"
+    return f'move {frame!r} to the sensor\'s origin: xyz="0 0 0" on its joint (and the same <pose> as the sensor)'
+
+
+def _own_link_at(robot: Robot, fr: SensorFrames) -> str | None:
+    """The sensor's own link when it sits where the sensor renders, turned alike."""
+    if fr.T_world_render is None or not fr.link:
+        return None
+    T = robot.T_world_link(fr.link)
+    if T is None:
+        return None
+    gap = tf.norm([a - b for a, b in zip(tf.translation(T), tf.translation(fr.T_world_render), strict=True)])
+    turn = tf.angle_between(tf.rotation(T), tf.rotation(fr.T_world_render))
+    return fr.link if gap <= POSITION_TOL and math.degrees(turn) <= 0.5 else None
 
 
 def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, float]) -> bool:

@@ -6,18 +6,25 @@ import difflib
 from collections.abc import Iterator
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
-from sensorkit.lint.rules.base import Context, declare, rule
+from sensorkit.lint.rules.base import Context, MissingFile, declare, rule
 from sensorkit.model.parse import local
 from sensorkit.model.urdf import ROBOT_CHILDREN, URDF_ATTRS, URDF_CHILDREN
 
 # SDF: parse_sdf reports SK101 (sensorkit.loading.sdf_files); a .sdf.xacro expands first
 declare(
-    "SK101", "error", "XML is well-formed; report file:line:column", "all parsers", ("urdf", "sdf")
+    "SK101",
+    "error",
+    "XML is well-formed; report file:line:column; a UTF-16/32 file or a prefixed root "
+    "(`<urdf:robot>`), which xacro and check_urdf refuse",
+    "all parsers",
+    ("urdf", "sdf"),
 )
 declare(
     "SK102",
-    "error",
-    "xacro expands; report the include and macro stack, with line where possible",
+    "error/warning",
+    "xacro expands; report the include and macro stack, with line where possible (error); "
+    "an arg given that no file declares or reads, which xacro ignores, with the closest name, "
+    "and an arg value whose white space ends up in link names (warning)",
     "xacro (no line)",
     ("urdf", "sdf"),
 )
@@ -46,11 +53,18 @@ HINTS = {
     ("urdf", "sdf"),  # SDF: mesh URIs as gz-sim finds them (loading.sdf_files.resolve_mesh_uri)
 )
 def missing_files(ctx: Context) -> Iterator[Finding]:
+    # One finding per cause: a macro called four times names one missing mesh at one line
+    # four times (turtlebot4's standoffs); the finding says how many uses it stands for.
+    uses: dict[tuple[str, SourceRef], list[MissingFile]] = {}
     for miss in ctx.missing_files:
+        uses.setdefault((miss.uri, miss.source), []).append(miss)
+    for group in uses.values():
+        miss = group[0]
+        more = f" ({len(group)} uses of it)" if len(group) > 1 else ""
         yield ctx.finding(
             "SK104",
             Severity.WARNING,
-            f"{miss.uri!r} does not resolve: {miss.reason}",
+            f"{miss.uri!r} does not resolve{more}: {miss.reason}",
             miss.source,
             link=miss.link,
             fix="fix the path or the package name, or pass --package-path for the package",

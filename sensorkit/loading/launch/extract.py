@@ -130,11 +130,19 @@ def parse_bridge_arg(arg: str) -> tuple[str, str, str] | str | None:
     return topic, ros_type, direction
 
 
+def _bridge_unknown(reading: Reading, spec: NodeSpec) -> None:
+    """A bridge whose topics cannot be told: none may be said not bridged; the file that
+    starts it is kept, for the finding to name (not every launch file read)."""
+    reading.facts.bridge_unknown = True
+    if spec.file and spec.file not in reading.facts.bridge_unknown_in:
+        reading.facts.bridge_unknown_in.append(spec.file)
+
+
 def _add_topic(reading: Reading, spec: NodeSpec, gz: str, ros_type: str | None,
                direction: str, line: int | None) -> None:
     ros = remapped(spec, gz)
     if ros is None:
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         ros = gz
     reading.facts.bridges.append(BridgeTopic(gz=gz, ros=ros, ros_type=ros_type,
                                              direction=direction, file=spec.file, line=line))
@@ -144,13 +152,13 @@ def bridge(reading: Reading, spec: NodeSpec) -> None:
     """A parameter_bridge: its arguments and its config_file."""
     args = strip_ros_args(spec)
     if args is None:
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         args = []
     start = len(reading.facts.bridges)
     bad: tuple[str, int | None] | None = None
     for arg, line in args:
         if arg is None:
-            reading.facts.bridge_unknown = True
+            _bridge_unknown(reading, spec)
             continue
         parsed = parse_bridge_arg(arg)
         if parsed == "service":
@@ -177,25 +185,25 @@ def config_file(reading: Reading, spec: NodeSpec, given: bool, value: str | None
         return
     path = plain(value)
     if path is None:
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         return
     from pathlib import Path
 
     file = Path(path)
     if not file.is_file() or not reading.inside(file):
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         reading.problem(spec.file, f"bridge config_file not found in the workspace: {path}", spec.line)
         return
     try:
         topics = read_bridge(file, reading.display(file))
     except BridgeError as exc:
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         reading.problem(spec.file, f"could not read: {exc}", spec.line)
         return
     for t in topics:
         ros = remapped(spec, t.ros or t.gz)
         if ros is None:
-            reading.facts.bridge_unknown = True
+            _bridge_unknown(reading, spec)
             ros = t.ros
         reading.facts.bridges.append(BridgeTopic(t.gz, ros, t.ros_type, t.direction, t.file, t.line))
 
@@ -204,11 +212,11 @@ def image_bridge(reading: Reading, spec: NodeSpec) -> None:
     """ros_gz_image image_bridge: every argument is a gz image topic, same name in ROS."""
     args = strip_ros_args(spec)
     if args is None:
-        reading.facts.bridge_unknown = True
+        _bridge_unknown(reading, spec)
         return
     for arg, line in args:
         if arg is None:
-            reading.facts.bridge_unknown = True
+            _bridge_unknown(reading, spec)
             continue
         _add_topic(reading, spec, arg, "sensor_msgs/msg/Image", "GZ_TO_ROS", line)
 
@@ -303,7 +311,7 @@ def extract(reading: Reading, spec: NodeSpec) -> None:
     elif pkg == "robot_state_publisher" and exe == "robot_state_publisher":
         frame_prefix(reading, spec)
     elif pkg is None or (exe is None and pkg in BRIDGE_PACKAGES | IMAGE_PACKAGES):
-        reading.facts.bridge_unknown = True  # a node not resolved may be a bridge
+        _bridge_unknown(reading, spec)  # a node not resolved may be a bridge
     node_remaps(reading, spec)
 
 

@@ -57,19 +57,19 @@ def _read(reading: Reading, path: Path, inherited: dict[str, str | None],
         return
     if len(stack) > MAX_INCLUDE_DEPTH:
         reading.problem(name, f"includes nested deeper than {MAX_INCLUDE_DEPTH}: not read")
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     if len(reading.seen) >= MAX_LAUNCH_FILES and real not in reading.seen:
         if not any("more than" in p.message for p in reading.facts.problems):
             reading.problem(name, f"more than {MAX_LAUNCH_FILES} launch files: the rest not read")
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     reading.seen.add(real)
     if name not in reading.facts.files:
         reading.facts.files.append(name)
     got = _parse(reading, path, name, inherited)
     if got is None:
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     for spec in got.nodes:
         spec.file = name
@@ -100,10 +100,13 @@ def _parse(reading: Reading, path: Path, name: str, inherited: dict[str, str | N
     return None
 
 
-def _unknown_all(reading: Reading) -> None:
-    """A launch file not read may start anything: nothing may be said to be missing."""
+def _unknown_all(reading: Reading, name: str) -> None:
+    """A launch file not read (``name``: it, or the file including it) may start anything:
+    nothing may be said to be missing."""
     facts = reading.facts
     facts.bridge_unknown = facts.static_transform_unknown = facts.remap_unknown = True
+    if name not in facts.bridge_unknown_in:
+        facts.bridge_unknown_in.append(name)
 
 
 def _include(reading: Reading, parent: Path, name: str, target: str | None,
@@ -124,11 +127,11 @@ def _include(reading: Reading, parent: Path, name: str, target: str | None,
     path = plain(target)
     if path is None or "\x00unknown" in args:
         reading.problem(name, "an included launch file could not be resolved", line)
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     file = Path(path)  # a relative path depends on where launch is run from: not guessed
     if not file.is_absolute() or not file.is_file() or not reading.inside(file):
         reading.problem(name, f"included launch file not found in the workspace: {path}", line)
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     _read(reading, file, args, stack, ns_pushed)
