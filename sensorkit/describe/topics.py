@@ -188,8 +188,7 @@ def gz_encoding(
 def read_launch(
     robot: Robot, target: str, launch: Sequence[str] = (), package_paths: Sequence[str] = ()
 ) -> LaunchFacts | None:
-    """The robot's launch files as ``sensorkit validate`` reads them (``launch``, else those
-    the launch reader finds); None when none was read."""
+    """The launch files ``validate`` reads (``launch``, else those found); None: none read."""
     from sensorkit.lint.engine import Options, load_launch
 
     options = Options(target=target, launch=tuple(launch), package_paths=tuple(package_paths))
