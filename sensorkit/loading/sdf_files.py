@@ -45,28 +45,17 @@ from sensorkit.loading.document import (
     parse_bounded,
     read_input,
 )
+from sensorkit.loading.formats import is_sdf_path
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver, valid_package_name
 from sensorkit.loading.uris import OUTSIDE, UriTarget, resolve_uri
 
-SDF_SUFFIXES = (".sdf", ".world")
 # Schemes libsdformat strips before looking the rest up in SDF_PATH, which gz-sim fills
 # with GZ_SIM_RESOURCE_PATH's folders (gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:87-124;
 # gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:486-540): ``package://PKG/REST`` is
 # ``FOLDER/PKG/REST`` (gazebosim/ros_gz@2.1.1:ros_gz_sim/README.md:96-113).
 SEARCHED_SCHEMES = ("model://", "package://")
 RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
-
-
-def is_sdf_path(path: Path) -> bool:
-    """Whether ``path`` is read as SDF (by its name: ``.sdf``, ``.world``)."""
-    return path.name.lower().endswith(SDF_SUFFIXES)
-
-
-def is_sdf_xacro(path: Path) -> bool:
-    """Whether ``path`` is SDF written with xacro (``.sdf.xacro``, ``.world.xacro``): it
-    is expanded first, and the result read as SDF."""
-    return path.name.lower().endswith(tuple(s + ".xacro" for s in SDF_SUFFIXES))
 
 
 def parse_sdf(
