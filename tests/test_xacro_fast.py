@@ -12,6 +12,9 @@ The jobs xacro fails on must fail alike (status, and the same error words on std
 from __future__ import annotations
 
 import json
+import os
+import random
+import re
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -138,3 +141,108 @@ def test_in_process_expansion_equals_the_forked_childs(
     assert here.xml == child.xml
     assert here.files == child.files and here.includes == child.includes
     assert here.deps == child.deps
+
+
+EDITED = [  # robots edited at random in the edit loop below (top file, its args)
+    (
+        "turtlebot__turtlebot4/turtlebot4_description/urdf/standard/turtlebot4.urdf.xacro",
+        ["gazebo:=ignition"],
+    ),
+    ("husarion__rosbot_ros/rosbot_description/urdf/rosbot.urdf.xacro", ["use_sim:=true"]),
+    ("PR2__pr2_common/pr2_description/robots/pr2.urdf.xacro", []),
+]
+NUMBER = re.compile(r'(?<=")(-?\d+\.\d+)(?=")')
+
+
+def _mirror(repo: Path, into: Path) -> Path:
+    """``repo`` rebuilt under ``into`` from symlinks, so that one file can be replaced."""
+    for folder, _dirs, names in os.walk(repo):
+        here = into / Path(folder).relative_to(repo)
+        here.mkdir(parents=True, exist_ok=True)
+        for name in names:
+            (here / name).symlink_to(Path(folder) / name)
+    return into
+
+
+def _edits(text: str, rng: random.Random, n: int) -> list[str]:
+    """``n`` successive edits of ``text``, as a user types them: a number changed, a
+    comment added or removed."""
+    out = []
+    for _ in range(n):
+        numbers = list(NUMBER.finditer(text))
+        if numbers and rng.random() < 0.7:
+            m = rng.choice(numbers)
+            value = f"{float(m.group(1)) + rng.choice([-1, 1]) * rng.randint(1, 9) / 100:.3f}"
+            text = text[: m.start()] + value + text[m.end() :]
+        elif "<!-- edit -->" in text:
+            text = text.replace("<!-- edit -->\n", "", 1)
+        else:
+            at = text.rfind("</robot>")
+            text = text[:at] + "<!-- edit -->\n" + text[at:]
+        out.append(text)
+    return out
+
+
+def test_successive_edits_in_one_process_equal_cold_runs(tmp_path: Path) -> None:
+    """As in the language server: one process expands edit after edit of the same robots
+    (its caches warm), each result byte-identical to xacro's command line run cold."""
+    rng = random.Random(37)
+    env = setup(tmp_path / "env", list(corpus_package_paths()))
+    jobs: list[list[str]] = []
+    for k, (rel, args) in enumerate(EDITED):
+        top = REALWORLD / rel
+        repo = REALWORLD / Path(rel).parts[0]
+        for i, text in enumerate(_edits(top.read_text(), rng, 4)):
+            mirror = _mirror(repo, tmp_path / f"r{k}e{i}")
+            edited = mirror / Path(rel).relative_to(Path(rel).parts[0])
+            edited.unlink()
+            edited.write_text(text)
+            jobs.append([str(edited), *args])
+    run = subprocess.run(
+        [sys.executable, str(PEER)],
+        input=json.dumps(jobs),
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    fast = json.loads(run.stdout)
+    for argv, ours in zip(jobs, fast, strict=True):
+        theirs = _cli(argv, env, tmp_path)
+        assert theirs["code"] == 0, theirs["err"][-500:]
+        assert (ours["code"], ours["how"]) == (0, "bounded"), ours["err"][-500:]
+        assert ours["out"] == theirs["out"], argv
+
+
+LEXED = [
+    "plain", "${a}", "x ${a*2} y", "$(arg n)_link", "$${kept}", "$$(kept)", "${a} ${b}$(find p)",
+    "${'}'}", "", "$", "${unclosed", "$(unclosed", "a $ b",
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("text", LEXED)
+def test_the_cached_lexer_gives_xacros_tokens_and_errors(text: str) -> None:
+    """Each text lexed twice by the cached lexer (made, then replayed) gives the tokens
+    xacro's own lexer gives, and a text xacro cannot lex fails with xacro's own error."""
+    import xacro
+
+    def tokens(cls: Any) -> list[Any] | str:
+        lexer = cls(xacro.LEXER)
+        try:
+            lexer.lex(text)
+            out = []
+            while lexer.peek():
+                out.append(lexer.next())
+        except xacro.XacroException as exc:
+            return str(exc)
+        return out
+
+    cached = xacro_fast.lexer_class(xacro.QuickLexer)
+    xacro_fast._TOKENS.pop(text, None)
+    expected = tokens(xacro.QuickLexer)
+    assert tokens(cached) == expected  # made
+    assert tokens(cached) == expected  # replayed
+    assert (text in xacro_fast._TOKENS) == (not isinstance(expected, str))
