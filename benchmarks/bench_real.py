@@ -7,15 +7,22 @@ Run by hand (never in the test suite)::
     .venv/bin/python benchmarks/bench_real.py --profile pr2   # where one validate's CPU goes
 
 The robots are the non-pending entries of tests/realworld/robots.yaml, their files in
-../shared/corpus/realworld, each run with its xacro args. For each robot, two commands run in
-paired, interleaved rounds (peer then sensorkit, then sensorkit then peer, ...) and their CPU
-times (user + sys of the process and everything it waited for) are compared by median:
+../shared/corpus/realworld, each run with its xacro args. For each robot, the commands run in
+interleaved rounds (each round in another order: rotated, and reversed every other round) and
+their CPU times (user + sys of the process and everything it waited for) are compared by
+median; wall times and the load average are recorded beside them:
 
 - the peer, what users run today without sensorkit: ``xacro FILE name:=value ... >
   out.urdf`` (xacro from this venv), then ``check_urdf out.urdf`` (Debian's
   liburdfdom-tools); the two processes' CPU times are summed;
-- ``sensorkit validate FILE --arg name:=value ...`` as a user runs it (report to /dev/null;
-  with ``--no-cache`` when the CLI has it, so the figure is the cold CLI).
+- cold: ``sensorkit validate FILE --arg name:=value ... --no-cache`` as a user runs it
+  (report to /dev/null);
+- warm: the same without ``--no-cache``, its expansion cache (a folder of its own) filled
+  by the checking run: what a pre-commit hook or a second run pays;
+- with ``--baseline PROGRAM``, cold and warm of another sensorkit program too (another
+  checkout's ``.venv/bin/sensorkit``): before and after in the same rounds.
+
+At the end, ``sensorkit --version`` against ``xacro --version``.
 
 xacro's ``$(find pkg)`` needs ``ament_index_python``, which is not on PyPI. The script builds
 an install prefix in a temporary folder: ament resource-index markers
@@ -108,8 +115,8 @@ class Robot:
         ]
         return xacro, [CHECK_URDF, str(out)]
 
-    def sensorkit_cmd(self, no_cache: bool) -> list[str]:
-        cmd = [str(VENV_BIN / "sensorkit"), "validate", str(self.path)]
+    def sensorkit_cmd(self, no_cache: bool, binary: Path | None = None) -> list[str]:
+        cmd = [str(binary or VENV_BIN / "sensorkit"), "validate", str(self.path)]
         for k, v in self.args.items():
             cmd += ["--arg", f"{k}:={v}"]
         return [*cmd, "--no-cache"] if no_cache else cmd
@@ -186,17 +193,22 @@ def environments(tmp: Path, robots: list[Robot]) -> tuple[dict[str, str], dict[s
     return peer, sk
 
 
+WALL: list[float] = []  # the wall seconds of each cpu_of call since it was last cleared
+
+
 def cpu_of(
     cmd: list[str], env: dict[str, str], cwd: Path, stdout: Path | None = None
 ) -> tuple[float, int, str]:
     """CPU seconds (user + sys of ``cmd`` and what it waited for), exit code, and the first
-    stderr line saying an error (else the last one)."""
+    stderr line saying an error (else the last one). Its wall seconds join ``WALL``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
     with open(stdout or os.devnull, "wb") as out:
         proc = subprocess.run(
             cmd, stdout=out, stderr=subprocess.PIPE, env=env, cwd=cwd, check=False
         )
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    WALL.append(time.perf_counter() - start)
     cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
     lines = [x.strip() for x in proc.stderr.decode("utf-8", "replace").splitlines() if x.strip()]
     said = [x for x in lines if x.lower().startswith("error")] or lines[-1:] or [""]
@@ -219,9 +231,9 @@ def run_peer(r: Robot, env: dict[str, str], tmp: Path) -> tuple[float, float, st
 
 
 def run_sensorkit(
-    r: Robot, env: dict[str, str], tmp: Path, no_cache: bool
+    r: Robot, env: dict[str, str], tmp: Path, no_cache: bool, binary: Path | None = None
 ) -> tuple[float, str | None]:
-    t, rc, err = cpu_of(r.sensorkit_cmd(no_cache), dict(env, **r.env), tmp)
+    t, rc, err = cpu_of(r.sensorkit_cmd(no_cache, binary), dict(env, **r.env), tmp)
     return t, None if rc in (0, 1) else f"sensorkit exit {rc}: {err}"
 
 
@@ -236,91 +248,156 @@ def has_no_cache(env: dict[str, str]) -> bool:
     return "--no-cache" in help_text
 
 
+# The sides of a round: the peer, sensorkit cold (--no-cache) and warm (its cache filled by
+# the checking run), and with --baseline the same two of another sensorkit (another venv).
+SIDES = ("peer", "cold", "warm", "base", "base_warm")
+
+
 @dataclass
 class Row:
     label: str
+    cpu: dict[str, float]  # side -> median CPU seconds (the peer: xacro + check_urdf)
+    wall: dict[str, float]  # side -> median wall seconds
     xacro: float
     check: float
-    peer: float
-    sensorkit: float
-    pair_ratio: float  # the median of the per-round ratios
+    load: float  # the 1-minute load average while the robot ran
 
-    @property
-    def ratio(self) -> float:
-        return self.sensorkit / self.peer
+    def ratio(self, side: str) -> float:
+        return self.cpu[side] / self.cpu["peer"]
 
 
 def measure(
-    r: Robot, peer_env: dict[str, str], sk_env: dict[str, str], tmp: Path, runs: int, no_cache: bool
+    r: Robot, envs: dict[str, dict[str, str]], tmp: Path, runs: int, base: Path | None
 ) -> Row:
-    xs, cs, ps, ss = [], [], [], []
+    sides = ["peer", "cold", "warm"] + (["base", "base_warm"] if base else [])
+    cpu: dict[str, list[float]] = {k: [] for k in sides}
+    wall: dict[str, list[float]] = {k: [] for k in sides}
+    xs, cs, loads = [], [], []
     for i in range(runs):
-        for which in ("peer", "sk") if i % 2 == 0 else ("sk", "peer"):
-            if which == "peer":
-                t_x, t_c, _ = run_peer(r, peer_env, tmp)
+        order = sides[i % len(sides) :] + sides[: i % len(sides)]  # rotated each round
+        if i % 2:
+            order.reverse()
+        for side in order:
+            WALL.clear()
+            if side == "peer":
+                t_x, t_c, _ = run_peer(r, envs["peer"], tmp)
                 xs.append(t_x)
                 cs.append(t_c)
-                ps.append(t_x + t_c)
-            else:
-                ss.append(run_sensorkit(r, sk_env, tmp, no_cache)[0])
+                cpu[side].append(t_x + t_c)
+                wall[side].append(sum(WALL))
+                continue
+            env = envs["warm" if side.endswith("warm") else "cold"]
+            binary = base if side.startswith("base") else None
+            cpu[side].append(run_sensorkit(r, env, tmp, not side.endswith("warm"), binary)[0])
+            wall[side].append(sum(WALL))
+        loads.append(os.getloadavg()[0])
     med = statistics.median
     return Row(
-        r.label, med(xs), med(cs), med(ps), med(ss), med(s / p for s, p in zip(ss, ps, strict=True))
+        r.label,
+        {k: med(v) for k, v in cpu.items()},
+        {k: med(v) for k, v in wall.items()},
+        med(xs),
+        med(cs),
+        med(loads),
     )
 
 
-def benchmark(robots: list[Robot], runs: int) -> None:
+def benchmark(robots: list[Robot], runs: int, base: Path | None) -> None:
     with tempfile.TemporaryDirectory() as t:
         tmp = Path(t)
         peer_env, sk_env = environments(tmp, robots)
-        no_cache = has_no_cache(sk_env)
+        if not has_no_cache(sk_env):
+            sys.exit("this sensorkit has no --no-cache: cold and warm cannot be told apart")
+        # warm runs read and fill a cache of their own; cold ones never touch it
+        envs = {
+            "peer": peer_env,
+            "cold": sk_env,
+            "warm": dict(sk_env, XDG_CACHE_HOME=str(tmp / "cache")),
+        }
         rows: list[Row] = []
         apart: list[tuple[str, str]] = []
         t0 = time.perf_counter()
         for r in robots:
             _x, _c, why = run_peer(r, peer_env, tmp)  # checks it, and compiles the bytecode
-            _s, sk_why = run_sensorkit(r, sk_env, tmp, no_cache)
+            _s, sk_why = run_sensorkit(r, envs["warm"], tmp, False)  # fills the cache
+            if base is not None:
+                run_sensorkit(r, envs["warm"], tmp, False, base)
             if why or sk_why:
                 apart.append((r.label, why or sk_why or ""))
                 continue
-            rows.append(measure(r, peer_env, sk_env, tmp, runs, no_cache))
-            print(f"  {r.label}: {rows[-1].ratio:.2f}", file=sys.stderr, flush=True)
-    report(rows, apart, runs, no_cache, time.perf_counter() - t0)
+            rows.append(measure(r, envs, tmp, runs, base))
+            w = rows[-1]
+            print(
+                f"  {r.label}: cold {w.ratio('cold'):.2f} warm {w.ratio('warm'):.2f}"
+                + (f" (baseline cold {w.ratio('base'):.2f})" if base else "")
+                + f" load {w.load:.1f}",
+                file=sys.stderr,
+                flush=True,
+            )
+        version = version_cpu(sk_env, runs)
+    report(rows, apart, runs, base, version, time.perf_counter() - t0)
+
+
+def version_cpu(env: dict[str, str], runs: int) -> dict[str, float]:
+    """Median CPU of ``sensorkit --version`` and ``xacro --version``, interleaved."""
+    cmds = {
+        "sensorkit": [str(VENV_BIN / "sensorkit"), "--version"],
+        "xacro": [str(VENV_BIN / "xacro"), "--version"],
+    }
+    out: dict[str, list[float]] = {k: [] for k in cmds}
+    for i in range(max(runs, 5) * 2):
+        for k in list(cmds) if i % 2 == 0 else list(cmds)[::-1]:
+            out[k].append(cpu_of(cmds[k], env, Path(tempfile.gettempdir()))[0])
+    return {k: statistics.median(v) for k, v in out.items()}
 
 
 def report(
-    rows: list[Row], apart: list[tuple[str, str]], runs: int, no_cache: bool, seconds: float
+    rows: list[Row],
+    apart: list[tuple[str, str]],
+    runs: int,
+    base: Path | None,
+    version: dict[str, float],
+    seconds: float,
 ) -> None:
     med = statistics.median
-    flag = " --no-cache" if no_cache else " (no --no-cache option: nothing cached)"
+    sides = ["cold", "warm"] + (["base", "base_warm"] if base else [])
     print(
-        f"CPU (user + sys), median of {runs} paired interleaved runs; peer = xacro > out.urdf && check_urdf;"
-        f" sensorkit = validate{flag}"
+        f"CPU (user + sys), median of {runs} rotated, interleaved rounds; peer = xacro > out.urdf"
+        " && check_urdf; cold = validate --no-cache; warm = validate, cache filled"
+        + (f"; base = {base}" if base else "")
     )
-    print(
-        f"{'robot':44} {'xacro':>7} {'check':>7} {'peer':>7} {'skit':>7} {'skit-peer':>9} {'ratio':>6} {'paired':>6}"
-    )
-    for w in sorted(rows, key=lambda w: w.peer):
+    head = "".join(f" {k:>9}" for k in sides)
+    ratios = "".join(f" {k[:7] + '/p':>9}" for k in sides)
+    print(f"{'robot':40} {'load':>5} {'peer':>7}{head}{ratios} {'wall p':>7} {'wall c':>7}")
+    for w in sorted(rows, key=lambda w: w.cpu["peer"]):
+        cells = "".join(f" {w.cpu[k] * 1e3:9.1f}" for k in sides)
+        rs = "".join(f" {w.ratio(k):9.2f}" for k in sides)
         print(
-            f"{w.label[:44]:44} {w.xacro * 1e3:7.1f} {w.check * 1e3:7.1f} {w.peer * 1e3:7.1f} {w.sensorkit * 1e3:7.1f}"
-            f" {(w.sensorkit - w.peer) * 1e3:+9.1f} {w.ratio:6.2f} {w.pair_ratio:6.2f}"
+            f"{w.label[:40]:40} {w.load:5.1f} {w.cpu['peer'] * 1e3:7.1f}{cells}{rs}"
+            f" {w.wall['peer'] * 1e3:7.0f} {w.wall['cold'] * 1e3:7.0f}"
         )
-    print("(ms; ratio = median sensorkit / median peer; paired = median of the per-round ratios)")
+    print("(ms of CPU; X/p = median X / median peer; wall p, wall c: wall ms of the peer, of cold)")
     if apart:
         print(f"left out ({len(apart)}), the peer or sensorkit failed:")
         for label, why in apart:
             print(f"  {label}: {why[:160]}")
     if rows:
-        ratios = [w.ratio for w in rows]
-        print(
-            f"range {min(ratios):.2f}-{max(ratios):.2f}; median sensorkit - peer"
-            f" {med(w.sensorkit - w.peer for w in rows) * 1e3:+.0f} ms; median peer {med(w.peer for w in rows) * 1e3:.0f} ms,"
-            f" median sensorkit {med(w.sensorkit for w in rows) * 1e3:.0f} ms"
-        )
-        print(f"median ratio {med(ratios):.2f} over {len(rows)} robots")
+        for k in sides:
+            rs = [w.ratio(k) for w in rows]
+            print(
+                f"{k:9} median ratio {med(rs):.2f} over {len(rows)} robots (range {min(rs):.2f}-{max(rs):.2f});"
+                f" median CPU {med(w.cpu[k] for w in rows) * 1e3:.0f} ms, median peer {med(w.cpu['peer'] for w in rows) * 1e3:.0f} ms"
+            )
+        for name in ("turtlebot4", "pr2"):
+            hit = [w for w in rows if name in w.label.lower()]
+            for w in hit:
+                print(f"{w.label}: " + ", ".join(f"{k} {w.ratio(k):.2f}" for k in sides))
     print(
-        f"load average {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {seconds:.0f} s",
-        file=sys.stderr,
+        f"--version: sensorkit {version['sensorkit'] * 1e3:.0f} ms, xacro {version['xacro'] * 1e3:.0f} ms of CPU"
+    )
+    print(
+        f"load average {' '.join(f'{v:.1f}' for v in os.getloadavg())}"
+        f" (median over robots {med(w.load for w in rows) if rows else 0:.1f}); {seconds:.0f} s"
     )
 
 
@@ -342,6 +419,12 @@ def main() -> None:
         "--profile", metavar="ROBOT", help="break one sensorkit run down (first robot matching)"
     )
     ap.add_argument("--list", action="store_true", help="list the robots and exit")
+    ap.add_argument(
+        "--baseline",
+        type=Path,
+        metavar="SENSORKIT",
+        help="another sensorkit program (e.g. another checkout's .venv/bin/sensorkit) run in the same rounds",
+    )
     a = ap.parse_args()
     if not REALWORLD.is_dir():
         sys.exit(f"{REALWORLD} is absent: the real robots live beside the project")
@@ -364,7 +447,7 @@ def main() -> None:
         return
     if a.only:
         robots = [r for r in robots if any(r in pick(robots, name) for name in a.only)]
-    benchmark(robots, a.runs)
+    benchmark(robots, a.runs, a.baseline)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,8 @@ stands on. The robots:
   the first version of this benchmark, where the preview spreads sensors over processes.
 
 The raw script builds the same world (ground, four textured walls, four textured crates,
-72 marker spheres, the robot's URDF), then renders the frames with TinyRenderer and casts
+72 marker spheres, the robot's URDF), loading the very texture files the preview loads (the
+default room's, walls 512 px, as sensorkit.render.textures keeps them), then renders the frames with TinyRenderer and casts
 the beams with rayTestBatch in batches of 16,383 rays, as the preview does. Textures are
 loaded only when a camera renders: rays never see them, and the preview skips them too.
 
@@ -129,7 +130,7 @@ import math, sys
 import numpy as np
 import pybullet as p
 
-robot, textures, work = sys.argv[1], sys.argv[2], sys.argv[3:]
+robot, textures, suffix, work = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
 # Rays meet collision shapes, never a texture: without a camera to render, none is loaded
 # (as the preview does).
 cams = any(job.startswith("cam:") for job in work)
@@ -156,14 +157,14 @@ def textured_box(h, pos, yaw, tex, k):
     col = p.createCollisionShape(p.GEOM_BOX, halfExtents=h)
     body = p.createMultiBody(0, col, vis, pos, p.getQuaternionFromEuler([0, 0, yaw]))
     if cams:
-        p.changeVisualShape(body, -1, textureUniqueId=p.loadTexture(f"{textures}/{tex}.png"), rgbaColor=[1, 1, 1, 1])
+        p.changeVisualShape(body, -1, textureUniqueId=p.loadTexture(f"{textures}/{tex}{suffix}"), rgbaColor=[1, 1, 1, 1])
 
 L = 3.0
 v, i, uv, n = box_mesh([L + 0.2, L + 0.2, 0.01], 1.0)
 floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE),
     p.createVisualShape(p.GEOM_MESH, vertices=v, indices=i, uvs=uv, normals=n, visualFramePosition=[0, 0, -0.01]))
 if cams:
-    p.changeVisualShape(floor, -1, textureUniqueId=p.loadTexture(f"{textures}/floor.png"), rgbaColor=[1, 1, 1, 1])
+    p.changeVisualShape(floor, -1, textureUniqueId=p.loadTexture(f"{textures}/floor{suffix}"), rgbaColor=[1, 1, 1, 1])
 for k, (x, y, h) in enumerate([(L + 0.1, 0, (0.1, L + 0.2, 1.25)), (-L - 0.1, 0, (0.1, L + 0.2, 1.25)),
                                (0, L + 0.1, (L + 0.2, 0.1, 1.25)), (0, -L - 0.1, (L + 0.2, 0.1, 1.25))]):
     textured_box(list(h), [x, y, 1.25], 0.0, f"wall{k}", 0.5)
@@ -232,13 +233,15 @@ def main() -> None:
         folder = Path(tmp)
         textures = folder / "textures"
         textures.mkdir()
-        from sensorkit.render.png import write_png
-        from sensorkit.render.textures import feature_texture, floor_texture
+        from sensorkit.render.scene import default_scene
+        from sensorkit.render.textures import texture_file
 
-        write_png(textures / "floor.png", floor_texture(7))
-        for k in range(4):
-            write_png(textures / f"wall{k}.png", feature_texture(100 + k))
-            write_png(textures / f"crate{k}.png", feature_texture(200 + k, 128))
+        # the files the preview loads: the default room's textures at their sizes (walls
+        # 512 px), in the format the preview hands pybullet
+        for key, texture in default_scene(3.0).textures.items():
+            made = texture_file(texture, textures)
+            (textures / f"{key}{made.suffix}").write_bytes(made.read_bytes())
+        suffix = made.suffix
         raw_script = folder / "raw.py"
         raw_script.write_text(RAW)
         commands: dict[str, tuple[list[str], list[str]]] = {}
@@ -250,7 +253,7 @@ def main() -> None:
             sk += ["--out", str(folder / f"out-{kind}")]
             commands[kind] = (
                 sk,
-                [sys.executable, str(raw_script), str(robot), str(textures), *work],
+                [sys.executable, str(raw_script), str(robot), str(textures), suffix, *work],
             )
         # Both sides run as installed code does: with bytecode cached (kept in a temporary
         # folder, so the source tree stays clean, whatever PYTHONDONTWRITEBYTECODE says).

@@ -3,6 +3,7 @@ given joints, the URDF handed to pybullet, and keeping pybullet quiet."""
 
 from __future__ import annotations
 
+import io
 import math
 import os
 import subprocess
@@ -685,18 +686,22 @@ def test_textures_are_made_once_and_kept_in_the_cache(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The default room's textures come from the user's cache after the first preview;
-    a cached file is used only when whole, and an unwritable cache falls back."""
-    from sensorkit.render.png import read_png
-    from sensorkit.render.textures import Texture, png_file
+    a cached file is used only when whole, and an unwritable cache falls back. They are
+    BMP files (pybullet loads them three times faster than PNGs), read back here by
+    Pillow, an independent parser."""
+    from PIL import Image
+
+    from sensorkit.render.textures import Texture, texture_file
 
     cache = tmp_path / "cache"
     monkeypatch.setenv("SENSORKIT_CACHE_DIR", str(cache))
     fallback = tmp_path / "tmp"
     fallback.mkdir()
     tex = Texture("feature", 101, 64)
-    made = png_file(tex, fallback)
+    made = texture_file(tex, fallback)
     assert made.parent == cache / "textures" and list(fallback.iterdir()) == []
-    assert np.array_equal(read_png(made.read_bytes()), tex.image())
+    with Image.open(made, formats=["BMP"]) as img:
+        assert np.array_equal(np.asarray(img.convert("RGB")), tex.image())
     assert [p.name for p in made.parent.iterdir()] == [made.name]  # no temporary left
 
     def refuse(self: Texture) -> np.ndarray:
@@ -704,20 +709,43 @@ def test_textures_are_made_once_and_kept_in_the_cache(
 
     with monkeypatch.context() as m:
         m.setattr(Texture, "image", refuse)
-        assert png_file(tex, fallback) == made  # read from the cache, not made
+        assert texture_file(tex, fallback) == made  # read from the cache, not made
     good = made.read_bytes()
     for broken in (good[: len(good) // 2], good[:-20] + bytes(20), b"", good[:40]):
         made.write_bytes(broken)
-        assert png_file(tex, fallback) == made
+        assert texture_file(tex, fallback) == made
         assert made.read_bytes() == good  # made again, whole
     other = Texture("feature", 101, 32)  # the same seed at another size is another file
-    assert png_file(other, fallback) != made
-    # a cache that cannot be written: the PNG goes to the caller's folder
+    assert texture_file(other, fallback) != made
+    # a cache that cannot be written: the file goes to the caller's folder
     blocked = tmp_path / "blocked"
     blocked.write_text("a file where the cache folder would be")
     monkeypatch.setenv("SENSORKIT_CACHE_DIR", str(blocked))
-    out = png_file(tex, fallback)
+    out = texture_file(tex, fallback)
     assert out.parent == fallback and out.read_bytes() == good
+
+
+@pytest.mark.parametrize(("width", "height"), [(4, 6), (5, 3), (1, 1), (7, 2)])
+def test_bmp_textures_read_back_as_written_and_damage_is_told(width: int, height: int) -> None:
+    """Every row width (BMP pads rows to four bytes), read back by Pillow; a file cut
+    short, with trailing bytes, of another size, or with a pixel changed is not intact."""
+    from PIL import Image
+
+    from sensorkit.render.bitmap import encode_bmp, intact_bmp
+
+    rng = np.random.default_rng(width * 10 + height)
+    image = rng.integers(0, 256, (height, width, 3), dtype=np.uint8)
+    data = encode_bmp(image)
+    with Image.open(io.BytesIO(data), formats=["BMP"]) as img:
+        assert np.array_equal(np.asarray(img.convert("RGB")), image)
+    assert intact_bmp(data, width, height)
+    assert not intact_bmp(data, height, width) or width == height
+    assert not intact_bmp(data + b"x", width, height)
+    for cut in range(len(data)):
+        assert not intact_bmp(data[:cut], width, height)
+    changed = bytearray(data)
+    changed[-1] ^= 1
+    assert not intact_bmp(bytes(changed), width, height)
 
 
 def test_intact_png_tells_a_whole_png_from_a_damaged_one() -> None:

@@ -6,85 +6,42 @@ function and formats its result. Command groups live in their own modules, each 
 from __future__ import annotations
 
 import os
-import re
 import sys
-from typing import Any
+
+from sensorkit import __version__
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (``--version``)
+if TYPE_CHECKING:
+    from typing import Any
 
 # sensorkit's numpy work is small (4x4 transforms, one image at a time): OpenBLAS's thread
 # pool only burns CPU at start-up. Set before anything imports numpy; the user's value wins.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import typer
 
-from sensorkit import __version__
+def __getattr__(name: str) -> Any:
+    """``app``, the typer application, built on first use (``sensorkit.cli.root``)."""
+    if name == "app":
+        from sensorkit.cli.root import app
 
-app = typer.Typer(
-    name="sensorkit",
-    help="Correct-by-construction sensors for URDF/xacro robots on ROS 2 and Gazebo.",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-    context_settings={"help_option_names": ["-h", "--help"]},
-)
+        globals()["app"] = app
+        return app
+    msg = f"module {__name__!r} has no attribute {name!r}"
+    raise AttributeError(msg)
 
 
-def _version(value: bool) -> None:
-    if value:
-        typer.echo(f"sensorkit {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def _root(
-    version: bool = typer.Option(
-        False, "--version", "-V", callback=_version, is_eager=True, help="print the version"
-    ),
-) -> None:
-    """sensorkit: validate, generate and preview robot sensors."""
-
-
-# Commands whose module alone serves a ``sensorkit COMMAND ...`` process. Typer builds the
-# click command of every registered function when the app runs (reading its signature's
-# type hints): for ``sensorkit validate`` the other nine cost a fifth of its start-up, and
-# for ``sensorkit render preview`` a tenth of a one-camera preview's CPU time.
-_ALONE = {"validate": "validate", "rules": "validate", "render": "render", "lsp": "lsp"}
-
-
-def _alone() -> str | None:
-    """The one command module this process needs: ``sensorkit validate ...`` (or
-    ``render ...``) run as the sensorkit program (console script or ``python -m sensorkit``); else None (all)."""
-    argv = sys.argv
-    if len(argv) < 2 or argv[1] not in _ALONE:
-        return None
-    prog = argv[0].replace("\\", "/")
-    name = prog.rsplit("/", 1)[-1]
-    if name in ("sensorkit", "sensorkit.exe") or prog.endswith("sensorkit/__main__.py"):
-        return _ALONE[argv[1]]
-    return None
-
-
-def _register() -> None:
-    import importlib
-
-    alone = _alone()
-    for name in (
-        (alone,)
-        if alone
-        else ("validate", "edit", "new", "render", "export", "topics", "frames", "recording", "lsp")
-    ):
-        try:
-            module = importlib.import_module(f"sensorkit.cli.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"sensorkit.cli.{name}":
-                raise
-            continue
-        module.register(app)
-
-
-_register()
+def _app() -> Any:
+    """The typer application (``app``, as a caller may have replaced it)."""
+    return globals().get("app") or __getattr__("app")
 
 
 _XACRO_ARG = r"^[A-Za-z_][A-Za-z0-9_]*:="  # compiled on first use: only for NAME:=VALUE
+
+
+def _xacro_arg(token: str) -> bool:
+    import re  # loaded by the console script already; not by ``python -m sensorkit``
+
+    return re.match(_XACRO_ARG, token) is not None
 
 
 def xacro_args_as_options(argv: list[str]) -> list[str]:
@@ -92,7 +49,7 @@ def xacro_args_as_options(argv: list[str]) -> list[str]:
     ``NAME:=VALUE`` becomes ``--arg NAME:=VALUE`` (a value already after ``--arg`` stays)."""
     out: list[str] = []
     for i, token in enumerate(argv):
-        if ":=" in token and re.match(_XACRO_ARG, token) and (i == 0 or argv[i - 1] != "--arg"):
+        if ":=" in token and _xacro_arg(token) and (i == 0 or argv[i - 1] != "--arg"):
             out += ["--arg", token]
         else:
             out.append(token)
@@ -116,7 +73,7 @@ def _value_counts(argv: list[str]) -> dict[str, int]:
     """The options of the command ``argv`` names that take values, with how many."""
     import typer.main
 
-    cmd: object = typer.main.get_command(app)
+    cmd: object = typer.main.get_command(_app())
     for token in argv:
         sub = getattr(cmd, "commands", {}).get(token)
         if sub is None:
@@ -179,6 +136,10 @@ def main() -> None:
     """
     global _program  # noqa: PLW0603 (one process-wide switch)
     _program = True
+    if sys.argv[1:] in (["--version"], ["-V"]):  # typer and the engine never load
+        sys.stdout.write(f"sensorkit {__version__}\n")
+        sys.stdout.flush()
+        raise SystemExit(0)
     import signal  # imported by the interpreter already: no start-up cost
 
     if hasattr(signal, "SIGPIPE"):  # not on Windows
@@ -227,6 +188,7 @@ def run_app() -> int:
     bad or missing value) is one line on stderr, exit status 2, as every other error of
     sensorkit's is (click draws a usage line, a hint and a box around the message: five
     lines); running a group without a command still prints its help."""
+    app = _app()
     exceptions = _click_exceptions()
     try:
         code = app(standalone_mode=False)

@@ -63,7 +63,7 @@ from sensorkit.loading.document import (
     read_input,
     strict_parser,
 )
-from sensorkit.loading.sdf_files import is_sdf_path
+from sensorkit.loading.formats import is_sdf_path
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:

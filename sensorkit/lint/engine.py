@@ -20,7 +20,6 @@ from sensorkit.lint.rules.base import Bridge
 from sensorkit.lint.suppress import collect
 from sensorkit.loading.document import display_path
 from sensorkit.loading.packages import PackageResolver
-from sensorkit.loading.sdf_files import element_file, resolve_mesh_uri
 from sensorkit.loading.uris import resolve_uri
 from sensorkit.model import Loaded, load_robot
 from sensorkit.model.frames import sensor_frames
@@ -158,6 +157,8 @@ def find_missing_files(
     ``links`` (default: all) and ``seen_packages`` (packages already reported, updated)
     let a re-check look at new links only and say each package once, as a full run does.
     """
+    if robot.sdf is not None:  # the SDF modules load only for an SDF robot
+        from sensorkit.loading.sdf_files import element_file, resolve_mesh_uri
     base = robot.document.path.resolve().parent
     missing: list[MissingFile] = []
     findings: list[Finding] = []

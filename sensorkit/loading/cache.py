@@ -32,11 +32,13 @@ from collections import OrderedDict
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.reads import ExpandDeps, digest
-from sensorkit.loading.xacro_expand import ExpandOutcome
+
+if TYPE_CHECKING:  # the expander loads when a robot is expanded (a plain URDF never is)
+    from sensorkit.loading.xacro_expand import ExpandOutcome
 
 FORMAT = 1  # of a disk entry; another is a miss
 MAX_DISK_BYTES = 64 * 1024**2  # the disk store's bound: the least recently used go first
@@ -76,6 +78,8 @@ class ExpansionCache:
             entry = self.get(cache_key(path, args))
             if entry is None or not still_holds(entry.deps, resolver, overlay):
                 return None
+            from sensorkit.loading.xacro_expand import ExpandOutcome
+
             return ExpandOutcome(
                 xml=entry.xml,
                 files=list(entry.files),
@@ -138,7 +142,10 @@ def _code_signature() -> list[Any]:
         import sensorkit
 
         here = Path(__file__).parent
-        files = [here / n for n in ("xacro_expand.py", "reads.py", "marks.py", "cache.py")]
+        files = [
+            here / n
+            for n in ("xacro_expand.py", "xacro_fast.py", "reads.py", "marks.py", "cache.py")
+        ]
         for name in ("xacro", "yaml"):
             spec = importlib.util.find_spec(name)
             for folder in (spec.submodule_search_locations or []) if spec else []:

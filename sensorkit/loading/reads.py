@@ -22,6 +22,7 @@ The record is plain data (it is pickled back from the expansion child).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import io
 import os
@@ -80,8 +81,10 @@ class ExpandDeps:
         return os.path.abspath(path)
 
 
+@functools.lru_cache(maxsize=4096)
 def _unsafe(expr: str, allowed: frozenset[str] = frozenset()) -> str | None:
-    """Why ``expr`` (a Python expression) cannot be replayed from its inputs, or None."""
+    """Why ``expr`` (a Python expression) cannot be replayed from its inputs, or None.
+    Kept for each expression: robots evaluate the same few again and again."""
     if not allowed and not _SUSPECT.search(expr):
         return None
     import ast

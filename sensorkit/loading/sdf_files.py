@@ -49,11 +49,11 @@ from sensorkit.loading.document import (
     prefixed_root_finding,
     read_input,
 )
+from sensorkit.loading.formats import is_sdf_path
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver, valid_package_name
 from sensorkit.loading.uris import OUTSIDE, UriTarget, resolve_uri
 
-SDF_SUFFIXES = (".sdf", ".world")
 # Schemes libsdformat strips before looking the rest up in SDF_PATH, which gz-sim fills
 # with GZ_SIM_RESOURCE_PATH's folders (gazebosim/sdformat@sdformat12_12.8.0:src/SDF.cc:87-124;
 # gazebosim/gz-sim@gz-sim8_8.9.0:src/Util.cc:486-540): ``package://PKG/REST`` is
@@ -63,17 +63,6 @@ RESOURCE_VARS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH")
 # Gazebo Classic's model path (sensorkit.knowledge.classic_models), searched last: a model
 # found only there is recorded with ``via`` so that a Gazebo Sim target can say it is not.
 CLASSIC_VARS = ("GAZEBO_MODEL_PATH",)
-
-
-def is_sdf_path(path: Path) -> bool:
-    """Whether ``path`` is read as SDF (by its name: ``.sdf``, ``.world``)."""
-    return path.name.lower().endswith(SDF_SUFFIXES)
-
-
-def is_sdf_xacro(path: Path) -> bool:
-    """Whether ``path`` is SDF written with xacro (``.sdf.xacro``, ``.world.xacro``): it
-    is expanded first, and the result read as SDF."""
-    return path.name.lower().endswith(tuple(s + ".xacro" for s in SDF_SUFFIXES))
 
 
 def parse_sdf(

@@ -105,3 +105,11 @@ def describe_stack(stack_files: list[str], macros: list[Any], files: list[str]) 
     for f in reversed(stack_files):
         lines.append(f"in file {f}")
     return lines
+
+
+def where_failed(out: Any, stack_files: list[str], macros: list[Any], files: list[str]) -> None:
+    """The file, include stack and macro a failed expansion was in."""
+    if out.error_file is None and stack_files:
+        out.error_file = os.path.abspath(stack_files[-1])
+    out.stack = describe_stack(stack_files, macros, files)
+    out.macro_file, out.macro_line = innermost_macro(macros, files)

@@ -27,10 +27,8 @@ from sensorkit.base.errors import UsageError
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.reads import ExpandDeps, Recording, record_reads
-from sensorkit.loading.xacro_errors import PackageMissing
+from sensorkit.loading.xacro_errors import PackageMissing, where_failed
 from sensorkit.loading.xacro_errors import classify as _classify
-from sensorkit.loading.xacro_errors import describe_stack as _describe_stack
-from sensorkit.loading.xacro_errors import innermost_macro as _innermost_macro
 
 if TYPE_CHECKING:  # untrusted.py (and its evaluator) load only for --untrusted
     from sensorkit.loading.untrusted import Confinement, Untrusted
@@ -208,22 +206,29 @@ def expand_in_process(
     resolver: PackageResolver,
     untrusted: Untrusted | None = None,
     overlay: Mapping[str, bytes] | None = None,
+    bounded: float | None = None,
 ) -> ExpandOutcome:
     """Expand ``path`` with xacro in this process (resets xacro's globals first).
 
     With ``untrusted``, xacro's ways of reading the machine are narrowed for the duration
     (see ``sensorkit.loading.untrusted``); everything patched is restored afterwards.
     ``overlay`` maps absolute paths to bytes read instead of the file's (``--fix`` checks
-    an edit before it writes anything).
+    an edit before it writes anything). ``bounded``: a trusted expansion evaluated by the
+    allow-list evaluator within that many seconds (``xacro_fast.bound``); it raises
+    ``xacro_fast.NotHere`` where the forked child must expand instead.
     """
     import xacro
     import xacro.substitution_args as sa
+
+    from sensorkit.loading import xacro_fast
 
     files: list[str] = []
     out = ExpandOutcome(files=files)
     saved_sa = {k: getattr(sa, k) for k in ("_eval_find", "_eval_env", "_eval_optenv", "_eval")}
     saved_dict = {k: sa._eval_dict.get(k) for k in ("find", "env", "optenv")}
-    saved_x = {k: getattr(xacro, k) for k in ("parse", "safe_eval", "get_include_files", "eval_text")}
+    saved_x = {
+        k: getattr(xacro, k) for k in ("parse", "safe_eval", "get_include_files", "eval_text")
+    }
     saved_python: dict[str, Any] = {}
     orig_stderr = sys.stderr
     confine = None
@@ -231,6 +236,49 @@ def expand_in_process(
         from sensorkit.loading.untrusted import confinement_for
 
         confine = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs)
+    find = _finder(resolver, confine)
+    _reset_xacro()
+    undo: list[Any] = []
+    xacro_fast.speed_up(xacro, undo)
+    xacro.eval_text = _plain_text_fast(saved_x["eval_text"])
+    if confine is not None:
+        xacro.get_include_files = _confined_includes(confine)
+    sa._eval_find = find
+    sa._eval_dict["find"] = find
+    if untrusted is not None and confine is not None:
+        _narrow(xacro, sa, untrusted, confine, saved_sa, saved_x, saved_python)
+    elif bounded is not None:
+        xacro_fast.bound(xacro, sa, bounded, MEMORY_LIMIT, undo)
+    reads = _record_reads(xacro, sa, out, untrusted, overlay)
+    xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
+    sys.stderr = io.StringIO()
+    try:
+        doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
+        out.xml = doc.documentElement.toxml()
+        out.includes = [os.path.abspath(p) for p in xacro.all_includes]
+    except xacro_fast.OverTime:
+        out.error_kind, out.message = "timeout", _timeout_message(bounded or 0)
+    except BaseException as exc:  # classify everything; never let xacro escape
+        if isinstance(exc, (KeyboardInterrupt, xacro_fast.NotHere)):
+            raise
+        _classify(exc, out)
+    finally:
+        if reads is not None:
+            reads.restore()
+        for step in reversed(undo):
+            step()
+        stack_files = [f for f in (xacro.filestack or []) if f]
+        macros = list(xacro.macrostack or [])
+        _restore(xacro, sa, saved_x, saved_sa, saved_dict, saved_python)
+        sys.stderr = orig_stderr
+    if out.error_kind is not None:
+        where_failed(out, stack_files, macros, files)
+    _reset_xacro()
+    return out
+
+
+def _finder(resolver: PackageResolver, confine: Confinement | None) -> Any:
+    """``$(find pkg)`` through ``resolver`` (a folder found joins ``confine``)."""
 
     def find(pkg: str) -> str:
         # resolver.find finds nothing for what cannot be a package name (an absolute
@@ -243,39 +291,7 @@ def expand_in_process(
             confine.add(hit)
         return str(hit)
 
-    _reset_xacro()
-    xacro.eval_text = _plain_text_fast(saved_x["eval_text"])
-    if confine is not None:
-        xacro.get_include_files = _confined_includes(confine)
-    sa._eval_find = find
-    sa._eval_dict["find"] = find
-    if untrusted is not None and confine is not None:
-        _narrow(xacro, sa, untrusted, confine, saved_sa, saved_x, saved_python)
-    reads = _record_reads(xacro, sa, out, untrusted, overlay)
-    xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
-    sys.stderr = io.StringIO()
-    try:
-        doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
-        out.xml = doc.documentElement.toxml()
-        out.includes = [os.path.abspath(p) for p in xacro.all_includes]
-    except BaseException as exc:  # classify everything; never let xacro escape
-        if isinstance(exc, KeyboardInterrupt):
-            raise
-        _classify(exc, out)
-    finally:
-        if reads is not None:
-            reads.restore()
-        stack_files = [f for f in (xacro.filestack or []) if f]
-        macros = list(xacro.macrostack or [])
-        _restore(xacro, sa, saved_x, saved_sa, saved_dict, saved_python)
-        sys.stderr = orig_stderr
-    if out.error_kind is not None:
-        if out.error_file is None and stack_files:
-            out.error_file = os.path.abspath(stack_files[-1])
-        out.stack = _describe_stack(stack_files, macros, files)
-        out.macro_file, out.macro_line = _innermost_macro(macros, files)
-    _reset_xacro()
-    return out
+    return find
 
 
 def _restore(
@@ -392,6 +408,10 @@ def expand(
             why = "SENSORKIT_XACRO_INPROCESS is set" if hasattr(os, "fork") else "no fork here"
             raise UsageError(f"--untrusted needs xacro expanded in a forked process ({why})")
         return expand_in_process(path, args, resolver, untrusted, overlay)
+    if untrusted is None:
+        here = _expand_here(path, args, resolver, overlay, timeout)
+        if here is not None:
+            return here
     import multiprocessing as mp
     import pickle
 
@@ -422,16 +442,39 @@ def expand(
                     message=f"xacro stopped without an answer (exit status {code})",
                 )
         else:
-            outcome = ExpandOutcome(
-                error_kind="timeout",
-                message=f"xacro did not finish within {timeout:g} s (a runaway expression?)",
-            )
+            outcome = ExpandOutcome(error_kind="timeout", message=_timeout_message(timeout))
     finally:
         if proc.is_alive():
             proc.kill()
         proc.join(5)
         recv.close()
     return outcome
+
+
+def _timeout_message(timeout: float) -> str:
+    return f"xacro did not finish within {timeout:g} s (a runaway expression?)"
+
+
+def _expand_here(
+    path: Path,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    overlay: Mapping[str, bytes] | None,
+    timeout: float,
+) -> ExpandOutcome | None:
+    """A trusted expansion in this process, bounded (``xacro_fast``): its outcome when it
+    succeeded or ran out of time, else None, and the forked child decides (a failure's
+    message is then the child's, whichever evaluator would have met it first)."""
+    from sensorkit.loading import xacro_fast
+
+    if not xacro_fast.supported():
+        return None
+    try:
+        out = expand_in_process(path, args, resolver, None, overlay, bounded=timeout)
+    except xacro_fast.NotHere:
+        _reset_xacro()
+        return None
+    return out if out.error_kind in (None, "timeout") else None
 
 
 def warm() -> None:
@@ -507,9 +550,7 @@ def _confine(
     # decides the timeout. Equal to it, the two raced: a child on a free core reached
     # ``timeout`` s of CPU as the parent's wait ran out, died of SIGXCPU first, and the
     # finding said "stopped without an answer" instead of "did not finish" (test_fleet).
-    confine.limit_resources(
-        memory_growth=MEMORY_LIMIT, cpu_seconds=timeout + 2.0, file_size=0
-    )
+    confine.limit_resources(memory_growth=MEMORY_LIMIT, cpu_seconds=timeout + 2.0, file_size=0)
     if untrusted is None:
         return
     from sensorkit.loading.untrusted import keep_only_environment

@@ -351,10 +351,11 @@ def resolve(server: SensorkitServer, action: lsp.CodeAction) -> lsp.CodeAction:
 
 
 def warm() -> None:
-    """Import xacro now (the expansion children are forked from this process with it
-    loaded), so the first document does not pay for it. The describe layer is left to
-    the first hover: it brings numpy, and each forked expansion costs more with numpy in
-    this process (~40 ms of CPU per edit on turtlebot4, 3 paired runs)."""
+    """Import xacro now, so the first document does not pay for it: expansions run in
+    this process (its lexing and parsing caches stay warm from edit to edit), or in a
+    child forked from it with xacro loaded (sensorkit.loading.xacro_expand). The describe
+    layer is left to the first hover: it brings numpy, and each forked expansion costs more
+    with numpy in this process (~40 ms of CPU per edit on turtlebot4, 3 paired runs)."""
     from sensorkit.loading.xacro_expand import warm as warm_xacro
 
     warm_xacro()

@@ -59,7 +59,7 @@ def load_robot(
     ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
     """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
-    from sensorkit.loading.sdf_files import is_sdf_path, is_sdf_xacro
+    from sensorkit.loading.formats import is_sdf_path, is_sdf_xacro
 
     if sdf and is_sdf_path(path):
         if untrusted is not None:

@@ -234,9 +234,9 @@ class World:
     # ---- building the world --------------------------------------------------------
     def _texture(self, key: str, scene: Scene, cache: dict[str, int]) -> int:
         if key not in cache:
-            from sensorkit.render.textures import png_file
+            from sensorkit.render.textures import texture_file
 
-            path = png_file(scene.textures[key], Path(self._tmp.name))
+            path = texture_file(scene.textures[key], Path(self._tmp.name))
             cache[key] = int(self._call("loadTexture", str(path)))
         return cache[key]
 

@@ -4,13 +4,14 @@ Each texture is a deterministic function of its seed: two-tone checks, random
 rectangles and discs in saturated colours, and a little fine noise.
 
 Making the nine textures of the default room and encoding them for pybullet is a tenth of
-a camera preview, the same every time: :func:`png_file` keeps each PNG in the user's
+a camera preview, the same every time: :func:`texture_file` keeps each one, as a BMP
+(sensorkit.render.bitmap: pybullet loads it three times faster than a PNG), in the user's
 cache folder (``$SENSORKIT_CACHE_DIR``, else ``$XDG_CACHE_HOME/sensorkit``, else
 ``~/.cache/sensorkit``), named by what makes it (kind, seed, size, a digest of this
 module and numpy's version, whose random streams may change between releases). A cached
-file is used only when it is a whole, well-formed PNG of the right size; anything else
-is made again. Where no cache folder can be written, the PNG goes to the caller's
-temporary folder, as before.
+file is used only when it is a whole, well-formed BMP of the right size whose rows match
+their CRC; anything else is made again. Where no cache folder can be written, the file
+goes to the caller's temporary folder, as before.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Texture", "feature_texture", "floor_texture", "png_file"]
+__all__ = ["Texture", "feature_texture", "floor_texture", "texture_file"]
 
 
 def _disc(
@@ -134,21 +135,22 @@ def _digest() -> str:
     return h.hexdigest()[:16]
 
 
-def png_file(texture: Texture, fallback: Path) -> Path:
-    """A PNG of ``texture`` for pybullet to load: the cached one (made on first use), or,
-    where the cache cannot be written, one written in the folder ``fallback``."""
-    from sensorkit.render.png import encode_png, intact_png
+def texture_file(texture: Texture, fallback: Path) -> Path:
+    """A BMP of ``texture`` for pybullet to load (see sensorkit.render.bitmap): the cached
+    one (made on first use), or, where the cache cannot be written, one written in the
+    folder ``fallback``."""
+    from sensorkit.render.bitmap import encode_bmp, intact_bmp
 
     folder = cache_dir()
-    name = f"{texture.kind}-{texture.seed}-{texture.size}-{_digest()}.png"
+    name = f"{texture.kind}-{texture.seed}-{texture.size}-{_digest()}.bmp"
     if folder is not None:
         path = folder / "textures" / name
         try:
-            if intact_png(path.read_bytes(), texture.size, texture.size):
+            if intact_bmp(path.read_bytes(), texture.size, texture.size):
                 return path
         except OSError:
             pass
-    data = encode_png(texture.image(), level=0)  # read by pybullet: no need to compress
+    data = encode_bmp(texture.image())
     if folder is not None:
         try:
             path.parent.mkdir(parents=True, exist_ok=True)

@@ -40,16 +40,18 @@ errors is not established here; SK107 holds for both.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.parse import child, text_of
-from sensorkit.model.sdf_frames import TOP, FrameGraph, Vertex, scoped
-from sensorkit.model.sdf_includes import include_finding
-from sensorkit.model.sdf_read import SdfModel, read_pose
 from sensorkit.model.targets import is_gz
+
+if TYPE_CHECKING:  # the SDF reader loads only when an SDF robot is checked
+    from sensorkit.model.sdf_frames import FrameGraph, Vertex
+    from sensorkit.model.sdf_read import SdfModel
 
 REFUSED = "Gazebo Sim loads no part of a world that holds it, nor spawns the model"
 SDF = ("sdf",)
@@ -67,6 +69,8 @@ SDF = ("sdf",)
     formats=SDF,
 )
 def unresolved_includes(ctx: Context) -> Iterator[Finding]:
+    from sensorkit.model.sdf_includes import include_finding
+
     sm = ctx.robot.sdf
     if sm is None:
         return
@@ -172,6 +176,8 @@ def _vertex_names(ctx: Context, graph: FrameGraph, v: Vertex, where: str) -> Ite
 
 
 def _axis_names(ctx: Context, sm: SdfModel, blind: list[str]) -> Iterator[Finding]:
+    from sensorkit.model.sdf_frames import scoped
+
     for item in sm.joints:
         if item.version < (1, 7) or _unknowable(blind, item.scope):  # 1.6: no expressed_in
             continue
@@ -195,6 +201,8 @@ def _axis_names(ctx: Context, sm: SdfModel, blind: list[str]) -> Iterator[Findin
 
 def _cycle(graph: FrameGraph, start: str, edge: str) -> list[str] | None:
     """The cycle ``start`` lies on following ``edge`` (relative_to or attached_to)."""
+    from sensorkit.model.sdf_frames import TOP
+
     order: list[str] = []
     cur: str | None = start
     while cur is not None and cur != TOP:
@@ -256,6 +264,8 @@ def _cycle_finding(
 def _elsewhere(sm: SdfModel, scope: str, name: str) -> str:
     """Where ``name`` (not a frame of model ``scope``) is a frame after all: an enclosing
     model's, or, in a world, another model's or the world's; "" when nowhere known."""
+    from sensorkit.model.sdf_frames import scoped
+
     parts = scope.split("::") if scope else []
     for i in range(len(parts) - 1, -1, -1):
         outer = "::".join(parts[:i])
@@ -285,6 +295,9 @@ def _elsewhere(sm: SdfModel, scope: str, name: str) -> str:
     formats=SDF,
 )
 def sensor_pose_frames(ctx: Context) -> Iterator[Finding]:
+    from sensorkit.model.sdf_frames import scoped
+    from sensorkit.model.sdf_read import read_pose
+
     sm = ctx.robot.sdf
     if sm is None or not is_gz(ctx.target):  # Gazebo classic: not known
         return
