@@ -40,7 +40,11 @@ finally:
 # What ``sensorkit validate ROBOT.urdf`` imports for a URDF with no xacro, no launch file,
 # no bridge and no fixable finding.
 PLAIN_URDF = frozenset(
-    """sensorkit sensorkit.base sensorkit.base.errors sensorkit.base.findings
+    """sensorkit sensorkit.base sensorkit.base.consequence sensorkit.base.errors sensorkit.base.findings
+    sensorkit.knowledge.link_lookups sensorkit.knowledge.sensor_blocks sensorkit.lint.rules.bridge_flow
+    sensorkit.lint.rules.calibration sensorkit.lint.rules.coincide sensorkit.lint.rules.model_plugins
+    sensorkit.lint.rules.optical_text sensorkit.lint.rules.recording sensorkit.lint.rules.sensor_blocks
+    sensorkit.loading.bridge sensorkit.loading.package_xml
     sensorkit.base.lazy sensorkit.base.quote sensorkit.base.suggest sensorkit.cli
     sensorkit.cli.common sensorkit.cli.options sensorkit.cli.root sensorkit.cli.validate
     sensorkit.knowledge sensorkit.knowledge.gazebo_ros sensorkit.knowledge.gazebo_sim

@@ -35,7 +35,7 @@ from sensorkit.edit.check import (
     names_in_use,
 )
 from sensorkit.edit.fragment import Fragment, expand_fragment
-from sensorkit.edit.kinds import KINDS, MacroInfo, SensorKind
+from sensorkit.edit.kinds import COMMANDS, KINDS, MacroInfo, SensorKind
 from sensorkit.edit.layout import Layout, read_layout
 from sensorkit.edit.macrocall import SENSORS_DIR, MacroChoice, call_attributes, choose_macro
 from sensorkit.edit.package import (
@@ -148,11 +148,6 @@ class _Source:
     robot: Robot
 
 
-# The command of each kind, for a next step that names it.
-_COMMANDS = {"camera": "add-camera", "depth_camera": "add-depth-camera", "lidar_2d": "add-lidar",
-             "lidar_3d": "add-lidar", "stereo_camera": "add-stereo", "imu": "add-imu"}  # fmt: skip
-
-
 def _read_source(req: AddRequest) -> _Source:
     """Read, parse and load the robot file; refuse one that does not load."""
     from sensorkit.model import Loaded, build_robot, load_robot
@@ -168,7 +163,7 @@ def _read_source(req: AddRequest) -> _Source:
         )
         raise EditRefused(msg)
     if req.path.resolve() == req.target.resolve():
-        check_not_generated(data, where, _COMMANDS.get(req.kind, "add-" + req.kind))
+        check_not_generated(data, where, COMMANDS.get(req.kind, "add-" + req.kind))
     layout = read_layout(data, where, root)
     xacro_style = looks_like_xacro(source, data)
     if xacro_style:

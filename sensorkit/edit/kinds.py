@@ -43,6 +43,9 @@ KINDS: dict[str, SensorKind] = {
         SensorKind("imu", "imu.urdf.xacro", "sensorkit_imu", "IMU"),
     )
 }
+# The add-* command of each kind, for a refusal whose next step names it.
+COMMANDS = {"camera": "add-camera", "depth_camera": "add-depth-camera", "lidar_2d": "add-lidar",
+            "lidar_3d": "add-lidar", "stereo_camera": "add-stereo", "imu": "add-imu"}  # fmt: skip
 
 
 @dataclass(frozen=True)
