@@ -219,30 +219,47 @@ def _refuse_what_is_not_xml(path: Path, data: bytes) -> None:
 
 
 def read_input(path: Path) -> bytes:
-    """The bytes of ``path`` or an InputError that names it and says why."""
+    """The bytes of ``path`` or an InputError that names it and says why.
+
+    Only a regular file is read (links followed): a named pipe, a device or a socket is
+    refused in one line, and at most MAX_FILE_BYTES are read whatever ``stat`` says
+    (``/dev/zero`` says 0). See :mod:`sensorkit.base.regular`."""
+    from sensorkit.base.regular import NotRegular, TooLarge, read_regular
+
+    where = display_path(path)
     try:
         if path.is_dir():
-            msg = f"{display_path(path)}: is a folder, not a URDF or xacro file"
+            msg = f"{where}: is a folder, not a URDF or xacro file"
             raise InputError(msg)
-        size = path.stat().st_size
         if path.suffix.lower() in (".yaml", ".yml"):
-            msg = f"{display_path(path)}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
+            msg = f"{where}: not a URDF/xacro: robot YAMLs go to `sensorkit new`"
             raise InputError(msg)
-        if size > MAX_FILE_BYTES:
-            msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
-            raise InputError(msg)
-        data = path.read_bytes()
+        data = read_regular(path, MAX_FILE_BYTES)
         _refuse_what_is_not_xml(path, data)
         return data
     except FileNotFoundError:
-        msg = f"{display_path(path)}: no such file"
+        msg = f"{where}: no such file"
         raise InputError(msg) from None
     except PermissionError:
-        msg = f"{display_path(path)}: permission denied"
+        msg = f"{where}: permission denied"
         raise InputError(msg) from None
+    except (NotRegular, TooLarge) as exc:
+        raise InputError(f"{where}: {exc.strerror}") from None
     except OSError as exc:
-        msg = f"{display_path(path)}: cannot read ({exc.strerror})"
+        msg = f"{where}: cannot read ({exc.strerror})"
         raise InputError(msg) from None
+
+
+def confine_input(path: Path, resolver: PackageResolver) -> None:
+    """``--untrusted``: the input itself, its links resolved, lies inside the readable
+    area (computed from where the link sits), else an InputError naming the file as
+    given (never where it points)."""
+    if not resolver.allows(path):
+        msg = (
+            f"{display_path(path)}: --untrusted: a link to a file outside its repository "
+            "(the readable area); not read"
+        )
+        raise InputError(msg)
 
 
 def _xml_finding(file: str, message: str, line: int | None, column: int | None) -> Finding:
@@ -341,6 +358,8 @@ def load_description(
     instead of expanding again, and keeps a new one; it is not used under ``untrusted``.
     """
     key = os.path.abspath(path)
+    if untrusted is not None and not (overlay and key in overlay):
+        confine_input(path, _confined(resolver, path))
     data = overlay[key] if overlay and key in overlay else read_input(path)
     if not looks_like_xacro(path, data):
         return parse_plain(path, data)
@@ -352,6 +371,8 @@ def load_description(
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
+    if untrusted is not None:
+        resolver = _confined(resolver, path)  # $(find) finds only packages inside the area
     outcome = _expansion(path, dict(args or {}), resolver, timeout, untrusted, overlay, cache)
     if outcome.error_kind is not None:
         return LoadResult(None, [_expansion_finding(path, outcome)])
@@ -378,6 +399,14 @@ def load_description(
         reads=sorted(outcome.deps.files) if outcome.deps is not None else [],
     )
     return LoadResult(doc)
+
+
+def _confined(resolver: PackageResolver | None, path: Path) -> PackageResolver:
+    """``resolver`` (a new one when None) confined to the readable area of ``path``."""
+    resolver = resolver or PackageResolver()
+    if resolver.confined is None:
+        resolver.confine_to(path)
+    return resolver
 
 
 def _expansion(
