@@ -23,7 +23,7 @@ from lxml import etree
 
 from sensorkit.loading import cache as cache_mod
 from sensorkit.loading import xacro_expand
-from sensorkit.loading.cache import DiskCache, ExpansionCache, MemoryCache
+from sensorkit.loading.cache import FORMAT, DiskCache, ExpansionCache, MemoryCache
 from sensorkit.loading.document import load_description
 from sensorkit.loading.packages import PackageResolver
 
@@ -290,7 +290,7 @@ def _entry_file(folder: Path) -> Path:
         lambda b: b[: len(b) // 2],  # truncated
         lambda b: b"",
         lambda b: b[:-20] + bytes(c ^ 1 for c in b[-20:]),  # corrupt payload
-        lambda b: b.replace(b"sensorkit-expansion 1 ", b"sensorkit-expansion 99 ", 1),
+        lambda b: b.replace(b"sensorkit-expansion %d " % FORMAT, b"sensorkit-expansion 99 ", 1),
         lambda b: b"\x00\xff garbage\n{",
     ],
     ids=["truncated", "empty", "corrupt", "other-format", "garbage"],

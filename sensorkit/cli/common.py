@@ -158,7 +158,10 @@ def expansion_cache(flags: RobotFlags, trust: Any) -> Any:
         return None
     from sensorkit.loading.cache import DiskCache
 
-    return DiskCache()
+    cache = DiskCache()
+    if not cache.usable() and cache.problem is not None:  # said once, here
+        typer.echo(f"sensorkit: expansion cache not used: {cache.problem}", err=True)
+    return cache
 
 
 def robot_flags(values: dict[str, Any]) -> RobotFlags:
