@@ -42,6 +42,7 @@ from sensorkit.loading.document import (
     _xml_finding,
     display_path,
     drop_default_namespace,
+    max_elements,
     parse_bounded,
     read_input,
 )
@@ -70,7 +71,7 @@ def is_sdf_xacro(path: Path) -> bool:
 
 
 def parse_sdf(
-    path: Path, overlay: Mapping[str, bytes] | None = None
+    path: Path, overlay: Mapping[str, bytes] | None = None, untrusted: bool = False
 ) -> tuple[etree._Element | None, list[Finding]]:
     """The ``<sdf>`` root of ``path`` (namespace dropped) or SK101 findings.
 
@@ -85,7 +86,7 @@ def parse_sdf(
     if reason:
         return None, [_xml_finding(where, reason, 1, 1)]
     try:
-        root = parse_bounded(data)
+        root = parse_bounded(data, max_elements(untrusted))
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
         return None, [_xml_finding(where, str(exc.msg), line, col)]
