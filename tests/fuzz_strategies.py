@@ -755,7 +755,22 @@ HOSTILE_XACRO = (
     '<xacro:include filename="robot.urdf.xacro"/>',
     '<xacro:include filename="parts/loop_a.xacro"/>',
 )  # fmt: skip
+# Issue 36: objects as values, reads above the repository, a FIFO include, and sizes the
+# evaluator must count before it builds them (validate runs a share with --untrusted).
+HOSTILE_XACRO += (
+    '<link name="${xacro.load_yaml}"/>',
+    "<link name=\"${'%(load_yaml)r' % xacro}\"/>",
+    '<link name="${min([], default=math)}"/>',
+    '<link name="${str(xacro)}"/>',
+    "<link name=\"${xacro.load_yaml('../../../../../../etc/hostname')}\"/>",
+    '<xacro:include filename="../../../../../../etc/hostname"/>',
+    '<xacro:include filename="/dev/zero"/>',
+)
 BOMBS = (
+    '<link name="${round(7, -10**8)}"/>',
+    '<xacro:arg name="rb36" default="}"/><link name="${len((\'{0$(arg rb36)\'*20000).format(\'a\'*1000))}"/>',
+    "<link name=\"${len([s + 'x' for s in ['a'*100000]*1000])}\"/>",
+    "<link name=\"${len([xacro.message('a'*100000) for i in python.range(70)])}\"/>",
     '<link name="${10**10**10}"/>',
     '<link name="${2**2**40}"/>',
     "<xacro:property name=\"huge\" value=\"${'x'*(10**9)}\"/><link name=\"h_${len(huge)}\"/>",
@@ -1086,6 +1101,7 @@ def validate_knobs(draw: st.DrawFn) -> dict[str, Any]:
         "ignore": draw(st.lists(st.sampled_from(["SK1", "SK3", "SK6", "SK105"]), max_size=1)),
         "fail_on": draw(st.sampled_from(["error", "warning", "info"])),
         "format": draw(st.sampled_from(["text", "json", "sarif", "github"])),
+        "untrusted": draw(st.integers(0, 9)) < 3,  # issue 36: a share under --untrusted
     }
 
 

@@ -183,6 +183,7 @@ def _check_cli(target: str, res: Any, argv: list[str]) -> Outcome:
 def _options(inp: FuzzInput, work: Path | None = None) -> Any:
     from sensorkit.base.findings import Severity
     from sensorkit.lint.engine import Options
+    from sensorkit.loading.untrusted import Untrusted
 
     k = inp.knobs
     bridges: tuple[str, ...] = ()
@@ -197,6 +198,7 @@ def _options(inp: FuzzInput, work: Path | None = None) -> Any:
         fail_on=Severity.parse(k.get("fail_on", "error")),
         args=dict(inp.case.args),
         timeout=XACRO_TIMEOUT,
+        untrusted=Untrusted() if k.get("untrusted") else None,
     )
 
 
@@ -253,6 +255,8 @@ def t_cli_validate(inp: FuzzInput, work: Path) -> Outcome:
     k = inp.knobs
     argv = ["validate", str(path), "--format", k.get("format", "text"), "--target", k.get("target", "auto"),
             "--fail-on", k.get("fail_on", "error"), "--timeout", str(XACRO_TIMEOUT)]  # fmt: skip
+    if k.get("untrusted"):
+        argv.append("--untrusted")
     for s in k.get("select", ()):
         argv += ["--select", s]
     for s in k.get("ignore", ()):

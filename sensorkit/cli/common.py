@@ -59,6 +59,7 @@ class RobotFlags:
     untrusted: bool = False
     env: list[str] | None = None
     no_cache: bool = False
+    max_elements: int | None = None
 
 
 @dataclass
@@ -158,7 +159,20 @@ def settings(
     if cfg.args:
         used.append("args")
     args.update(parse_xacro_args(flags.arg))
+    _element_bound(flags, cfg, trust, used)
     return Settings(target, paths, args, trust, cfg, used, expansion_cache(flags, trust))
+
+
+def _element_bound(flags: RobotFlags, cfg: Any, trust: Any, used: list[str]) -> None:
+    """``--max-elements``, else the settings file's ``max-elements`` (which comes with the
+    input: under --untrusted it may only lower the bound), for the whole process."""
+    from sensorkit.loading.document import MAX_ELEMENTS_UNTRUSTED, set_max_elements
+
+    limit = flags.max_elements
+    if limit is None and cfg.max_elements is not None:
+        limit = cfg.max_elements if trust is None else min(cfg.max_elements, MAX_ELEMENTS_UNTRUSTED)
+        used.append("max-elements")
+    set_max_elements(limit)
 
 
 def expansion_cache(flags: RobotFlags, trust: Any) -> Any:
@@ -168,7 +182,10 @@ def expansion_cache(flags: RobotFlags, trust: Any) -> Any:
         return None
     from sensorkit.loading.cache import DiskCache
 
-    return DiskCache()
+    cache = DiskCache()
+    if not cache.usable() and cache.problem is not None:  # said once, here
+        typer.echo(f"sensorkit: expansion cache not used: {cache.problem}", err=True)
+    return cache
 
 
 def robot_flags(values: dict[str, Any]) -> RobotFlags:

@@ -144,6 +144,16 @@ EnvOpt = Annotated[
         rich_help_panel=TRUST,
     ),
 ]
+MaxElementsOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-elements",
+        min=1,
+        help="read descriptions of up to this many XML elements (settings key max-elements)",
+        show_default="the settings file's, else 500,000 (60,000 with --untrusted)",
+        rich_help_panel=XACRO,
+    ),
+]
 NoCacheOpt = Annotated[
     bool,
     typer.Option(
@@ -234,6 +244,7 @@ ROBOT_FLAGS = (
     parameter("untrusted", UntrustedOpt, False),
     parameter("env", EnvOpt),
     parameter("config", ConfigOpt),
+    parameter("max_elements", MaxElementsOpt),
 )
 # what to print
 PRINTING = (parameter("quiet", QuietOpt, False), parameter("color", ColorOpt, "auto"))

@@ -185,6 +185,30 @@ MaxRaysOpt = Annotated[
         "--max-rays", help="most rays one lidar may cast per scan", rich_help_panel=RENDERING
     ),
 ]
+MaxTotalPixelsOpt = Annotated[
+    int,
+    typer.Option(
+        "--max-total-pixels",
+        help="most pixels of all cameras together; past it the rest are left out, named",
+        rich_help_panel=RENDERING,
+    ),
+]
+MaxTotalRaysOpt = Annotated[
+    int,
+    typer.Option(
+        "--max-total-rays",
+        help="most rays of all lidars together; past it the rest are left out, named",
+        rich_help_panel=RENDERING,
+    ),
+]
+MaxSecondsOpt = Annotated[
+    float,
+    typer.Option(
+        "--max-seconds",
+        help="seconds of rendering in all; sensors not started by then are left out, named",
+        rich_help_panel=RENDERING,
+    ),
+]
 ForceOpt = Annotated[
     bool,
     typer.Option(
@@ -213,6 +237,12 @@ ExitZeroOpt = Annotated[
 ]
 
 
+def _check_scene(scene: Path | None) -> None:
+    """``--scene`` must name a file (exit 2 otherwise)."""
+    if scene is not None and not scene.is_file():
+        die(f"--scene {scene}: no such file" if not scene.exists() else f"--scene {scene}: not a file")
+
+
 @render_app.command("preview", cls=Command, epilog=PREVIEW_EXAMPLES)
 @handle_errors
 def preview(
@@ -226,6 +256,9 @@ def preview(
     target: TargetOpt = None,
     max_pixels: MaxPixelsOpt = 4096 * 4096,
     max_rays: MaxRaysOpt = 1_000_000,
+    max_total_pixels: MaxTotalPixelsOpt = 64 * 1024 * 1024,
+    max_total_rays: MaxTotalRaysOpt = 4_000_000,
+    max_seconds: MaxSecondsOpt = 120.0,
     force: ForceOpt = False,
     untrusted: UntrustedOpt = False,
     env: EnvOpt = None,
@@ -252,12 +285,7 @@ def preview(
     threshold = fail_on_threshold(fail_on, st.config)
     st.say_where(() if fail_on else ("fail-on", "select", "ignore"), quiet=quiet)
     joints = parse_joints(joint)
-    if scene is not None and not scene.is_file():
-        die(
-            f"--scene {scene}: no such file"
-            if not scene.exists()
-            else f"--scene {scene}: not a file"
-        )
+    _check_scene(scene)
     from sensorkit.base.atomic import check_writable_out
 
     check_writable_out(out)  # before the render, not after it
@@ -265,6 +293,7 @@ def preview(
     # the model, the scene and a lidar's ray results: many small objects (collector_off)
     with collector_off():
         from sensorkit.render import render_preview
+        from sensorkit.render.plan import Totals
 
         # No live spinner: it would run a thread, and cameras render in forked processes.
         result = render_preview(
@@ -280,6 +309,7 @@ def preview(
             workers=min(4, os.cpu_count() or 1),
             max_pixels=max_pixels,
             max_rays=max_rays,
+            totals=Totals(max_total_pixels, max_total_rays, max_seconds),
             force=force,
             untrusted=st.untrusted,
             target_origin=st.origin("target"),

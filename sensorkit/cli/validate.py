@@ -38,6 +38,7 @@ from sensorkit.cli.options import (
     Command,
     ConfigOpt,
     EnvOpt,
+    MaxElementsOpt,
     NoCacheOpt,
     PackagePathOpt,
     QuietOpt,
@@ -201,6 +202,7 @@ def validate(
     env: EnvOpt = None,
     config: ConfigOpt = None,
     no_cache: NoCacheOpt = False,
+    max_elements: MaxElementsOpt = None,
     fix: FixOpt = False,
     diff: DiffOpt = False,
     unsafe_fixes: UnsafeFixesOpt = False,
@@ -231,7 +233,7 @@ def validate(
         if (fix or diff or unsafe_fixes) and any(str(f) == STDIN for f in files):
             raise UsageError("--fix and --diff edit files: they cannot take - (stdin)")
         files, overlay = stdin_robots(files, stdin_filename)
-        flags = RobotFlags(config, arg, package_path, untrusted, env, no_cache)
+        flags = RobotFlags(config, arg, package_path, untrusted, env, no_cache, max_elements)
         rules = _Rules(select, ignore, fail_on, launch)
         options = _options(
             files, flags, rules, overlay, target=target, timeout=timeout, bridge=bridge, quiet=quiet

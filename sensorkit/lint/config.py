@@ -25,7 +25,7 @@ from typing import Any
 
 from sensorkit.base.errors import UsageError
 
-KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args", "launch"}
+KEYS = {"target", "select", "ignore", "fail-on", "package-path", "args", "launch", "max-elements"}
 
 
 @dataclass
@@ -40,6 +40,7 @@ class Config:
     package_paths: list[str] = field(default_factory=list)
     args: dict[str, str] = field(default_factory=dict)
     launch: list[str] = field(default_factory=list)  # launch files, made absolute
+    max_elements: int | None = None  # the element bound (issue 36; --max-elements)
 
 
     def describe(self, used: Iterable[str]) -> str | None:
@@ -57,6 +58,7 @@ class Config:
             "package-path": " ".join(self.package_paths),
             "args": " ".join(f"{k}:={v}" for k, v in self.args.items()),
             "launch": " ".join(display_path(Path(p)) for p in self.launch),
+            "max-elements": str(self.max_elements),
         }
         parts = [f"{key} {values[key]}" for key in used if values.get(key)]
         if not parts:
@@ -189,4 +191,9 @@ def load_config(start: Path | None = None, *, explicit: Path | None = None) -> C
     cfg.launch = [
         str((path.parent / p).resolve()) for p in _strings(table.get("launch", []), "launch", path)
     ]
+    if "max-elements" in table:
+        value = table["max-elements"]
+        if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+            raise UsageError(f"{path}: {_table(path)}max-elements must be a whole number over 0")
+        cfg.max_elements = value
     return cfg

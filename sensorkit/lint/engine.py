@@ -101,6 +101,8 @@ class FileReport:
     launch_note: str | None = None  # "bridges from launch/sim.launch.py": the launch files read
     fixable: dict[int, str] = field(default_factory=dict)  # index in findings -> safe/unsafe
     more_sensors: int = 0  # the sensors of an SDF world's models after the first (``robot``)
+    # --untrusted: the readable area (packages.readable_area), named in the output's header
+    readable: list[str] = field(default_factory=list)
 
     @property
     def display(self) -> str:
@@ -208,9 +210,14 @@ def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
     from sensorkit.loading import launch as reader
     from sensorkit.loading.packages import own_package
 
-    # Where to look: the robot's package and its siblings (the workspace folder holding it).
+    # Where to look: the robot's package and its siblings (the workspace folder holding it);
+    # --untrusted: only its readable area (packages.readable_area), never a folder above.
     pkg = own_package(robot.document.path)
     roots = [pkg.parent] if pkg is not None else [robot.document.path.resolve().parent]
+    if options.untrusted is not None:
+        from sensorkit.loading.packages import readable_area
+
+        roots = [Path(r) for r in readable_area(robot.document.path, _named_folders(options))]
     paths: list[Path]
     if options.launch:
         paths = [Path(p) for p in options.launch]
@@ -226,6 +233,11 @@ def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:
     }
     facts = reader.read_launch(paths, roots=roots, package_paths=named)
     return None if facts.empty else facts
+
+
+def _named_folders(options: Options) -> list[Path]:
+    """The folders of the ``--package-path`` items (``NAME=DIR`` and ``DIR``)."""
+    return [Path(p.partition("=")[2] or p).expanduser() for p in options.package_paths]
 
 
 def launch_note(facts: LaunchFacts | None, bridge: Bridge | None) -> str | None:
@@ -405,12 +417,18 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
     try:
         loaded = load_as(path, options)
     except InputError as exc:
-        return FileReport(path=path, error=str(exc))
+        report = FileReport(path=path, error=str(exc))
     except RecursionError:
-        return FileReport(
+        report = FileReport(
             path=path, error=f"{display_path(path)}: the document nests too deeply to read"
         )
-    return validate_loaded(path, loaded, options)
+    else:
+        report = validate_loaded(path, loaded, options)
+    if options.untrusted is not None:
+        from sensorkit.loading.packages import readable_area
+
+        report.readable = [display_path(r) for r in readable_area(path, _named_folders(options))]
+    return report
 
 
 def validate_loaded(path: Path, loaded: Loaded, options: Options) -> FileReport:

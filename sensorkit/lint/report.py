@@ -52,6 +52,8 @@ def format_text(report: Report, *, color: bool = False, quiet: bool = False) -> 
             head += f" (target {fr.target}; {fr.target_reason}"
             head += f"; {fr.launch_note})" if fr.launch_note else ")"
         lines.append(bold(head))
+        if fr.readable:
+            lines.append(f"  --untrusted: reads only inside {', '.join(fr.readable)}")
         safe = {id(fr.findings[i]) for i, how in fr.fixable.items() if how == "safe"}
         groups: dict[str | None, list[Finding]] = defaultdict(list)
         for f in fr.findings:
@@ -109,6 +111,8 @@ def to_json(report: Report) -> dict[str, Any]:
         "errors": [{"file": fr.display, "message": fr.error} for fr in report.files if fr.error],
         "macro_only": [fr.display for fr in report.skipped],
         "summary": report.summary(),
+        # --untrusted (issue 36): the folders each file's expansion could read
+        "readable": {fr.display: fr.readable for fr in report.files if fr.readable},
     }
 
 
@@ -206,6 +210,9 @@ def _invocation(report: Report) -> dict[str, Any]:
     inv: dict[str, Any] = {"executionSuccessful": not notes}
     if notes:
         inv["toolExecutionNotifications"] = notes
+    readable = {fr.display: fr.readable for fr in report.files if fr.readable}
+    if readable:  # --untrusted (issue 36): the folders each file's expansion could read
+        inv["properties"] = {"readable": readable}
     return inv
 
 
@@ -227,6 +234,9 @@ def format_github(report: Report) -> str:
     kinds = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
     lines = []
     for fr in report.files:
+        if fr.readable:
+            where = _gh_escape("--untrusted: reads only inside " + ", ".join(fr.readable))
+            lines.append(f"::notice file={_gh_escape(fr.display, True)},title=sensorkit::{where}")
         if fr.error:
             lines.append(
                 f"::error file={_gh_escape(fr.display, True)},title=sensorkit::{_gh_escape(fr.error)}"

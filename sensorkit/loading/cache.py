@@ -40,7 +40,7 @@ from sensorkit.loading.reads import ExpandDeps, digest
 if TYPE_CHECKING:  # the expander loads when a robot is expanded (a plain URDF never is)
     from sensorkit.loading.xacro_expand import ExpandOutcome
 
-FORMAT = 1  # of a disk entry; another is a miss
+FORMAT = 2  # of a disk entry; another is a miss (1: a plain hash, no MAC)
 MAX_DISK_BYTES = 64 * 1024**2  # the disk store's bound: the least recently used go first
 MAX_MEMORY_ENTRIES = 256
 _MAGIC = b"sensorkit-expansion"
@@ -196,23 +196,60 @@ def default_folder() -> Path:
 
 class DiskCache(ExpansionCache):
     """Entries in files of ``folder/expansions`` (default: ``default_folder()``), each
-    written whole (a temporary file renamed into place) and checked by its own hash on
-    reading; past ``limit`` bytes in all, the least recently used go first."""
+    written whole (a temporary file renamed into place) and checked by a keyed MAC on
+    reading; past ``limit`` bytes in all, the least recently used go first.
+
+    Only its owner writes it (issue 36): the folders must be the user's and not group-
+    or world-writable, else the cache is not used (:attr:`problem` says why, once: the
+    CLI prints it); each entry carries a MAC keyed by a random per-user key kept in the
+    folder (``key``, mode 0600), so an entry anyone else wrote or edited is a miss."""
 
     def __init__(self, folder: Path | None = None, limit: int = MAX_DISK_BYTES) -> None:
-        self.folder = (folder if folder is not None else default_folder()) / "expansions"
+        self.root = folder if folder is not None else default_folder()
+        self.folder = self.root / "expansions"
         self.limit = limit
+        self._key: bytes | None = None
+        self.problem: str | None = None  # why the cache is not used, once found
 
     def _file(self, key: str) -> Path:
         return self.folder / f"{key}.json"
 
+    def usable(self, create: bool = False) -> bool:
+        """Whether the folders are safe to use (made, mode 0700, with ``create``) and the
+        key is read; sets :attr:`problem` when they are not."""
+        if self._key is not None:
+            return True
+        if self.problem is not None:
+            return False
+        if not create and not self.root.exists():
+            return False
+        try:
+            for folder in (self.root, self.folder):
+                if create:
+                    folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+                self.problem = unsafe_folder(folder)
+                if self.problem is not None:
+                    return False
+            self._key = _read_key(self.root / "key", create)
+        except OSError as exc:
+            if not create:
+                return False  # nothing stored yet (or unreadable): a miss, nothing to say
+            self.problem = f"{self.root}: {exc.strerror or exc}"
+            return False
+        if self._key is None:
+            self.problem = f"{self.root / 'key'}: not a private file of this user (mode 0600)"
+        return self._key is not None
+
     def get(self, key: str) -> Entry | None:
+        if not self.usable():
+            return None
         path = self._file(key)
         try:
             data = path.read_bytes()
         except OSError:
             return None
-        entry = _decode(data)
+        assert self._key is not None
+        entry = _decode(data, self._key)
         if entry is not None:
             with contextlib.suppress(OSError):
                 os.utime(path)  # recently used: pruned last
@@ -221,10 +258,12 @@ class DiskCache(ExpansionCache):
     def put(self, key: str, entry: Entry) -> None:
         import tempfile
 
-        data = _encode(entry)
+        if not self.usable(create=True):
+            return
+        assert self._key is not None
+        data = _encode(entry, self._key)
         if len(data) > self.limit // 4:
             return  # one entry may not push out most of the others
-        self.folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=self.folder, prefix=f".{key[:16]}.", suffix=".tmp")
         try:
             with os.fdopen(fd, "wb") as f:
@@ -263,18 +302,65 @@ class DiskCache(ExpansionCache):
             total -= size
 
 
-def _encode(entry: Entry) -> bytes:
+def unsafe_folder(folder: Path) -> str | None:
+    """Why ``folder`` may not hold the cache (not a folder, another user's, writable by
+    the group or others), or None. Its links resolved: the folder itself is checked."""
+    import stat
+
+    st = os.stat(folder)
+    if not stat.S_ISDIR(st.st_mode):
+        return f"{folder}: not a folder"
+    if hasattr(os, "getuid") and st.st_uid != os.getuid():
+        return f"{folder}: owned by another user"
+    if st.st_mode & 0o022:
+        return f"{folder}: writable by the group or others (mode {stat.S_IMODE(st.st_mode):o})"
+    return None
+
+
+def _read_key(path: Path, create: bool) -> bytes | None:
+    """The MAC key at ``path`` (32 random bytes, made with mode 0600 when ``create``, else
+    FileNotFoundError), or None when the file there is not a private regular file of
+    this user."""
+    import stat
+
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_CLOEXEC)
+    except FileNotFoundError:
+        if not create:
+            raise
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o600)
+        os.write(fd, os.urandom(32))
+        os.lseek(fd, 0, os.SEEK_SET)
+    try:
+        st = os.fstat(fd)
+        private = stat.S_ISREG(st.st_mode) and not st.st_mode & 0o077
+        if not private or (hasattr(os, "getuid") and st.st_uid != os.getuid()):
+            return None
+        key = os.read(fd, 64)
+        return key if len(key) == 32 else None
+    finally:
+        os.close(fd)
+
+
+def _mac(key: bytes, payload: bytes) -> bytes:
+    return hashlib.blake2b(payload, key=key, digest_size=32).hexdigest().encode()
+
+
+def _encode(entry: Entry, key: bytes) -> bytes:
     payload = json.dumps(asdict(entry), separators=(",", ":")).encode("utf-8")
-    return b"%s %d %s\n" % (_MAGIC, FORMAT, digest(payload).encode()) + payload
+    return b"%s %d %s\n" % (_MAGIC, FORMAT, _mac(key, payload)) + payload
 
 
-def _decode(data: bytes) -> Entry | None:
-    """The entry in ``data``, or None when it is not one whole entry of this format."""
+def _decode(data: bytes, key: bytes) -> Entry | None:
+    """The entry in ``data``, or None when it is not one whole entry of this format whose
+    MAC under ``key`` holds (an entry written or edited by anyone without the key)."""
+    import hmac
+
     head, _, payload = data.partition(b"\n")
     parts = head.split(b" ")
     if len(parts) != 3 or parts[0] != _MAGIC or parts[1] != str(FORMAT).encode():
         return None
-    if digest(payload).encode() != parts[2]:
+    if not hmac.compare_digest(_mac(key, payload), parts[2]):
         return None
     try:
         raw = json.loads(payload)

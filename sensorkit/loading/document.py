@@ -34,8 +34,13 @@ MAX_FILE_BYTES = 64 * 1024 * 1024
 # longest attribute value 119. The caps are 23x and 61x those. Measured at the cap: 60,000
 # elements that are each a finding took 9 s / 150 MB (text) and 19 s / 400 MB (sarif);
 # 20,000 <gazebo> blocks each with a sensor 17 s / 450 MB (sarif); 2,000,000 elements
-# took 92 s / 4.4 GB, hence not higher.
-MAX_ELEMENTS = 60_000
+# took 92 s / 4.4 GB, hence not higher. That cap stays for --untrusted input
+# (MAX_ELEMENTS_UNTRUSTED). Trusted input (issue 36): plain URDF validation grows about
+# 20 us and 1.8 KiB per element, so 500,000 stays within 60 s and 1 GB; a user raises
+# (or lowers) it with --max-elements or the settings key max-elements (set_max_elements).
+MAX_ELEMENTS = 500_000
+MAX_ELEMENTS_UNTRUSTED = 60_000
+_GIVEN_MAX_ELEMENTS: list[int | None] = [None]
 MAX_NAME_CHARS = 4096
 # The attributes that name a link, joint, sensor or frame (kept whole as keys).
 _NAME_ATTRS = ("name", "reference", "link", "joint")
@@ -82,20 +87,36 @@ class OverLimit(Exception):
         self.line = line
 
 
-def parse_bounded(data: bytes) -> etree._Element:
-    """``data`` parsed by strict_parser, refused with OverLimit past MAX_ELEMENTS elements
-    (counted while parsing: a 15-million-element file stops at the cap) or with a name
-    longer than MAX_NAME_CHARS. Raises XMLSyntaxError for malformed XML."""
+def set_max_elements(limit: int | None) -> None:
+    """The element bound of this process (``--max-elements``; None: the defaults)."""
+    _GIVEN_MAX_ELEMENTS[0] = limit
+
+
+def max_elements(untrusted: bool = False) -> int:
+    """The element bound: as set (``set_max_elements``), else MAX_ELEMENTS, or
+    MAX_ELEMENTS_UNTRUSTED for untrusted input."""
+    given = _GIVEN_MAX_ELEMENTS[0]
+    if given is not None:
+        return given
+    return MAX_ELEMENTS_UNTRUSTED if untrusted else MAX_ELEMENTS
+
+
+def parse_bounded(data: bytes, limit: int | None = None) -> etree._Element:
+    """``data`` parsed by strict_parser, refused with OverLimit past ``limit`` elements
+    (default :func:`max_elements`; counted while parsing: a 15-million-element file stops
+    at the cap) or with a name longer than MAX_NAME_CHARS. Raises XMLSyntaxError for
+    malformed XML."""
+    limit = max_elements() if limit is None else limit
     # Every element starts with "<" that no "</" is: an upper bound, one pass in C.
-    if data.count(b"<") - data.count(b"</") <= MAX_ELEMENTS:
+    if data.count(b"<") - data.count(b"</") <= limit:
         root = etree.fromstring(data, strict_parser(), base_url=None)
     else:
-        root = _count_parse(data)
+        root = _count_parse(data, limit)
     _check_names(root)
     return root
 
 
-def _count_parse(data: bytes) -> etree._Element:
+def _count_parse(data: bytes, limit: int) -> etree._Element:
     parser = etree.XMLPullParser(events=("start",), **_STRICT)
     count = 0
     step = 1 << 20
@@ -103,10 +124,11 @@ def _count_parse(data: bytes) -> etree._Element:
         parser.feed(data[at : at + step])
         for _ in parser.read_events():
             count += 1
-        if count > MAX_ELEMENTS:
+        if count > limit:
             msg = (
-                f"more than {MAX_ELEMENTS} elements: sensorkit reads descriptions up to that "
-                "size (the largest real robot it knows, PR2, has 2,623)"
+                f"more than {limit} elements: sensorkit reads descriptions up to that "
+                "size (the largest real robot it knows, PR2, has 2,623; --max-elements "
+                "or the settings key max-elements raises it)"
             )
             raise OverLimit(msg)
     root: etree._Element = parser.close()
@@ -223,16 +245,16 @@ def _refuse_what_is_not_xml(path: Path, data: bytes) -> None:
 _BRIDGE_KEYS = re.compile(rb"^\s*-?\s*(ros_topic_name|gz_topic_name|ros_type_name|gz_type_name)\s*:", re.M)
 
 
-def _yaml_refusal(path: Path, size: int) -> str:
+def _yaml_refusal(path: Path) -> str:
     """Where a YAML given as the robot goes: a ros_gz_bridge YAML to ``--bridge``, any
     other (a robot YAML) to ``sensorkit new``."""
+    from sensorkit.base.regular import read_regular
+
     where = display_path(path)
-    head = b""
-    if size <= MAX_FILE_BYTES:
-        try:
-            head = path.read_bytes()[:65536]
-        except OSError:
-            head = b""
+    try:
+        head = read_regular(path, MAX_FILE_BYTES)[:65536]
+    except OSError:
+        head = b""
     if _BRIDGE_KEYS.search(head):
         return (
             f"{where}: not a URDF/xacro: it is a ros_gz_bridge YAML; pass it with "
@@ -242,29 +264,46 @@ def _yaml_refusal(path: Path, size: int) -> str:
 
 
 def read_input(path: Path) -> bytes:
-    """The bytes of ``path`` or an InputError that names it and says why."""
+    """The bytes of ``path`` or an InputError that names it and says why.
+
+    Only a regular file is read (links followed): a named pipe, a device or a socket is
+    refused in one line, and at most MAX_FILE_BYTES are read whatever ``stat`` says
+    (``/dev/zero`` says 0). See :mod:`sensorkit.base.regular`."""
+    from sensorkit.base.regular import NotRegular, TooLarge, read_regular
+
+    where = display_path(path)
     try:
         if path.is_dir():
-            msg = f"{display_path(path)}: is a folder, not a URDF or xacro file"
+            msg = f"{where}: is a folder, not a URDF or xacro file"
             raise InputError(msg)
-        size = path.stat().st_size
         if path.suffix.lower() in (".yaml", ".yml"):
-            raise InputError(_yaml_refusal(path, size))
-        if size > MAX_FILE_BYTES:
-            msg = f"{display_path(path)}: {size} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
-            raise InputError(msg)
-        data = path.read_bytes()
+            raise InputError(_yaml_refusal(path))
+        data = read_regular(path, MAX_FILE_BYTES)
         _refuse_what_is_not_xml(path, data)
         return data
     except FileNotFoundError:
-        msg = f"{display_path(path)}: no such file"
+        msg = f"{where}: no such file"
         raise InputError(msg) from None
     except PermissionError:
-        msg = f"{display_path(path)}: permission denied"
+        msg = f"{where}: permission denied"
         raise InputError(msg) from None
+    except (NotRegular, TooLarge) as exc:
+        raise InputError(f"{where}: {exc.strerror}") from None
     except OSError as exc:
-        msg = f"{display_path(path)}: cannot read ({exc.strerror})"
+        msg = f"{where}: cannot read ({exc.strerror})"
         raise InputError(msg) from None
+
+
+def confine_input(path: Path, resolver: PackageResolver) -> None:
+    """``--untrusted``: the input itself, its links resolved, lies inside the readable
+    area (computed from where the link sits), else an InputError naming the file as
+    given (never where it points)."""
+    if not resolver.allows(path):
+        msg = (
+            f"{display_path(path)}: --untrusted: a link to a file outside its repository "
+            "(the readable area); not read"
+        )
+        raise InputError(msg)
 
 
 def _xml_finding(file: str, message: str, line: int | None, column: int | None) -> Finding:
@@ -365,8 +404,9 @@ def _check_root(root: etree._Element, where: str, sdf: bool = False) -> None:
         raise InputError(msg)
 
 
-def parse_plain(path: Path, data: bytes, sdf: bool = False) -> LoadResult:
-    """Parse a plain URDF strictly, with exact lines (an ``<sdf>`` root too with ``sdf``)."""
+def parse_plain(path: Path, data: bytes, sdf: bool = False, limit: int | None = None) -> LoadResult:
+    """Parse a plain URDF strictly, with exact lines (an ``<sdf>`` root too with ``sdf``),
+    at most ``limit`` elements (see :func:`parse_bounded`)."""
     where = display_path(path)
     if not data.strip():
         return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
@@ -377,7 +417,7 @@ def parse_plain(path: Path, data: bytes, sdf: bool = False) -> LoadResult:
     if reason:
         return LoadResult(None, [_xml_finding(where, reason, 1, 1)])
     try:
-        root = parse_bounded(data)
+        root = parse_bounded(data, limit)
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
         return LoadResult(None, [_xml_finding(where, str(exc.msg), line, col)])
@@ -419,17 +459,22 @@ def load_description(
     instead of expanding again, and keeps a new one; it is not used under ``untrusted``.
     """
     key = os.path.abspath(path)
+    if untrusted is not None and not (overlay and key in overlay):
+        confine_input(path, _confined(resolver, path))
     data = overlay[key] if overlay and key in overlay else read_input(path)
+    limit = max_elements(untrusted is not None)
     if not looks_like_xacro(path, data):
-        return parse_plain(path, data)
+        return parse_plain(path, data, limit=limit)
     where = display_path(path)
     if not data.strip():
         return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
     # Strict pre-parse: well-formedness with exact position, and no entities, before xacro.
-    plain = parse_plain(path, data, sdf)
+    plain = parse_plain(path, data, sdf, limit)
     if plain.document is None:
         return plain
     resolver = (resolver or PackageResolver()).for_file(path)
+    if untrusted is not None:
+        resolver = _confined(resolver, path)  # $(find) finds only packages inside the area
     outcome = _expansion(path, dict(args or {}), resolver, timeout, untrusted, overlay, cache)
     if outcome.error_kind is not None:
         return LoadResult(None, [_expansion_finding(path, outcome)])
@@ -440,7 +485,7 @@ def load_description(
         msg = f"xacro output: {len(xml)} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
         return LoadResult(None, [_limit_finding("SK102", where, msg, None)])
     try:
-        root = parse_bounded(xml)
+        root = parse_bounded(xml, limit)
     except etree.XMLSyntaxError as exc:  # xacro produced something odd; report, don't crash
         return LoadResult(None, [_xml_finding(where, f"xacro output: {exc.msg}", None, None)])
     except OverLimit as exc:  # the output's line is not the file's: no line
@@ -476,6 +521,14 @@ def _arg_findings(
     known = robot_args(file_texts(data, files, overlay))
     links = (el.get("name", "") for el in root.iter("link", "{*}link"))
     return arg_findings(where, args, known) + space_findings(where, args, links)
+
+
+def _confined(resolver: PackageResolver | None, path: Path) -> PackageResolver:
+    """``resolver`` (a new one when None) confined to the readable area of ``path``."""
+    resolver = resolver or PackageResolver()
+    if resolver.confined is None:
+        resolver.confine_to(path)
+    return resolver
 
 
 def _expansion(

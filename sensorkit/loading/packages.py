@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -131,6 +131,50 @@ def workspace_roots(path: Path) -> list[Path]:
     return roots
 
 
+def repository_of(path: Path) -> Path:
+    """The repository of the file at ``path``: what an untrusted file may read within.
+
+    The nearest enclosing git work tree (a folder holding ``.git``, a folder or a
+    worktree's file), else the colcon workspace (the folder holding the nearest ``src/``
+    above the file), else the file's package, else the file's own folder; never a folder
+    above these. The file's folder is taken with its links resolved, the file's own name
+    not: a symlinked input is in the repository its link sits in (and must point inside
+    it: :meth:`PackageResolver.allows`).
+    """
+    folder = Path(_real(Path(path).absolute().parent))
+    chain = [folder, *folder.parents]
+    for at in chain:
+        if os.path.lexists(at / ".git"):
+            return at
+    for at in chain:
+        if at.name == "src" and at.parent != at:
+            return at.parent
+    for at in chain:
+        if (at / "package.xml").is_file():
+            return at
+    return folder
+
+
+def readable_area(
+    path: Path, folders: Iterable[Path] = (), env: Mapping[str, str] | None = None
+) -> list[str]:
+    """The real folders an untrusted expansion of ``path`` may read (issue 36): its
+    repository (:func:`repository_of`), the ``--package-path`` ``folders``, and the
+    ``share`` folder of each ``AMENT_PREFIX_PATH`` prefix in ``env`` (os.environ when
+    None). The one function resolution, includes, ``load_yaml``, meshes, textures, launch
+    files, SDF includes and Landlock confine by; sibling-package heuristics
+    (:func:`workspace_roots`) never widen it."""
+    env = os.environ if env is None else env
+    roots = [repository_of(path), *folders]
+    roots += [Path(p) / "share" for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    return list(dict.fromkeys(_real(r) for r in roots))
+
+
+def inside(real: str, roots: Iterable[str]) -> bool:
+    """Whether the real path ``real`` is one of ``roots`` or below one."""
+    return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+
+
 @dataclass
 class PackageResolver:
     """Maps package names to folders; records every place it searched."""
@@ -177,27 +221,23 @@ class PackageResolver:
         return resolver
 
     def confine_to(self, near: Path) -> None:
-        """Confine to the workspace around ``near`` (as ``$(find)`` searches it), the
-        ``--package-path`` folders, and from now on each package found (``--untrusted``;
-        the same folders an untrusted xacro expansion may read)."""
-        self.confined = []
-        own = own_package(near)
-        for folder in [own if own is not None else near.resolve().parent, *workspace_roots(near)]:
-            self._allow(folder)
-        for folder in [*self.explicit.values(), *self.scan_dirs]:
-            self._allow(folder)
+        """Confine to :func:`readable_area` of ``near``: its repository, the
+        ``--package-path`` folders and AMENT_PREFIX_PATH's share folders (``--untrusted``;
+        the same folders an untrusted xacro expansion may read). A package found outside
+        is not found."""
+        env = self.frozen_env if self.frozen_env is not None else None
+        self.confined = readable_area(near, [*self.explicit.values(), *self.scan_dirs], env)
 
-    def _allow(self, folder: Path) -> None:
-        if self.confined is not None and _real(folder) not in self.confined:
-            self.confined.append(_real(folder))
+    def area(self) -> list[str]:
+        """The real folders a confined resolver allows (empty when not confined)."""
+        return list(self.confined or ())
 
     def allows(self, path: Path) -> bool:
         """Whether ``path`` may be opened or named: always when not confined, else only
         inside an allowed folder (real paths: symlinks and ``..`` resolved)."""
         if self.confined is None:
             return True
-        real = _real(path)
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in self.confined)
+        return inside(_real(path), self.confined)
 
     def for_file(self, path: Path) -> PackageResolver:
         """The same resolver, searching the workspace around ``path`` when allowed."""
@@ -245,13 +285,13 @@ class PackageResolver:
 
     def find(self, name: str) -> Path | None:
         """The folder of package ``name``, or None (also for what cannot be a package name:
-        ``..``, an absolute path). A confined resolver allows the folder found from now on."""
+        ``..``, an absolute path). A confined resolver finds only packages inside its area."""
         if name in self._cache:
             return self._cache[name]
         result = self._find(name) if valid_package_name(name) else None
+        if result is not None and not self.allows(result):
+            result = None  # --untrusted: a package outside the readable area is not found
         self._cache[name] = result
-        if result is not None:
-            self._allow(result)
         return result
 
     def _find(self, name: str) -> Path | None:

@@ -27,10 +27,11 @@ import hashlib
 import io
 import os
 import re
-import stat
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
+
+from sensorkit.base.regular import MAX_READ, read_regular
 
 # Names that make an expression unrepeatable or let it reach beyond xacro's symbols.
 _UNSAFE_NAMES = frozenset(
@@ -149,10 +150,8 @@ class _ReadingOverlay(Mapping[str, bytes]):
 
 
 def _read_regular(path: str, deps: ExpandDeps) -> bytes:
-    with open(path, "rb") as f:
-        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-            deps.refuse(f"{path} is not a regular file")
-        return f.read()
+    """The bytes of ``path``, a regular file (base.regular: a pipe, a device is refused)."""
+    return read_regular(path, MAX_READ)
 
 
 @dataclass
@@ -198,13 +197,8 @@ def record_reads(xacro: Any, sa: Any, overlay: Mapping[str, bytes] | None) -> Re
             deps.refuse(f"xacro opened {file} with mode {mode!r}")
             return inner_open(file, mode, *a, **kw)
         path = deps.absolute(str(file))
-        if path in base:
-            data = base[path]
-        else:
-            with inner_open(file, "rb") as f:
-                if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-                    deps.refuse(f"{path} is not a regular file")
-                data = f.read()
+        # never a pipe or a device, trusted or not (base.regular)
+        data = base[path] if path in base else read_regular(path, MAX_READ)
         deps.saw(deps.files, path, digest(data), "file")
         return io.TextIOWrapper(io.BytesIO(data), encoding=None)
 

@@ -30,15 +30,28 @@ from __future__ import annotations
 
 import ast
 import math
-import operator
-import re
-import string
 from collections.abc import Callable, Iterator
 from typing import Any
 
-MAX_ITEMS = 10**6
-MAX_INT_BITS = 33_220  # 2**33220 has 10,001 decimal digits
-MAX_STEPS = 10**6
+from sensorkit.loading.safe_values import (
+    BINOPS,
+    COMPARE,
+    DIGITS,
+    FIELD,
+    ITERATORS,
+    MAX_CHARS,
+    MAX_INT_BITS,
+    MAX_ITEMS,
+    MAX_STEPS,
+    MAX_TOTAL_STEPS,
+    format_fields,
+    not_data,
+    percent_fields,
+    text_size,
+)
+
+__all__ = ["MAX_INT_BITS", "MAX_ITEMS", "MAX_TOTAL_STEPS", "Evaluator", "Functions", "evaluate"]
+
 QUOTE = 200
 
 _SEQUENCES = (str, list, tuple, dict, set, frozenset, range)
@@ -139,53 +152,53 @@ class _Method:
         return f"<method {self.base.__name__}.{self.name}>"
 
 
-def text_size(value: Any, limit: int = MAX_ITEMS) -> int:
-    """An upper estimate of ``len(str(value))``, walked until it passes ``limit``."""
-    total, stack = 0, [value]
-    while stack and total <= limit:
-        v = stack.pop()
-        if isinstance(v, str):
-            total += len(v) + 2
-        elif isinstance(v, bool) or v is None:
-            total += 5
-        elif isinstance(v, int):
-            total += v.bit_length() // 3 + 2
-        elif isinstance(v, (float, complex)):
-            total += 48
-        elif isinstance(v, dict):
-            total += 2 + 4 * len(v)
-            stack.extend(v.keys())
-            stack.extend(dict.values(v))
-        elif isinstance(v, (list, tuple, set, frozenset)):
-            total += 2 + 2 * len(v)
-            stack.extend(v)
-        else:
-            total += 80  # a function's or an object's repr
-    return total
-
-
 _OVER = {int: "an integer over 10,000 digits", str: f"a str over {MAX_ITEMS:,} characters"}
-_PERCENT = re.compile(r"%(?:\([^)]*\))?[#0\- +]*(\*|\d+)?(?:\.(\*|\d+))?[hlL]?(.?)")
-_DIGITS = re.compile(r"\d+")
-_FIELD = re.compile(r"\d*|[A-Za-z_]\w*")
 
 
 class Evaluator:
-    def __init__(self, expr: str, lookup: Callable[[str], Any], functions: Functions) -> None:
+    def __init__(
+        self,
+        expr: str,
+        lookup: Callable[[str], Any],
+        functions: Functions,
+        budget: int = MAX_STEPS,
+    ) -> None:
         self.expr = expr
+        self.limit = min(MAX_STEPS, budget)
         self.lookup = lookup
         self.functions = functions
         self.steps = 0
         self.scopes: list[dict[str, Any]] = []
+        # nodes whose value may be other than data: a call's function, an attribute's
+        # object (a namespace), a call's argument (a registered function: callable_arg)
+        self.free: set[int] = set()
 
     # -- bounds -----------------------------------------------------------------------
     def fail(self, what: str) -> UnsafeExpression:
         return refuse(what, self.expr)
 
-    def step(self) -> None:
-        self.steps += 1
-        if self.steps > MAX_STEPS:
+    def step(self, n: int = 1) -> None:
+        """Count ``n`` steps (a node, a comprehension round, or the items a builtin walks:
+        :meth:`charge`); refused past MAX_STEPS, or past what is left of ``budget``."""
+        self.steps += n
+        if self.steps > self.limit:
+            if self.limit < MAX_STEPS:
+                raise self.fail(
+                    f"expressions that take over {MAX_TOTAL_STEPS:,} steps in one expansion"
+                )
             raise self.fail(f"an expression that takes over {MAX_STEPS:,} steps")
+
+    def charge(self, *values: Any) -> None:
+        """Steps for the items a builtin or method walks in C (a sort, a count, ``in``):
+        one per element or per 8 characters, so a loop of them stops early too."""
+        n = 0
+        for v in values:
+            if isinstance(v, str):
+                n += len(v) // 8
+            elif isinstance(v, (list, tuple, dict, set, frozenset, range)):
+                n += len(v)
+        if n:
+            self.step(n)
 
     def bound(self, value: Any) -> Any:
         if isinstance(value, int):
@@ -206,7 +219,7 @@ class Evaluator:
         """The width a format spec asks for; refused past the size bound."""
         if "{" in spec or "}" in spec:
             raise self.fail("a nested format field")
-        width = sum(int(d) for d in _DIGITS.findall(spec)) if len(spec) < 64 else MAX_ITEMS + 1
+        width = sum(int(d) for d in DIGITS.findall(spec)) if len(spec) < 64 else MAX_ITEMS + 1
         if width > MAX_ITEMS:
             raise self.fail(f"a format width over {MAX_ITEMS:,}")
         return width
@@ -229,7 +242,18 @@ class Evaluator:
         for scope in reversed(self.scopes):
             if node.id in scope:
                 return scope[node.id]
-        return self.lookup(node.id)
+        return self.data(node, self.lookup(node.id))
+
+    def data(self, node: ast.AST, value: Any) -> Any:
+        """``value``, when it is data or ``node`` may be other (:attr:`free`); else refused
+        naming the construct and what it is, never its repr."""
+        if id(node) not in self.free:
+            what = not_data(value)
+            if what is not None:
+                shown = ast.unparse(node)
+                shown = shown if len(shown) <= 60 else shown[:57] + "..."
+                raise self.fail(f"{shown} ({what}) as a value")
+        return value
 
     def ev_List(self, node: ast.List) -> Any:
         return self.bound(self.items(node.elts))
@@ -299,7 +323,8 @@ class Evaluator:
         left = self.ev(node.left)
         for op, comp in zip(node.ops, node.comparators, strict=True):
             right = self.ev(comp)
-            if not _COMPARE[type(op)](left, right):
+            self.charge(right if isinstance(op, (ast.In, ast.NotIn)) else None)
+            if not COMPARE[type(op)](left, right):
                 return False
             left = right
         return True
@@ -325,7 +350,7 @@ class Evaluator:
             self.size(len(a) + len(b) > MAX_ITEMS, type(a))
         elif isinstance(op, ast.Mod) and isinstance(a, str):
             return self.percent(a, b)
-        return self.bound(_BINOPS[type(op)](a, b))
+        return self.bound(BINOPS[type(op)](a, b))
 
     def power(self, a: Any, b: Any) -> None:
         big = isinstance(a, int) and isinstance(b, int) and b > 0 and abs(a) > 1
@@ -337,28 +362,33 @@ class Evaluator:
             raise self.fail(_OVER.get(kind, f"a {kind.__name__} over {MAX_ITEMS:,} elements"))
 
     def percent(self, fmt: str, args: Any) -> str:
-        width = 0
-        for m in _PERCENT.finditer(fmt):
-            if "*" in (m.group(1), m.group(2)):
+        """``fmt % args``, its size counted first: each field's width and the text of the
+        value it takes (a field repeated counts each time: ``'%(a)s' * n % d``)."""
+        total = len(fmt)
+        for width, value in percent_fields(fmt, args):
+            if width < 0:
                 raise self.fail("a '*' width in % formatting")
-            width += sum(int(g) for g in m.groups()[:2] if g and g.isdigit())
-        self.text(args, len(fmt) + width)
+            total += width + text_size(value, MAX_ITEMS - total)
+            if total > MAX_ITEMS:
+                raise self.fail(f"text over {MAX_ITEMS:,} characters")
         return str(self.bound(fmt % args))
 
     def ev_Subscript(self, node: ast.Subscript) -> Any:
+        self.free.add(id(node.value))  # a namespace's item (its data is checked below)
         obj = self.ev(node.value)
         key = self.ev(node.slice)
         if not isinstance(obj, (str, list, tuple, dict, range)):
             raise self.fail(f"a subscript of {type(obj).__name__}")
-        return self.bound(obj[key])
+        return self.data(node, self.bound(obj[key]))
 
     def ev_Slice(self, node: ast.Slice) -> Any:
         parts = [None if p is None else self.ev(p) for p in (node.lower, node.upper, node.step)]
         return slice(*parts)
 
     def ev_Attribute(self, node: ast.Attribute) -> Any:
+        self.free.add(id(node.value))  # ``xacro.load_yaml``: the namespace as the object
         obj = self.ev(node.value)
-        return self.attribute(obj, node.attr)
+        return self.data(node, self.attribute(obj, node.attr))
 
     def attribute(self, obj: Any, name: str) -> Any:
         for base, names in METHODS.items():
@@ -375,15 +405,33 @@ class Evaluator:
 
     # -- comprehensions -------------------------------------------------------------------
     def ev_ListComp(self, node: ast.ListComp | ast.GeneratorExp) -> Any:
-        return self.bound([self.ev(node.elt) for _ in self.rounds(node.generators)])
+        chars = [0]
+        return self.bound([self.counted(chars, node.elt) for _ in self.rounds(node.generators)])
 
     ev_GeneratorExp = ev_ListComp  # noqa: N815 (a list: whatever takes one takes a list)
 
     def ev_SetComp(self, node: ast.SetComp) -> Any:
-        return self.bound({self.ev(node.elt) for _ in self.rounds(node.generators)})
+        chars = [0]
+        return self.bound({self.counted(chars, node.elt) for _ in self.rounds(node.generators)})
 
     def ev_DictComp(self, node: ast.DictComp) -> Any:
-        return self.bound({self.ev(node.key): self.ev(node.value) for _ in self.rounds(node.generators)})
+        chars = [0]
+        return self.bound(
+            {
+                self.counted(chars, node.key): self.counted(chars, node.value)
+                for _ in self.rounds(node.generators)
+            }
+        )
+
+    def counted(self, chars: list[int], node: ast.expr) -> Any:
+        """One item of a comprehension, its text added to ``chars`` (the comprehension's
+        total, bounded by MAX_CHARS: a million rounds of a big string are refused before
+        they are built, not only a million items)."""
+        value = self.ev(node)
+        chars[0] += text_size(value, MAX_CHARS)
+        if chars[0] > MAX_CHARS:
+            raise self.fail(f"a comprehension over {MAX_CHARS:,} characters")
+        return value
 
     def rounds(self, gens: list[ast.comprehension], i: int = 0) -> Iterator[None]:
         if i == len(gens):
@@ -430,21 +478,21 @@ class Evaluator:
         return format(value, spec)
 
     def check_format(self, fmt: str, args: list[Any], kwargs: dict[str, Any]) -> None:
+        """``fmt.format(*args, **kwargs)``'s size, counted first: each field's width and
+        the text of the value it takes, a field repeated each time (``'{0}' * n``)."""
         width = len(fmt)
-        try:
-            fields = list(string.Formatter().parse(fmt))
-        except ValueError as exc:
-            raise ValueError(f"bad format string: {exc}") from None
-        for _, name, spec, _ in fields:
-            if name is None:
-                continue
-            if not _FIELD.fullmatch(name):
+        for name, spec, value in format_fields(fmt, args, kwargs):
+            if not FIELD.fullmatch(name):
                 raise self.fail(f"a format field that reads an attribute or an item ('{{{name[:40]}}}')")
-            width += self.spec(spec or "")
-        self.text([args, kwargs], width)
+            width += self.spec(spec) + text_size(value, MAX_ITEMS - width)
+            if width > MAX_ITEMS:
+                raise self.fail(f"text over {MAX_ITEMS:,} characters")
 
     # -- calls -----------------------------------------------------------------------------
     def ev_Call(self, node: ast.Call) -> Any:
+        self.free.add(id(node.func))
+        self.free.update(id(a.value if isinstance(a, ast.Starred) else a) for a in node.args)
+        self.free.update(id(kw.value) for kw in node.keywords if kw.arg is not None)
         fn = self.ev(node.func)
         args = self.items(node.args)
         kwargs: dict[str, Any] = {}
@@ -454,15 +502,18 @@ class Evaluator:
             else:
                 kwargs[kw.arg] = self.ev(kw.value)
         if isinstance(fn, _Method) and fn.ev is self:
-            return self.call_method(fn, args, kwargs)
+            return self.data(node, self.call_method(fn, args, kwargs))
         what = ast.unparse(node.func)
-        return self.call(fn, args, kwargs, what)
+        return self.data(node, self.call(fn, args, kwargs, what))
 
     def call(self, fn: Any, args: list[Any], kwargs: dict[str, Any], what: str) -> Any:
         entry = self.functions.get(fn)
         if entry is None:
             raise self.fail(f"calling {what[:60]}")
+        self.step()
         name, real, guard = entry
+        if name not in ("len", "isinstance", "bool"):  # these never walk their argument
+            self.charge(*args, *kwargs.values())
         if name != "isinstance":
             args = [self.callable_arg(a) for a in args]
             kwargs = {k: self.callable_arg(v) for k, v in kwargs.items()}
@@ -471,8 +522,17 @@ class Evaluator:
         return self.bound(real(*args, **kwargs))
 
     def callable_arg(self, value: Any) -> Any:
-        """A function passed to ``map``, ``sorted(key=...)``: registered, and checked when called."""
-        if not callable(value) or (isinstance(value, _Method) and value.ev is self):
+        """A function passed to ``map``, ``sorted(key=...)``: registered, and checked when
+        called; anything else passed must be data (``str(xacro)``, ``min([], default=math)``
+        would hand out a namespace)."""
+        if isinstance(value, _Method) and value.ev is self:
+            return value
+        if isinstance(value, ITERATORS):  # ``list(map(float, xs))``: yields data only
+            return value
+        if not callable(value) or isinstance(value, (dict, list)):
+            what = not_data(value)
+            if what is not None:
+                raise self.fail(f"passing {what} as an argument")
             return value
         entry = self.functions.get(value)
         if entry is None:
@@ -485,6 +545,7 @@ class Evaluator:
 
     def call_method(self, m: _Method, args: list[Any], kwargs: dict[str, Any]) -> Any:
         self.step()
+        self.charge(m.obj, *args)
         obj, name = m.obj, m.name
         if name == "format":
             self.check_format(obj, args, kwargs)
@@ -502,27 +563,32 @@ class Evaluator:
         return self.bound(getattr(m.base, name)(obj, *args, **kwargs))
 
 
-_COMPARE: dict[type, Callable[[Any, Any], Any]] = {
-    ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
-    ast.Gt: operator.gt, ast.GtE: operator.ge, ast.Is: operator.is_, ast.IsNot: operator.is_not,
-    ast.In: lambda a, b: a in b, ast.NotIn: lambda a, b: a not in b,
-}  # fmt: skip
-_BINOPS: dict[type, Callable[[Any, Any], Any]] = {
-    ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-    ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
-    ast.Pow: operator.pow, ast.LShift: operator.lshift, ast.RShift: operator.rshift,
-    ast.BitOr: operator.or_, ast.BitXor: operator.xor, ast.BitAnd: operator.and_,
-}  # fmt: skip
-
-
-def evaluate(expr: str, lookup: Callable[[str], Any], functions: Functions) -> Any:
+def evaluate(
+    expr: str,
+    lookup: Callable[[str], Any],
+    functions: Functions,
+    budget: list[int] | None = None,
+) -> Any:
     """Evaluate ``expr`` by the allow-list above; ``lookup(name)`` resolves a free name
-    (raising NameError when unbound). The result is bounded like every step."""
+    (raising NameError when unbound). The result is bounded like every step, and must be
+    data (see :func:`not_data`). ``budget``: the steps left to a whole expansion (one
+    item, lowered by what this expression takes)."""
     tree = parse(expr)
-    ev = Evaluator(expr, lookup, functions)
+    ev = Evaluator(expr, lookup, functions, budget[0] if budget is not None else MAX_STEPS)
+    try:
+        return _evaluate(ev, tree)
+    finally:
+        if budget is not None:
+            budget[0] -= ev.steps
+
+
+def _evaluate(ev: Evaluator, tree: ast.Expression) -> Any:
     try:
         value = ev.ev(tree)
         ev.bound(value)
+        what = not_data(value)
+        if what is not None:  # e.g. a method named and not called: ``'a'.upper``
+            raise ev.fail(f"a result that is {what}")
         if isinstance(value, (list, tuple, dict, set, frozenset)):
             ev.text(value)
         return value

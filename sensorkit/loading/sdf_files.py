@@ -45,6 +45,7 @@ from sensorkit.loading.document import (
     display_path,
     drop_default_namespace,
     encoding_finding,
+    max_elements,
     parse_bounded,
     prefixed_root_finding,
     read_input,
@@ -66,7 +67,7 @@ CLASSIC_VARS = ("GAZEBO_MODEL_PATH",)
 
 
 def parse_sdf(
-    path: Path, overlay: Mapping[str, bytes] | None = None
+    path: Path, overlay: Mapping[str, bytes] | None = None, untrusted: bool = False
 ) -> tuple[etree._Element | None, list[Finding]]:
     """The ``<sdf>`` root of ``path`` (namespace dropped) or SK101 findings.
 
@@ -84,7 +85,7 @@ def parse_sdf(
     if reason:
         return None, [_xml_finding(where, reason, 1, 1)]
     try:
-        root = parse_bounded(data)
+        root = parse_bounded(data, max_elements(untrusted))
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
         return None, [_xml_finding(where, str(exc.msg), line, col)]

@@ -39,6 +39,7 @@ from typing import Any
 
 from sensorkit.loading.safe_eval import (
     MAX_INT_BITS,
+    MAX_TOTAL_STEPS,
     Evaluator,
     Functions,
     UnsafeExpression,
@@ -78,26 +79,25 @@ class Confinement:
             self.roots.append(real)
 
     def allows(self, file: str | os.PathLike[str]) -> bool:
-        real = os.path.realpath(file)
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in self.roots)
+        from sensorkit.loading.packages import inside
+
+        return inside(os.path.realpath(file), self.roots)
 
     def refuse(self, file: str) -> str:
         return (
             f"--untrusted: {file} is outside the workspace and the resolved packages; "
-            "not read (pass --package-path for a package that lives elsewhere)"
+            "not read (the repository is the limit: pass --package-path for a package "
+            "that lives elsewhere)"
         )
 
 
 def confinement_for(path: Path, explicit: Iterable[Path], scan_dirs: Iterable[Path]) -> Confinement:
-    """The file's workspace (as ``$(find)`` searches it) plus any ``--package-path``."""
-    from sensorkit.loading.packages import own_package, workspace_roots
+    """The readable area of ``path`` (``packages.readable_area``: its repository, the
+    ``--package-path`` folders, AMENT_PREFIX_PATH's share folders)."""
+    from sensorkit.loading.packages import readable_area
 
     conf = Confinement()
-    pkg = own_package(path)
-    conf.add(pkg if pkg is not None else path.resolve().parent)
-    for root in workspace_roots(path):
-        conf.add(root)
-    for folder in [*explicit, *scan_dirs]:
+    for folder in readable_area(path, [*explicit, *scan_dirs]):
         conf.add(folder)
     return conf
 
@@ -132,6 +132,15 @@ def _small_ints(ev: Evaluator, fn: Any, args: list[Any], kwargs: dict[str, Any])
     return fn(*args, **kwargs)
 
 
+def _round(ev: Evaluator, fn: Any, args: list[Any], kwargs: dict[str, Any]) -> Any:
+    """``round(x, n)``: ``n`` within 10,000 digits either way (``round(7, -10**8)``
+    computes ``10**(10**8)`` before it answers)."""
+    digits = args[1] if len(args) > 1 else kwargs.get("ndigits")
+    if isinstance(digits, int) and abs(digits) > 10_000:
+        raise ev.fail("round to more than 10,000 digits")
+    return fn(*args, **kwargs)
+
+
 def _rendered(ev: Evaluator, fn: Any, args: list[Any], kwargs: dict[str, Any]) -> Any:
     """``str``, ``repr``, ``ascii``, ``format``: the text stays inside the bound."""
     if fn is format and len(args) > 1 and isinstance(args[1], str):
@@ -144,10 +153,10 @@ def _rendered(ev: Evaluator, fn: Any, args: list[Any], kwargs: dict[str, Any]) -
 SAFE_BUILTINS: dict[str, Callable[..., Any] | None] = {
     **dict.fromkeys(
         """abs all any bin bool chr complex dict divmod enumerate filter float frozenset
-        hash hex int isinstance len list map max min oct ord reversed round set slice sorted
+        hash hex int isinstance len list map max min oct ord reversed set slice sorted
         tuple zip""".split()  # noqa: SIM905
     ),
-    "range": _range, "pow": _pow, "sum": _numbers,
+    "range": _range, "round": _round, "pow": _pow, "sum": _numbers,
     "str": _rendered, "repr": _rendered, "ascii": _rendered, "format": _rendered,
 }  # fmt: skip
 MATH_GUARDS: dict[str, Callable[..., Any]] = {
@@ -187,6 +196,7 @@ class XacroEvaluator:
     def __init__(self, xacro: Any, sa: Any) -> None:
         self.xacro, self.sa = xacro, sa
         self.functions = _xacro_functions(xacro)
+        self.budget = [MAX_TOTAL_STEPS]  # the steps every expression of the expansion shares
 
     def expression(self, expr: str, symbols: Any, local: Any = None) -> Any:
         """``${expr}``: names are xacro's symbols (properties, namespaces, helpers)."""
@@ -199,7 +209,7 @@ class XacroEvaluator:
             except KeyError:
                 raise NameError(f"name '{name}' is not defined") from None
 
-        return evaluate(expr, lookup, self.functions)
+        return evaluate(expr, lookup, self.functions, self.budget)
 
     def substitution(self, s: str, context: dict[str, Any]) -> str:
         """``$(eval s)``: names as in xacro substitution_args ``_eval``: ``arg``,
@@ -234,7 +244,7 @@ class XacroEvaluator:
                 raise refuse(f"name {name}", s)
             raise NameError(f"name '{name}' is not defined")
 
-        return str(evaluate(s, lookup, local))
+        return str(evaluate(s, lookup, local, self.budget))
 
 
 def _xacro_functions(xacro: Any) -> Functions:

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from sensorkit.base.errors import UsageError
+from sensorkit.base.regular import MAX_READ, CappedText, read_regular
 from sensorkit.loading import marks
 from sensorkit.loading.packages import PackageResolver
 from sensorkit.loading.reads import ExpandDeps, Recording, record_reads
@@ -117,7 +118,7 @@ def _loc_parser(
                 xacro.filestack.pop()
             raise xacro.XacroException(confine.refuse(full))
         try:
-            data = overlay[full] if overlay and full in overlay else Path(full).read_bytes()
+            data = overlay[full] if overlay and full in overlay else read_regular(full, MAX_READ)
         except OSError as exc:
             if xacro.filestack:
                 xacro.filestack.pop()
@@ -251,7 +252,7 @@ def expand_in_process(
         xacro_fast.bound(xacro, sa, bounded, MEMORY_LIMIT, undo)
     reads = _record_reads(xacro, sa, out, untrusted, overlay)
     xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
-    sys.stderr = io.StringIO()
+    sys.stderr = CappedText()  # what xacro prints, never read: its first MiB only
     try:
         doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)
         out.xml = doc.documentElement.toxml()
@@ -360,7 +361,9 @@ def _narrow(
         # xacro.load_yaml calls the module-level name ``open`` (xacro/__init__.py load_yaml)
         if not confine.allows(str(file)):
             raise xacro.XacroException(confine.refuse(str(file)))
-        return open(file, *a, **kw)
+        if a or kw:  # load_yaml opens for reading text, nothing else
+            raise xacro.XacroException(f"--untrusted: opening {file} that way is not allowed")
+        return io.TextIOWrapper(io.BytesIO(read_regular(str(file), MAX_READ)), encoding=None)
 
     evaluator = XacroEvaluator(xacro, sa)  # by allow-list, never Python's eval
 
@@ -562,23 +565,16 @@ def _confine(
 
 
 def _readable(path: Path, resolver: PackageResolver) -> list[str]:
-    """What an untrusted child may read: the confinement's folders, every package path,
-    and the folders of the code the expansion imports on first use (stdlib, xacro, yaml,
+    """What an untrusted child may read: the readable area (packages.readable_area, the
+    one function every confinement uses), and the folders of the code the expansion imports on first use (stdlib, xacro, yaml,
     sensorkit)."""
     import yaml
 
     import sensorkit
-    from sensorkit.loading.untrusted import confinement_for
+    from sensorkit.loading.packages import readable_area
 
-    roots = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs).roots
-    env = resolver.frozen_env or {}
-    if resolver.use_environment:
-        roots += [
-            os.path.join(p, "share")
-            for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep)
-            if p
-        ]
-        roots += [p for p in env.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+    env = (resolver.frozen_env or {}) if resolver.use_environment else {}
+    roots = readable_area(path, [*resolver.explicit.values(), *resolver.scan_dirs], env)
     code = [os, yaml, sensorkit, sys.modules["xacro"]]
     roots += [os.path.dirname(m.__file__ or "") for m in code]
     return [r for r in roots if r]

@@ -29,6 +29,7 @@ from sensorkit.lsp.analysis import Analysis
 from sensorkit.lsp.convert import diagnostic, text_edit, to_text
 from sensorkit.lsp.documents import Documents, Publish
 from sensorkit.lsp.fixes import QuickFix, has_safe_fix, offer, plan
+from sensorkit.lsp.framing import TOO_LARGE, BoundedInput, too_large_error
 from sensorkit.lsp.hover import hover_text, sensors_at
 from sensorkit.lsp.settings import Overrides, settings_for
 
@@ -128,6 +129,13 @@ def failed(server: SensorkitServer, name: str, exc: Exception) -> None:
 
 
 SERVER = SensorkitServer()
+
+
+@SERVER.feature(TOO_LARGE)
+@guarded
+def too_large(server: SensorkitServer, params: Any) -> None:
+    """A message over framing.MAX_MESSAGE, not read: a JSON-RPC error for its id."""
+    server.protocol._send_data(too_large_error(params))
 
 
 @SERVER.feature(lsp.INITIALIZE)
@@ -372,11 +380,11 @@ def serve() -> None:
     lock forever.
     """
     warm()
-    proto_in = os.fdopen(os.dup(0), "rb")
+    proto_in = BoundedInput(os.fdopen(os.dup(0), "rb"))  # no message over 64 MiB is read
     proto_out = os.fdopen(os.dup(1), "wb")
     null = os.open(os.devnull, os.O_RDONLY)
     os.dup2(null, 0)
     os.close(null)
     os.dup2(2, 1)
     sys.stdout = sys.stderr
-    SERVER.start_io(proto_in, proto_out)
+    SERVER.start_io(proto_in, proto_out)  # type: ignore[arg-type]  # readline and read only

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -61,9 +62,14 @@ def load_robot(
     resolver = PackageResolver.from_options(list(package_paths), near=path)
     from sensorkit.loading.formats import is_sdf_path, is_sdf_xacro
 
+    if untrusted is not None:
+        # includes, $(find), meshes: inside the readable area only (packages.readable_area)
+        resolver.confine_to(path)
     if sdf and is_sdf_path(path):
-        if untrusted is not None:
-            resolver.confine_to(path)  # includes are read inside the workspace only
+        if untrusted is not None and not (overlay and os.path.abspath(path) in overlay):
+            from sensorkit.loading.document import confine_input
+
+            confine_input(path, resolver)
         return _load_sdf(path, resolver, overlay)
     sdf_xacro = sdf and is_sdf_xacro(path)
     result = load_description(
@@ -80,8 +86,6 @@ def load_robot(
         return Loaded(None, result.findings)
     if sdf_xacro and result.document.root.tag == "sdf":
         # the expansion is read as SDF; its model:// includes from the file's folder
-        if untrusted is not None:
-            resolver.confine_to(path)
         loaded = _load_sdf(path, resolver, overlay, result.document)
         loaded.findings[:0] = result.findings
         return loaded

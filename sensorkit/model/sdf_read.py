@@ -289,7 +289,7 @@ def _load_include(
     if key in ctx.stack or len(ctx.stack) > MAX_INCLUDE_DEPTH:
         record.why = "the include comes back to a file that includes it"
         return None
-    root, findings = parse_sdf(got.path, ctx.overlay)
+    root, findings = parse_sdf(got.path, ctx.overlay, ctx.resolver.confined is not None)
     if root is None:
         record.why = findings[0].message if findings else "unreadable"
         return None
@@ -404,7 +404,7 @@ def read_models(
     from sensorkit.loading.document import display_path
 
     if document is None:
-        root, findings = parse_sdf(path, overlay)
+        root, findings = parse_sdf(path, overlay, resolver.confined is not None)
         if root is None:
             return SdfRead(None, [], findings)
         doc = Document(path=path, root=root)

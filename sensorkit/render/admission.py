@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from sensorkit.base.errors import InputError, UsageError
 from sensorkit.knowledge.limits import PLAUSIBLE_CAMERA_PIXELS, PLAUSIBLE_LIDAR_RAYS
-from sensorkit.render.plan import wanted
+from sensorkit.render.plan import lidar_rays, wanted
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
@@ -69,14 +69,6 @@ def check_rules(target: str, select: Sequence[str], ignore: Sequence[str]) -> No
     Options(target=target, select=tuple(select), ignore=tuple(ignore))
 
 
-def _beams(samples: int | None, resolution: float | None) -> float:
-    """Rays one scan line casts: samples x resolution (SDF multiplies them), at least 1."""
-    n = float(max(samples or 1, 1))
-    if resolution is not None and resolution > 0:
-        n *= resolution  # 90 samples at resolution 1e5 are 9 million rays (inf past 1e308)
-    return max(n, 1.0)
-
-
 def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
@@ -95,9 +87,7 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                 )
                 raise UsageError(msg)
         if s.lidar is not None:
-            rays = _beams(s.lidar.samples, s.lidar.resolution) * _beams(
-                s.lidar.v_samples, s.lidar.v_resolution
-            )
+            rays = lidar_rays(s)
             if rays > max_rays:
                 raise_it = (
                     f"; pass --max-rays {rays:.0f} to cast it anyway" if rays < math.inf else ""

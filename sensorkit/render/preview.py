@@ -31,6 +31,7 @@ from sensorkit.base.errors import InputError
 from sensorkit.base.findings import Severity
 from sensorkit.model.transforms_np import Mat
 from sensorkit.render.admission import MAX_CAMERA_PIXELS, MAX_LIDAR_RAYS
+from sensorkit.render.plan import LEFT_OUT, Totals
 from sensorkit.render.result import PreviewResult, SensorPreview
 from sensorkit.render.session import Progress, say
 
@@ -63,6 +64,7 @@ def render_preview(
     workers: int = 1,
     max_pixels: int = MAX_CAMERA_PIXELS,
     max_rays: int = MAX_LIDAR_RAYS,
+    totals: Totals = Totals(),  # noqa: B008 (frozen: one value shared is fine)
     force: bool = False,
     untrusted: Untrusted | None = None,
     target_origin: str = "--target",
@@ -95,6 +97,8 @@ def render_preview(
         max_pixels: the most pixels one camera may have (checked before anything is
             allocated: a 100000 x 100000 camera would need hundreds of GB).
         max_rays: the most rays one lidar may cast per scan.
+        totals: one budget for the whole preview (pixels, rays, seconds; issue 36): past
+            it what fits is rendered, the rest left out and named in the notes.
         force: replace a non-empty ``out_dir`` that is not an earlier preview (never the
             working folder, home, a root, nor one holding the robot or the scene).
         fail_on: the gate (``result.verdict``, the page's header): fail on validate's
@@ -132,6 +136,7 @@ class _Request:
     workers: int
     max_pixels: int
     max_rays: int
+    totals: Totals  # one budget for the whole preview (issue 36)
     force: bool
     untrusted: Untrusted | None
     target_origin: str
@@ -342,6 +347,12 @@ def _staged(request: _Request, ready: _Ready, started: float) -> PreviewResult:
             request.ignore,
         )
         share_findings(findings, previews)
+        out = [p.name for p in previews if (p.skipped or "").startswith(LEFT_OUT)]
+        if out:
+            ready.notes.append(
+                f"{len(out)} sensor(s) left out, past the preview's total budget "
+                f"(--max-total-pixels, --max-total-rays, --max-seconds): {', '.join(out)}"
+            )
         result = PreviewResult(
             out_dir=stage,
             robot=ready.robot.name,
@@ -389,8 +400,9 @@ def _render(
     with World() as world:
         _furnish(world, request, ready)
         run = Session(ready.robot, world, ready.world_scene, ready.poses, ready.target, stage)
-        plan = plan_jobs(ready.robot, request.sensors, stage)
-        results = render_all(run, plan, request.progress, request.workers)
+        plan = plan_jobs(ready.robot, request.sensors, stage, request.totals)
+        deadline = time.monotonic() + request.totals.seconds
+        results = render_all(run, plan, request.progress, request.workers, deadline)
         previews = [p for p, _ in results]
         draw_imus(run, previews)
         drawings = [d for _, d in results if d is not None]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 
 from sensorkit.render.camera_job import render_camera_job
 from sensorkit.render.lidar_job import render_lidar_job
@@ -20,7 +21,15 @@ from sensorkit.render.session import JobResult, Progress, Session, say
 __all__ = ["render_all", "run_job"]
 
 
-def run_job(run: Session, job: Job, progress: Progress | None) -> JobResult:
+def run_job(
+    run: Session, job: Job, progress: Progress | None, deadline: float | None = None
+) -> JobResult:
+    """Render ``job``; past ``deadline`` (time.monotonic, the preview's total seconds)
+    leave it out instead, saying so."""
+    if deadline is not None and time.monotonic() > deadline:
+        from sensorkit.render.plan import left_out
+
+        return left_out(job.sensor, "seconds (--max-seconds)"), None
     if job.cam is not None:
         return render_camera_job(run, job, progress)
     return render_lidar_job(run, job, progress)
@@ -89,7 +98,11 @@ def _preload(jobs: list[Job], target: str) -> None:
 
 
 def render_all(
-    run: Session, plan: list[Job | SensorPreview], progress: Progress | None, workers: int
+    run: Session,
+    plan: list[Job | SensorPreview],
+    progress: Progress | None,
+    workers: int,
+    deadline: float | None = None,
 ) -> list[JobResult]:
     """Render every job; with ``workers`` > 1 on Linux, split the jobs, cameras and lidars
     alike, over forked processes of about equal work. Every fork happens before anything
@@ -107,23 +120,23 @@ def render_all(
         for job in group:
             what = "rendering" if job.cam is not None else "casting"
             say(progress, f"{what} {job.name} (in another process)")
-        child = _fork(run, group)
+        child = _fork(run, group, deadline)
         if child is not None:
             children.append((*child, group))
         else:
             groups[0] += group
     for job in groups[0]:
-        done[id(job)] = run_job(run, job, progress)
+        done[id(job)] = run_job(run, job, progress, deadline)
     for pid, fd, group in children:
         results = _collect(pid, fd)
         if results is None or len(results) != len(group):
-            results = [run_job(run, job, progress) for job in group]
+            results = [run_job(run, job, progress, deadline) for job in group]
         for job, result in zip(group, results, strict=True):
             done[id(job)] = result
     return [done[id(j)] if isinstance(j, Job) else (j, None) for j in plan]
 
 
-def _fork(run: Session, group: list[Job]) -> tuple[int, int] | None:
+def _fork(run: Session, group: list[Job], deadline: float | None = None) -> tuple[int, int] | None:
     """Render ``group`` in a forked child; (pid, read end of its pipe), or None."""
     import pickle
 
@@ -146,7 +159,7 @@ def _fork(run: Session, group: list[Job]) -> tuple[int, int] | None:
             confine.die_with_parent(parent)  # a killed preview leaves nothing running
             os.close(read)
             run.world.quiet.forget_sink()
-            payload = pickle.dumps([run_job(run, job, None) for job in group])
+            payload = pickle.dumps([run_job(run, job, None, deadline) for job in group])
         except BaseException:
             payload, code = b"", 1
         try:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from sensorkit.base.regular import read_regular
 from sensorkit.loading.launch.spec import MAX_LAUNCH_BYTES, NodeSpec, Reading, plain
 
 
@@ -35,9 +36,7 @@ def _from_file(reading: Reading, spec: NodeSpec, source: str | None, key: str) -
     import yaml
 
     try:
-        if Path(path).stat().st_size > MAX_LAUNCH_BYTES:
-            return True, None
-        data = yaml.safe_load(Path(path).read_text("utf-8"))
+        data = yaml.safe_load(read_regular(path, MAX_LAUNCH_BYTES).decode("utf-8"))
     except (OSError, UnicodeDecodeError, yaml.YAMLError, RecursionError):
         return True, None
     if not isinstance(data, dict):

@@ -1,20 +1,25 @@
 """read_launch: read launch files, and the workspace launch files they include.
 
-Limits (each a LaunchProblem, never a traceback or a hang): a file over 1 MiB, more than
-200 files read, includes nested deeper than 8 or in a cycle, a file that does not parse
-(or nests too deeply for Python's parser).
+Limits (each a LaunchProblem, never a traceback or a hang): a file over 1 MiB or not a
+regular file, more than 200 files read or 1,000 includes followed (a file reached on many
+paths counts each time: an include "diamond"), includes nested deeper than 8 or in a
+cycle, a file that does not parse (or nests too deeply for Python's parser). Each file is
+read and parsed once per run.
 """
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from sensorkit.base.regular import TooLarge, read_regular
 from sensorkit.loading.launch.extract import extract
 from sensorkit.loading.launch.frontend import Context, read_entities, xml_entities, yaml_entities
 from sensorkit.loading.launch.python_launch import FileReading, read_python
 from sensorkit.loading.launch.spec import (
     MAX_INCLUDE_DEPTH,
+    MAX_INCLUDE_EDGES,
     MAX_LAUNCH_BYTES,
     MAX_LAUNCH_FILES,
     NodeSpec,
@@ -67,11 +72,14 @@ def _read(reading: Reading, path: Path, inherited: dict[str, str | None],
     reading.seen.add(real)
     if name not in reading.facts.files:
         reading.facts.files.append(name)
-    got = _parse(reading, path, name, inherited)
+    key = (real, tuple(sorted(inherited.items(), key=lambda kv: kv[0])))
+    if key not in reading.parsed:
+        reading.parsed[key] = _parse(reading, real, path, name, inherited)
+    got = reading.parsed[key]
     if got is None:
         _unknown_all(reading, name)
         return
-    for spec in got.nodes:
+    for spec in map(copy.copy, got.nodes):  # the parse is shared by every path to the file
         spec.file = name
         if ns_pushed or got.pushes_namespace:
             spec.namespace = None
@@ -81,12 +89,25 @@ def _read(reading: Reading, path: Path, inherited: dict[str, str | None],
                  (*stack, real), ns_pushed or got.pushes_namespace)
 
 
-def _parse(reading: Reading, path: Path, name: str, inherited: dict[str, str | None]) -> FileReading | None:
-    try:
-        if path.stat().st_size > MAX_LAUNCH_BYTES:
+def _bytes(reading: Reading, real: Path, name: str) -> bytes | None:
+    """The bytes of the launch file (read once per run), None when it cannot be read."""
+    if real not in reading.data:
+        reading.data[real] = None
+        try:
+            reading.data[real] = read_regular(real, MAX_LAUNCH_BYTES)
+        except TooLarge:
             reading.problem(name, "could not read: larger than 1 MiB")
-            return None
-        data = path.read_bytes()
+        except OSError as exc:
+            reading.problem(name, f"could not read: {exc.strerror or type(exc).__name__}")
+    return reading.data[real]
+
+
+def _parse(reading: Reading, real: Path, path: Path, name: str,
+           inherited: dict[str, str | None]) -> FileReading | None:
+    data = _bytes(reading, real, name)
+    if data is None:
+        return None
+    try:
         ctx = Context(path, reading.share, dict(inherited))
         if path.name.endswith(".py"):
             return read_python(data.decode("utf-8"), name, inherited, reading.share)
@@ -112,6 +133,12 @@ def _unknown_all(reading: Reading, name: str) -> None:
 def _include(reading: Reading, parent: Path, name: str, target: str | None,
              args: dict[str, str | None], line: int | None, stack: tuple[Path, ...],
              ns_pushed: bool) -> None:
+    reading.edges += 1
+    if reading.edges > MAX_INCLUDE_EDGES:
+        if reading.edges == MAX_INCLUDE_EDGES + 1:
+            reading.problem(name, f"more than {MAX_INCLUDE_EDGES} launch includes: the rest not read", line)
+        _unknown_all(reading)
+        return
     if target is not None and (out := outside_package(target)) is not None:
         key = (out[0], Path(out[1]).name)
         if key in _BRIDGE_LAUNCH and "config_file" in args:

@@ -12,6 +12,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from sensorkit.loading.document import display_path
 from sensorkit.loading.launch_facts import LaunchFacts, LaunchProblem
@@ -19,6 +20,9 @@ from sensorkit.loading.launch_facts import LaunchFacts, LaunchProblem
 MAX_LAUNCH_BYTES = 1 << 20
 MAX_LAUNCH_FILES = 200
 MAX_INCLUDE_DEPTH = 8
+# Includes followed in one run (each path to a file counts: nine files each including the
+# next twelve times are 12**8 paths, though no cycle and only nine files).
+MAX_INCLUDE_EDGES = 1000
 _MARK = "\x00pkg:"
 
 
@@ -76,6 +80,11 @@ class Reading:
     facts: LaunchFacts = field(default_factory=LaunchFacts)
     seen: set[Path] = field(default_factory=set)
     nodes: list[NodeSpec] = field(default_factory=list)
+    # each file read and parsed once per run: its bytes by real path, what it says by
+    # (real path, arguments it was given)
+    data: dict[Path, bytes | None] = field(default_factory=dict)
+    parsed: dict[Any, Any] = field(default_factory=dict)
+    edges: int = 0  # includes followed so far (MAX_INCLUDE_EDGES)
 
     def problem(self, file: str, message: str, line: int | None = None) -> None:
         self.facts.problems.append(LaunchProblem(file, message, line))
