@@ -19,7 +19,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from sensorkit.base.consequence import Consequence, Role
-from sensorkit.lint.rules.frames import ANGLE_TOL, POSITION_TOL
+from sensorkit.lint.rules.frames import POSITION_TOL
+from sensorkit.lint.rules.optical_text import ANGLE_TOL
 from sensorkit.model import transforms as tf
 
 if TYPE_CHECKING:

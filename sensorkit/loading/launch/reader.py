@@ -137,7 +137,7 @@ def _include(reading: Reading, parent: Path, name: str, target: str | None,
     if reading.edges > MAX_INCLUDE_EDGES:
         if reading.edges == MAX_INCLUDE_EDGES + 1:
             reading.problem(name, f"more than {MAX_INCLUDE_EDGES} launch includes: the rest not read", line)
-        _unknown_all(reading)
+        _unknown_all(reading, name)
         return
     if target is not None and (out := outside_package(target)) is not None:
         key = (out[0], Path(out[1]).name)
