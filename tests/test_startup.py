@@ -40,7 +40,7 @@ finally:
 # What ``sensorkit validate ROBOT.urdf`` imports for a URDF with no xacro, no launch file,
 # no bridge and no fixable finding.
 PLAIN_URDF = frozenset(
-    """sensorkit sensorkit.base sensorkit.base.consequence sensorkit.base.errors sensorkit.base.findings
+    """sensorkit sensorkit.base sensorkit.base.consequence sensorkit.base.regular sensorkit.loading.input_findings sensorkit.base.errors sensorkit.base.findings
     sensorkit.knowledge.link_lookups sensorkit.knowledge.sensor_blocks sensorkit.lint.rules.bridge_flow
     sensorkit.lint.rules.calibration sensorkit.lint.rules.coincide sensorkit.lint.rules.model_plugins
     sensorkit.lint.rules.optical_text sensorkit.lint.rules.recording sensorkit.lint.rules.sensor_blocks

@@ -252,12 +252,15 @@ def test_gz_bridge_found_in_package_config(tmp_path) -> None:
     assert "SK607" not in rules_of(_gz(tmp_path, full, in_config=True))
 
 
-def test_bridge_entry_matching_no_sensor_is_sk612(tmp_path) -> None:
+def test_bridge_entry_matching_no_sensor_is_sk618_when_a_sensor_of_its_type_is_unbridged(tmp_path) -> None:
+    # Issue 35 item 7: a misspelt gz topic while a sensor of the same message type stays
+    # unbridged is SK618 (it was SK612), with the topic it meant; SK612 leaves it alone.
     typo = BRIDGE.replace("gz_topic_name: front_camera/image_raw", "gz_topic_name: front_camera/imag_raw")
     report = _gz(tmp_path, typo)
-    f = next(f for f in report.findings if f.rule == "SK612")
-    assert f.fix == "did you mean 'front_camera/image_raw'?" and f.line == 1
-    assert "SK612" not in rules_of(_gz(tmp_path / "b", BRIDGE))
+    f = next(f for f in report.findings if f.rule == "SK618")
+    assert f.fix == "gz_topic_name: front_camera/image_raw" and f.line == 1
+    assert "SK612" not in rules_of(report)
+    assert not {"SK612", "SK618"} & rules_of(_gz(tmp_path / "b", BRIDGE))
 
 
 def test_bad_bridge_file_is_a_usage_error(tmp_path) -> None:

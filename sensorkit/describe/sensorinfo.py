@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, get_args
 
 from sensorkit.base.errors import InputError, UsageError
+from sensorkit.base.findings import Severity
 from sensorkit.describe.intrinsics import Convention, InvalidValue
 from sensorkit.describe.published import convention_of, lidar_scans, published_intrinsics
 from sensorkit.describe.sensor_topics import sensor_topics
@@ -175,9 +176,26 @@ def load_models(
         first = loaded.findings[0] if loaded.findings else None
         msg = f"{first.source}: {first.message}" if first is not None else f"{path}: cannot be read"
         raise InputError(msg)
+    robots = list(loaded.robots) or [loaded.robot]
     if said is not None:
         said.extend(f for f in loaded.findings if f.rule in SAID_ON_LOAD)
-    return list(loaded.robots) or [loaded.robot]
+        said.extend(_world_include_errors(robots))
+    return robots
+
+
+def _world_include_errors(robots: list[Robot]) -> list[Finding]:
+    """The SK107 errors of a world's own includes that brought no model: validate's SK107
+    rule says them on the world's first model (model/sdf_read.py), which loading alone
+    does not report."""
+    from sensorkit.model.sdf_includes import include_finding
+
+    out = []
+    for robot in robots:
+        for inc in robot.sdf.world_includes if robot.sdf is not None else ():
+            found = include_finding(inc, robot.document)
+            if found is not None and found.severity is Severity.ERROR:
+                out.append(found)
+    return out
 
 
 def resolve_target(robot: Robot, target: str) -> tuple[str, str]:

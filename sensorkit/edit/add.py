@@ -57,13 +57,13 @@ from sensorkit.loading.document import (
     Document,
     display_path,
     drop_default_namespace,
-    encoding_finding,
     looks_like_xacro,
     plain_document,
     read_input,
     strict_parser,
 )
 from sensorkit.loading.formats import is_sdf_path
+from sensorkit.loading.input_findings import encoding_finding
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:

@@ -25,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import glob
 import hashlib
+import hmac
 import json
 import os
 import sys
@@ -354,8 +355,6 @@ def _encode(entry: Entry, key: bytes) -> bytes:
 def _decode(data: bytes, key: bytes) -> Entry | None:
     """The entry in ``data``, or None when it is not one whole entry of this format whose
     MAC under ``key`` holds (an entry written or edited by anyone without the key)."""
-    import hmac
-
     head, _, payload = data.partition(b"\n")
     parts = head.split(b" ")
     if len(parts) != 3 or parts[0] != _MAGIC or parts[1] != str(FORMAT).encode():

@@ -18,6 +18,12 @@ from lxml import etree
 
 from sensorkit.base.errors import InputError
 from sensorkit.base.findings import Finding, Severity, SourceRef
+from sensorkit.loading.input_findings import (
+    encoding_finding,
+    limit_finding,
+    prefixed_root_finding,
+    xml_finding,
+)
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver
 
@@ -306,78 +312,6 @@ def confine_input(path: Path, resolver: PackageResolver) -> None:
         raise InputError(msg)
 
 
-def _xml_finding(file: str, message: str, line: int | None, column: int | None) -> Finding:
-    return Finding(
-        "SK101",
-        Severity.ERROR,
-        f"not well-formed XML: {message}",
-        SourceRef(file, line),
-        column=column,
-        fix="fix the XML at that line and column (an unclosed tag, a stray '<' or '&', a bad attribute quote)",
-    )
-
-
-def _limit_finding(rule: str, file: str, message: str, line: int | None) -> Finding:
-    return Finding(
-        rule,
-        Severity.ERROR,
-        message,
-        SourceRef(file, line),
-        fix="this is not a robot description sensorkit can check: look for generated or "
-        "corrupted content (a runaway macro or a loop in a script that wrote the file)",
-    )
-
-
-# Byte order marks of the encodings ROS's own readers refuse: xacro opens the file as
-# UTF-8 text (xacro 2.0.8 __init__.py parse: open(filename), "'utf-8' codec can't decode
-# byte 0xff"), and urdfdom's TinyXML-2 reads UTF-8 only (check_urdf on a UTF-16 file:
-# "Error document empty"). UTF-32 first: its little-endian mark starts as UTF-16's does.
-_FOREIGN_BOMS = (
-    (b"\xff\xfe\x00\x00", "UTF-32"),
-    (b"\x00\x00\xfe\xff", "UTF-32"),
-    (b"\xff\xfe", "UTF-16"),
-    (b"\xfe\xff", "UTF-16"),
-)
-
-
-def encoding_finding(where: str, data: bytes) -> Finding | None:
-    """SK101 for a file in UTF-16 or UTF-32 (a byte order mark, or a NUL in its first
-    bytes), which xacro, check_urdf, robot_state_publisher and libsdformat refuse."""
-    name = next((enc for bom, enc in _FOREIGN_BOMS if data.startswith(bom)), None)
-    if name is None and b"\x00" in data[:4]:
-        name = "UTF-16"
-    if name is None:
-        return None
-    return Finding(
-        "SK101",
-        Severity.ERROR,
-        f"the file is {name}: xacro, check_urdf and robot_state_publisher read UTF-8 only and "
-        "refuse it",
-        SourceRef(where, 1),
-        column=1,
-        fix="save the file as UTF-8 (iconv -f " + name + " -t UTF-8 FILE > NEW, or your editor's encoding menu)",
-    )
-
-
-def prefixed_root_finding(root: etree._Element, where: str) -> Finding | None:
-    """SK101 for a ``<urdf:robot xmlns:urdf=...>`` root: urdfdom looks for an element named
-    exactly ``robot`` (check_urdf: "Could not find the 'robot' element in the xml file")."""
-    if not isinstance(root.tag, str) or not root.prefix:
-        return None
-    local = etree.QName(root).localname
-    if local not in ("robot", "sdf"):
-        return None
-    tool = "check_urdf and robot_state_publisher (urdfdom)" if local == "robot" else "libsdformat"
-    return Finding(
-        "SK101",
-        Severity.ERROR,
-        f"the root element is <{root.prefix}:{local}>: {tool} look for an element named "
-        f"exactly '{local}' and refuse the file (\"Could not find the '{local}' element\")",
-        SourceRef(where, root.sourceline),
-        fix=f"write the root as <{local}> with no prefix (a default xmlns=\"...\" is fine)",
-    )
-
-
 def drop_default_namespace(root: etree._Element) -> etree._Element:
     """Remove a default xmlns from element tags, as urdfdom (TinyXML) ignores it too."""
     ns = root.nsmap.get(None)
@@ -409,20 +343,20 @@ def parse_plain(path: Path, data: bytes, sdf: bool = False, limit: int | None = 
     at most ``limit`` elements (see :func:`parse_bounded`)."""
     where = display_path(path)
     if not data.strip():
-        return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
+        return LoadResult(None, [xml_finding(where, "the file is empty", 1, 1)])
     refused = encoding_finding(where, data)
     if refused is not None:
         return LoadResult(None, [refused])
     reason = forbid_entities(data)
     if reason:
-        return LoadResult(None, [_xml_finding(where, reason, 1, 1)])
+        return LoadResult(None, [xml_finding(where, reason, 1, 1)])
     try:
         root = parse_bounded(data, limit)
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
-        return LoadResult(None, [_xml_finding(where, str(exc.msg), line, col)])
+        return LoadResult(None, [xml_finding(where, str(exc.msg), line, col)])
     except OverLimit as exc:
-        return LoadResult(None, [_limit_finding("SK101", where, str(exc), exc.line)])
+        return LoadResult(None, [limit_finding("SK101", where, str(exc), exc.line)])
     _check_root(root, where, sdf)
     refused = prefixed_root_finding(root, where)
     if refused is not None:
@@ -467,7 +401,7 @@ def load_description(
         return parse_plain(path, data, limit=limit)
     where = display_path(path)
     if not data.strip():
-        return LoadResult(None, [_xml_finding(where, "the file is empty", 1, 1)])
+        return LoadResult(None, [xml_finding(where, "the file is empty", 1, 1)])
     # Strict pre-parse: well-formedness with exact position, and no entities, before xacro.
     plain = parse_plain(path, data, sdf, limit)
     if plain.document is None:
@@ -483,13 +417,13 @@ def load_description(
     outcome.xml = None  # the text is not needed again: its memory goes now
     if len(xml) > MAX_FILE_BYTES:
         msg = f"xacro output: {len(xml)} bytes is larger than the {MAX_FILE_BYTES} sensorkit reads"
-        return LoadResult(None, [_limit_finding("SK102", where, msg, None)])
+        return LoadResult(None, [limit_finding("SK102", where, msg, None)])
     try:
         root = parse_bounded(xml, limit)
     except etree.XMLSyntaxError as exc:  # xacro produced something odd; report, don't crash
-        return LoadResult(None, [_xml_finding(where, f"xacro output: {exc.msg}", None, None)])
+        return LoadResult(None, [xml_finding(where, f"xacro output: {exc.msg}", None, None)])
     except OverLimit as exc:  # the output's line is not the file's: no line
-        return LoadResult(None, [_limit_finding("SK102", where, f"xacro output: {exc}", None)])
+        return LoadResult(None, [limit_finding("SK102", where, f"xacro output: {exc}", None)])
     del xml
     _check_root(root, where, sdf)
     said = _arg_findings(where, data, args or {}, outcome.files, overlay, root)
@@ -561,7 +495,7 @@ def _expansion_finding(path: Path, outcome: object) -> Finding:
     file = display_path(outcome.error_file) if outcome.error_file else display_path(path)
     stack = "; ".join(outcome.stack)
     if outcome.error_kind == "xml":
-        return _xml_finding(file, outcome.message, outcome.error_line, outcome.error_column)
+        return xml_finding(file, outcome.message, outcome.error_line, outcome.error_column)
     if outcome.error_kind == "package":
         searched = "; ".join(outcome.searched)
         return Finding(

@@ -40,17 +40,19 @@ from sensorkit.base.findings import Finding
 from sensorkit.loading.document import (
     Document,
     OverLimit,
-    _limit_finding,
-    _xml_finding,
     display_path,
     drop_default_namespace,
-    encoding_finding,
     max_elements,
     parse_bounded,
-    prefixed_root_finding,
     read_input,
 )
 from sensorkit.loading.formats import is_sdf_path
+from sensorkit.loading.input_findings import (
+    encoding_finding,
+    limit_finding,
+    prefixed_root_finding,
+    xml_finding,
+)
 from sensorkit.loading.marks import LOC_ATTR, forbid_entities
 from sensorkit.loading.packages import PackageResolver, valid_package_name
 from sensorkit.loading.uris import OUTSIDE, UriTarget, resolve_uri
@@ -77,20 +79,20 @@ def parse_sdf(
     data = overlay[key] if overlay and key in overlay else read_input(path)
     where = display_path(path)
     if not data.strip():
-        return None, [_xml_finding(where, "the file is empty", 1, 1)]
+        return None, [xml_finding(where, "the file is empty", 1, 1)]
     refused = encoding_finding(where, data)
     if refused is not None:
         return None, [refused]
     reason = forbid_entities(data)
     if reason:
-        return None, [_xml_finding(where, reason, 1, 1)]
+        return None, [xml_finding(where, reason, 1, 1)]
     try:
         root = parse_bounded(data, max_elements(untrusted))
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (exc.lineno, exc.offset)
-        return None, [_xml_finding(where, str(exc.msg), line, col)]
+        return None, [xml_finding(where, str(exc.msg), line, col)]
     except OverLimit as exc:
-        return None, [_limit_finding("SK101", where, str(exc), exc.line)]
+        return None, [limit_finding("SK101", where, str(exc), exc.line)]
     tag = etree.QName(root).localname if isinstance(root.tag, str) else "?"
     if tag != "sdf":
         msg = f"{where}: root element is <{tag}>, not <sdf>: not an SDF description"
