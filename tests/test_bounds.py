@@ -109,8 +109,10 @@ def test_a_robot_at_the_element_cap_is_read(tmp_path: Path) -> None:
     body = "<a/>" * (MAX_ELEMENTS_UNTRUSTED - 2)
     (tmp_path / "r.urdf").write_text(f'<robot name="r"><link name="b"/>{body}</robot>')
     run = sensorkit("validate", "r.urdf", "-q", "--untrusted", cwd=tmp_path)
-    assert run.code == 1, run.err[-500:]
-    assert "SK105 warning" in run.out and "more than" not in run.out
+    # exit 0: no error. The one error this robot had, SK301 on a root link Gazebo drops,
+    # is info since issue 35: the link carries no sensor, visual or collision to lose.
+    assert run.code == 0, run.err[-500:]
+    assert "SK105 warning" in run.out and "SK301 info" in run.out and "more than" not in run.out
     assert run.rss < GB and run.seconds < 60
 
 

@@ -118,6 +118,7 @@ def test_a_killed_render_leaves_no_expansion_running(tmp_path: Path) -> None:
         "sensorkit",
         "render",
         "preview",
+        "--untrusted",  # trusted input is expanded in-process since issue 37: this forks it
         str(robot),
         "-o",
         str(tmp_path / "out"),
@@ -131,7 +132,7 @@ def test_a_killed_render_leaves_no_render_worker_running(tmp_path: Path) -> None
         """
         import time, types
         from sensorkit.render import workers
-        workers.run_job = lambda run, job, progress: time.sleep(3600)
+        workers.run_job = lambda run, job, progress, deadline=None: time.sleep(3600)
         run = types.SimpleNamespace(world=types.SimpleNamespace(quiet=types.SimpleNamespace(forget_sink=lambda: None)))
         workers._fork(run, [object()])
         time.sleep(3600)
