@@ -27,8 +27,6 @@ from lxml import etree
 
 from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding
-from sensorkit.knowledge import plugins as known
-from sensorkit.knowledge.gazebo_ros import PRINCIPAL_POINT_FAMILIES, PRINCIPAL_POINT_PARAMS
 from sensorkit.knowledge.sensor_blocks import (
     CLASSIC_DEPTH_DISTORTION_SOURCE,
     CLASSIC_DEPTH_TYPES,
@@ -42,7 +40,7 @@ from sensorkit.knowledge.sensor_blocks import (
     ROS2_TX_TAG,
 )
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.lint.rules.principal import far_from_centre
+from sensorkit.lint.rules.principal import far_from_centre, written_principal_points
 from sensorkit.model.frames import publishing_plugin, ros_generation
 from sensorkit.model.parse import child, parse_float
 from sensorkit.model.sensors import CameraSpec, Plugin, Sensor
@@ -320,37 +318,21 @@ PRINCIPAL_PX = 1.5
     formats=("urdf", "sdf"),
 )
 def principal_point_offset(ctx: Context) -> Iterator[Finding]:
-    ros = ros_generation(ctx.target)
-    if ros not in PRINCIPAL_POINT_PARAMS:
-        return
-    cx_tag, cy_tag, zero_is_default = PRINCIPAL_POINT_PARAMS[ros]
-    for s in ctx.robot.sensors:
-        if not s.is_camera:
+    for w in written_principal_points(ctx):
+        value, size, tag = w.value, w.size, w.tag
+        if (value == 0 and w.zero_is_default) or far_from_centre(value, size):
+            continue  # computed, or SK411's
+        off = abs(value - size / 2.0)
+        if off <= PRINCIPAL_PX:
             continue
-        for p in s.plugins:
-            spec = known.lookup(p.filename, ros)
-            if spec is None or spec.family not in PRINCIPAL_POINT_FAMILIES:
-                continue
-            for cam in s.cameras:
-                if cam.lens_intrinsics is not None:
-                    continue  # the image may be rendered off-centre (SK409's ground)
-                for tag, size in ((cx_tag, cam.width), (cy_tag, cam.height)):
-                    value = _number(p, tag)
-                    if value is None or size is None or size <= 0:
-                        continue
-                    if (value == 0 and zero_is_default) or far_from_centre(value, size):
-                        continue  # computed, or SK411's
-                    off = abs(value - size / 2.0)
-                    if off <= PRINCIPAL_PX:
-                        continue
-                    yield ctx.judged(
-                        "SK417",
-                        Consequence(Role.CALIBRATION, size / 2.0, value, equal=False),
-                        f"camera {s.name!r}: <{tag}> {value:g} is {off:.3g} px from the centre of the "
-                        f"{size} px image ({size / 2.0:g}), where Gazebo Classic renders the principal "
-                        "point (gazebo/rendering/Camera.cc:2033-2035, 11.10.2: a symmetric frustum): "
-                        f"camera_info misplaces every bearing by {off:.3g} px",
-                        child(p.element, tag),
-                        sensor=s.name,
-                        fix=f"remove <{tag}> (the plugin then computes {(size + 1) / 2.0:g})",
-                    )
+        yield ctx.judged(
+            "SK417",
+            Consequence(Role.CALIBRATION, size / 2.0, value, equal=False),
+            f"camera {w.sensor!r}: <{tag}> {value:g} is {off:.3g} px from the centre of the "
+            f"{size} px image ({size / 2.0:g}), where Gazebo Classic renders the principal "
+            "point (gazebo/rendering/Camera.cc:2033-2035, 11.10.2: a symmetric frustum): "
+            f"camera_info misplaces every bearing by {off:.3g} px",
+            child(w.plugin.element, tag),
+            sensor=w.sensor,
+            fix=f"remove <{tag}> (the plugin then computes {(size + 1) / 2.0:g})",
+        )

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge import plugins as known
@@ -42,6 +43,29 @@ def far_from_centre(value: float, size: int) -> bool:
     formats=("urdf", "sdf"),
 )
 def principal_point(ctx: Context) -> Iterator[Finding]:
+    for w in written_principal_points(ctx):
+        yield from _judge(ctx, w)
+
+
+@dataclass(frozen=True)
+class WrittenPoint:
+    """A principal point coordinate a gazebo_ros camera plugin writes, with the image size
+    (in pixels, along ``axis``) it is measured against."""
+
+    sensor: str
+    plugin: Plugin
+    tag: str
+    size: int
+    axis: str
+    value: float
+    zero_is_default: bool  # ROS 1: 0 means (size + 1) / 2
+
+
+def written_principal_points(ctx: Context) -> Iterator[WrittenPoint]:
+    """Each finite principal point (``<Cx>``/``<Cy>``, ``<cx>``/``<cy>``) a known camera
+    plugin writes for a camera without ``<lens><intrinsics>`` (whose image may be rendered
+    off-centre: SK409's ground), on the targets whose plugins read it. SK411 and SK417
+    judge them."""
     ros = ros_generation(ctx.target)
     if ros not in PRINCIPAL_POINT_PARAMS:
         return
@@ -55,27 +79,17 @@ def principal_point(ctx: Context) -> Iterator[Finding]:
                 continue
             for cam in s.cameras:
                 if cam.lens_intrinsics is not None:
-                    continue  # the image may be rendered off-centre (SK409's ground)
-                for tag, size, axis in (
-                    (cx_tag, cam.width, "width"),
-                    (cy_tag, cam.height, "height"),
-                ):
-                    yield from _judge(ctx, s.name, p, tag, size, axis, zero_is_default)
+                    continue
+                for tag, size, axis in ((cx_tag, cam.width, "width"), (cy_tag, cam.height, "height")):
+                    value, _ = parse_float(p.param(tag))
+                    if value is None or not math.isfinite(value) or size is None or size <= 0:
+                        continue
+                    yield WrittenPoint(s.name, p, tag, size, axis, value, zero_is_default)
 
 
-def _judge(
-    ctx: Context,
-    sensor: str,
-    p: Plugin,
-    tag: str,
-    size: int | None,
-    axis: str,
-    zero_is_default: bool,
-) -> Iterator[Finding]:
-    value, _ = parse_float(p.param(tag))
-    if value is None or not math.isfinite(value) or size is None or size <= 0:
-        return
-    if value == 0 and zero_is_default:
+def _judge(ctx: Context, w: WrittenPoint) -> Iterator[Finding]:
+    value, size, tag = w.value, w.size, w.tag
+    if value == 0 and w.zero_is_default:
         return  # ROS 1: 0 means (size + 1) / 2
     if not far_from_centre(value, size):
         return
@@ -83,11 +97,11 @@ def _judge(
     yield ctx.finding(
         "SK411",
         Severity.ERROR,
-        f"camera {sensor!r}: <{tag}> {value:g} is {abs(value - size / 2.0):.1f} px from the centre of "
-        f"the {size} px {axis} ({size / 2.0:g}); Gazebo renders the principal point at the centre, so "
+        f"camera {w.sensor!r}: <{tag}> {value:g} is {abs(value - size / 2.0):.1f} px from the centre of "
+        f"the {size} px {w.axis} ({size / 2.0:g}); Gazebo renders the principal point at the centre, so "
         "camera_info does not match the image (a principal point is in pixels, not metres)",
-        child(p.element, tag),
-        sensor=sensor,
+        child(w.plugin.element, tag),
+        sensor=w.sensor,
         fix=f"remove <{tag}> (the plugin then computes {centre:g})"
-        + (" or write 0" if zero_is_default else ""),
+        + (" or write 0" if w.zero_is_default else ""),
     )
