@@ -67,32 +67,10 @@ ROBOTS = ROOT / "tests" / "realworld" / "robots.yaml"
 VENV_BIN = Path(sys.executable).parent
 CHECK_URDF = "/usr/bin/check_urdf"
 
-# What ament_index_python.packages does for get_package_share_directory (the real module is
-# built by colcon, not published on PyPI): the first AMENT_PREFIX_PATH prefix holding the
-# package's resource-index marker, and its share/NAME.
-STAND_IN = '''"""Stand-in for ament_index_python: the package lookup of the real one."""
-import os
-
-
-class PackageNotFoundError(KeyError):
-    pass
-
-
-def get_search_paths():
-    return [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
-
-
-def get_package_prefix(package_name):
-    for prefix in get_search_paths():
-        marker = os.path.join(prefix, "share", "ament_index", "resource_index", "packages", package_name)
-        if os.path.isfile(marker):
-            return prefix
-    raise PackageNotFoundError(f"package '{package_name}' not found, searching: {get_search_paths()}")
-
-
-def get_package_share_directory(package_name, print_warning=True):
-    return os.path.join(get_package_prefix(package_name), "share", package_name)
-'''
+# The stand-in for ament_index_python the tests give xacro too (tests/xacro_peer.py): the
+# first AMENT_PREFIX_PATH prefix holding the package's resource-index marker, and its share/NAME.
+sys.path.insert(0, str(ROOT / "tests"))
+from xacro_peer import STAND_IN  # noqa: E402
 
 
 @dataclass
