@@ -81,18 +81,7 @@ def test_fast_xacro_is_byte_identical_to_xacros_command_line(tmp_path: Path) -> 
     jobs = _jobs()
     assert len(jobs) > 400
     env = setup(tmp_path, list(corpus_package_paths()))
-    run = subprocess.run(
-        [sys.executable, str(PEER)],
-        input=json.dumps(jobs),
-        env=env,
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=1200,
-        check=False,
-    )
-    assert run.returncode == 0, run.stderr[-3000:]
-    fast = json.loads(run.stdout)
+    fast = _run_peer(jobs, env, tmp_path, timeout=1200)
     with ThreadPoolExecutor(2) as pool:
         peer = list(pool.map(lambda argv: _cli(argv, env, tmp_path), jobs))
     differ = []
@@ -198,18 +187,7 @@ def test_successive_edits_in_one_process_equal_cold_runs(tmp_path: Path) -> None
             edited.unlink()
             edited.write_text(text)
             jobs.append([str(edited), *args])
-    run = subprocess.run(
-        [sys.executable, str(PEER)],
-        input=json.dumps(jobs),
-        env=env,
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=600,
-        check=False,
-    )
-    assert run.returncode == 0, run.stderr[-3000:]
-    fast = json.loads(run.stdout)
+    fast = _run_peer(jobs, env, tmp_path, timeout=600)
     for argv, ours in zip(jobs, fast, strict=True):
         theirs = _cli(argv, env, tmp_path)
         assert theirs["code"] == 0, theirs["err"][-500:]
@@ -246,3 +224,20 @@ def test_the_cached_lexer_gives_xacros_tokens_and_errors(text: str) -> None:
     assert tokens(cached) == expected  # made
     assert tokens(cached) == expected  # replayed
     assert (text in xacro_fast._TOKENS) == (not isinstance(expected, str))
+
+
+def _run_peer(jobs: list[list[str]], env: dict[str, str], cwd: Path, timeout: int) -> list[Any]:
+    """The in-process expansions of ``jobs`` by one driver process (PEER), caches warm
+    across them, as JSON."""
+    run = subprocess.run(
+        [sys.executable, str(PEER)],
+        input=json.dumps(jobs),
+        env=env,
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    return list(json.loads(run.stdout))
