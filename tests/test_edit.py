@@ -290,6 +290,25 @@ def test_utf16_with_bom(rover: Path) -> None:
     assert decoded.startswith(data.decode("utf-16").split("</robot>")[0][:200])
 
 
+def test_add_into_a_file_ros_refuses_says_so(rover: Path) -> None:
+    """add-* edits a UTF-16 file or a prefixed <r:robot> root byte for byte, and says in a
+    note that xacro and check_urdf refuse the file (validate's SK101). The long fuzz run
+    found the prefixed root edited without a word."""
+    text = rover.read_text()
+    utf16 = text.replace('<?xml version="1.0"?>', '<?xml version="1.0" encoding="UTF-16"?>')
+    rover.write_bytes(utf16.encode("utf-16"))
+    notes = add_sensor(AddRequest(rover, "imu", "imu", "base_link"), dry_run=True).notes
+    assert any("is UTF-16" in n and "refuse it" in n for n in notes), notes
+    prefixed = text.replace("<robot ", '<r:robot xmlns:r="urn:robot" ', 1).replace("</robot>", "</r:robot>")
+    rover.write_text(prefixed)
+    notes = add_sensor(AddRequest(rover, "imu", "imu", "base_link"), dry_run=True).notes
+    assert any("root element is <r:robot>" in n for n in notes), notes
+    # near miss: the plain file gets neither note
+    rover.write_text(text)
+    notes = add_sensor(AddRequest(rover, "imu", "imu", "base_link"), dry_run=True).notes
+    assert not any("refuse" in n for n in notes), notes
+
+
 def test_closing_tag_lookalikes_are_skipped(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -63,7 +63,7 @@ from sensorkit.loading.document import (
     strict_parser,
 )
 from sensorkit.loading.formats import is_sdf_path
-from sensorkit.loading.input_findings import encoding_finding
+from sensorkit.loading.input_findings import encoding_finding, prefixed_root_finding
 from sensorkit.loading.xacro_expand import forbid_entities
 
 if TYPE_CHECKING:
@@ -215,9 +215,10 @@ def plan_add(req: AddRequest) -> AddResult:
     notes: list[str] = []
     # A UTF-16/32 file is edited in its own encoding, byte for byte, but xacro and
     # check_urdf refuse it (validate's SK101): said, not hidden.
-    foreign = encoding_finding(src.where, src.data)
-    if foreign is not None:
-        notes.append(f"warning: {src.where}: {foreign.message}; {foreign.fix}")
+    # So is a prefixed root (<r:robot xmlns:r=...>): the edit keeps it, urdfdom refuses it.
+    for refused in (encoding_finding(src.where, src.data), prefixed_root_finding(src.root, src.where)):
+        if refused is not None:
+            notes.append(f"warning: {src.where}: {refused.message}; {refused.fix}")
     pkg = _read_package(req, src, notes)
     params = dict(req.params)
     if pkg is not None and pkg.spec is not None:
