@@ -299,7 +299,9 @@ def test_add_into_a_file_ros_refuses_says_so(rover: Path) -> None:
     rover.write_bytes(utf16.encode("utf-16"))
     notes = add_sensor(AddRequest(rover, "imu", "imu", "base_link"), dry_run=True).notes
     assert any("is UTF-16" in n and "refuse it" in n for n in notes), notes
-    prefixed = text.replace("<robot ", '<r:robot xmlns:r="urn:robot" ', 1).replace("</robot>", "</r:robot>")
+    prefixed = text.replace("<robot ", '<r:robot xmlns:r="urn:robot" ', 1).replace(
+        "</robot>", "</r:robot>"
+    )
     rover.write_text(prefixed)
     notes = add_sensor(AddRequest(rover, "imu", "imu", "base_link"), dry_run=True).notes
     assert any("root element is <r:robot>" in n for n in notes), notes
