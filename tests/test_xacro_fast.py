@@ -4,8 +4,10 @@ command line gives, byte for byte, on every file of the corpus.
 The corpus's files as tests/test_corpus.py enumerates them (its repositories' .urdf and
 .xacro files, and every .urdf and .xacro file of the real-world set), each without args,
 and each real-world robot of tests/realworld/robots.yaml with its args. xacro's command
-line runs once per job, as users run it; the fast side (tests/xacro_peer.py) runs every
-job in one process, so its caches carry over from file to file as in the language server.
+line runs once per job, as users run it (its entry point in a process forked per job from
+one that imported xacro: tests/xacro_cli_forks.py; a sample runs the script itself too);
+the fast side (tests/xacro_peer.py) runs every job in one process, so its caches carry over
+from file to file as in the language server.
 The jobs xacro fails on must fail alike (status, and the same error words on stderr).
 """
 
@@ -34,6 +36,7 @@ pytestmark = needs_corpus
 
 XACRO = str(Path(sys.executable).parent / "xacro")
 PEER = Path(__file__).resolve().parent / "xacro_peer.py"
+FORKS = Path(__file__).resolve().parent / "xacro_cli_forks.py"
 
 
 def _files() -> list[Path]:
@@ -82,8 +85,18 @@ def test_fast_xacro_is_byte_identical_to_xacros_command_line(tmp_path: Path) -> 
     assert len(jobs) > 400
     env = setup(tmp_path, list(corpus_package_paths()))
     fast = _run_peer(jobs, env, tmp_path, timeout=1200)
-    with ThreadPoolExecutor(2) as pool:
-        peer = list(pool.map(lambda argv: _cli(argv, env, tmp_path), jobs))
+    with ThreadPoolExecutor(2) as pool:  # xacro's main, forked once per job: two halves
+        halves = list(
+            pool.map(lambda half: _cli_forks(half, env, tmp_path), (jobs[::2], jobs[1::2]))
+        )
+    peer: list[dict[str, Any]] = [{}] * len(jobs)
+    peer[::2], peer[1::2] = halves
+    # The forks are xacro's command line: the script itself gives the same on a sample,
+    # failing jobs included.
+    failing = [i for i, p in enumerate(peer) if p["code"] != 0][:3]
+    sample = sorted({*range(0, len(jobs), len(jobs) // 8), *failing})
+    for i in sample:
+        assert _cli(jobs[i], env, tmp_path) == peer[i], jobs[i]
     differ = []
     for argv, ours, theirs in zip(jobs, fast, peer, strict=True):
         same = ours["code"] == theirs["code"] and ours["out"] == theirs["out"]
@@ -224,6 +237,22 @@ def test_the_cached_lexer_gives_xacros_tokens_and_errors(text: str) -> None:
     assert tokens(cached) == expected  # made
     assert tokens(cached) == expected  # replayed
     assert (text in xacro_fast._TOKENS) == (not isinstance(expected, str))
+
+
+def _cli_forks(jobs: list[list[str]], env: dict[str, str], cwd: Path) -> list[Any]:
+    """xacro's command line on each of ``jobs``, forked from one process (FORKS)."""
+    run = subprocess.run(
+        [sys.executable, str(FORKS)],
+        input=json.dumps(jobs),
+        env=env,
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=1200,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    return list(json.loads(run.stdout))
 
 
 def _run_peer(jobs: list[list[str]], env: dict[str, str], cwd: Path, timeout: int) -> list[Any]:
