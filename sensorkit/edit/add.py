@@ -216,10 +216,7 @@ def plan_add(req: AddRequest) -> AddResult:
     # A UTF-16/32 file is edited in its own encoding, byte for byte, but xacro and
     # check_urdf refuse it (validate's SK101): said, not hidden.
     # So is a prefixed root (<r:robot xmlns:r=...>): the edit keeps it, urdfdom refuses it.
-    for refused in (
-        encoding_finding(src.where, src.data),
-        prefixed_root_finding(src.root, src.where),
-    ):
+    for refused in (encoding_finding(src.where, src.data), prefixed_root_finding(src.root, src.where)):
         if refused is not None:
             notes.append(f"warning: {src.where}: {refused.message}; {refused.fix}")
     pkg = _read_package(req, src, notes)

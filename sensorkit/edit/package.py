@@ -421,6 +421,7 @@ def _bridge_append(
     changes); entries whose ROS topic the file already has are left out and said."""
     import yaml
 
+    from sensorkit.base import yamlguard
     from sensorkit.exporters.bridge import bridge_yaml
 
     shown = display_path(path)
@@ -430,7 +431,7 @@ def _bridge_append(
         return []
     try:
         text = data.decode("utf-8")
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = yamlguard.compose(text)
     except (UnicodeDecodeError, yaml.YAMLError):
         notes.append(f"{shown} left as it is: it does not read as YAML")
         return []
@@ -460,7 +461,7 @@ def _bridge_append(
     lead = "" if not text or text.endswith("\n") else newline
     new = (text + lead + block).encode("utf-8")
     try:
-        loaded = yaml.safe_load(new.decode("utf-8"))
+        loaded = yamlguard.safe_load(new.decode("utf-8"))
     except yaml.YAMLError:
         loaded = None
     if not isinstance(loaded, list) or len(loaded) != len(node.value) + len(fresh):

@@ -18,6 +18,7 @@ from typing import Any, NoReturn
 
 import yaml
 
+from sensorkit.base import yamlguard
 from sensorkit.base.errors import InputError
 from sensorkit.generate.catalog import NUMBER
 
@@ -186,6 +187,10 @@ class Reader:
 def compose(path: Path, text: str, file: str) -> yaml.Node | None:
     """The YAML ``text`` as one node tree (None for an empty document); ``file`` names it
     in the message of a malformed document."""
+    try:
+        yamlguard.check(text)
+    except yamlguard.TooDeep as exc:
+        raise InputError(f"{file}: malformed YAML: {exc}") from None
     loader = yaml.SafeLoader(text)
     try:
         return loader.get_single_node()
@@ -199,6 +204,9 @@ def compose(path: Path, text: str, file: str) -> yaml.Node | None:
         raise InputError(msg) from None
     except yaml.YAMLError as exc:
         msg = f"{file}: malformed YAML: {exc}"
+        raise InputError(msg) from None
+    except RecursionError:  # block nesting (- - - ...) past the composer's recursion
+        msg = f"{file}: malformed YAML: nests too deeply for a robot YAML"
         raise InputError(msg) from None
     finally:
         loader.dispose()

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import yaml
 
+from sensorkit.base import yamlguard
 from sensorkit.base.errors import EditRefused
 from sensorkit.generate.catalog import NUMBER, SHARED_PARAMS, sensor_macros
 
@@ -93,7 +94,7 @@ def append_sensor(text: str, entry: SensorEntry, where: str) -> str:
     """
     newline = "\r\n" if "\r\n" in text else "\n"
     try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        root = yamlguard.compose(text)
     except yaml.YAMLError as exc:
         msg = f"{where}: not YAML ({str(exc).splitlines()[0]})"
         raise EditRefused(msg) from None

@@ -46,18 +46,18 @@ def read_bridge(path: Path, display: str | None = None) -> list[BridgeTopic]:
     """Entries of a parameter_bridge YAML file (raises BridgeError when it is not one)."""
     import yaml
 
+    from sensorkit.base import yamlguard
+
     name = display or str(path)
     try:
         if path.stat().st_size > MAX_BRIDGE_BYTES:
             raise BridgeError(f"{name}: larger than 1 MiB: not a bridge configuration")
         text = path.read_text("utf-8")
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = yamlguard.compose(text)
     except (OSError, UnicodeDecodeError) as exc:
         raise BridgeError(f"{name}: cannot read: {exc}") from exc
     except yaml.YAMLError as exc:
         raise BridgeError(f"{name}: not YAML: {str(exc).splitlines()[0]}") from exc
-    except RecursionError:  # PyYAML composes nested collections recursively: [[[[...
-        raise BridgeError(f"{name}: nests too deeply to be a bridge configuration") from None
     if not isinstance(node, yaml.SequenceNode):
         raise BridgeError(f"{name}: not a ros_gz_bridge list of topics")
     out: list[BridgeTopic] = []

@@ -199,8 +199,10 @@ def yaml_entities(text: str) -> Entity:
     """The entity tree of a YAML launch file (raises ValueError when it is not one)."""
     import yaml
 
+    from sensorkit.base import yamlguard
+
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = yamlguard.compose(text)
     except yaml.YAMLError as exc:
         raise ValueError(str(exc).splitlines()[0]) from None
     if not isinstance(node, yaml.MappingNode) or len(node.value) != 1:

@@ -35,8 +35,10 @@ def _from_file(reading: Reading, spec: NodeSpec, source: str | None, key: str) -
         return True, None
     import yaml
 
+    from sensorkit.base import yamlguard
+
     try:
-        data = yaml.safe_load(read_regular(path, MAX_LAUNCH_BYTES).decode("utf-8"))
+        data = yamlguard.safe_load(read_regular(path, MAX_LAUNCH_BYTES).decode("utf-8"))
     except (OSError, UnicodeDecodeError, yaml.YAMLError, RecursionError):
         return True, None
     if not isinstance(data, dict):
