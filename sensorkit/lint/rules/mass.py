@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from sensorkit.base.consequence import Consequence, Role
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
@@ -102,7 +102,9 @@ def inertia_problem(inertial: Inertial) -> str | None:
     "a link joined by a non-fixed joint has an `<inertial>` with mass > 0, else Gazebo drops "
     "it and its subtree (name what is lost). Severity by consequence: an error when what is "
     "lost holds a sensor (it publishes nothing) or a body (a visual or collision the robot "
-    "loses); info when the links lost hold neither, so they only ever fed TF",
+    "loses); info when the links lost hold neither, so they only ever fed TF. A massless link "
+    "fixed to `world` is not created but the links below it are kept: reported only when it "
+    "holds a sensor, a body or joints to links below",
     "sdformat, at spawn",
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
@@ -123,9 +125,26 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
         sensors = [s.name for s in robot.sensors if s.reference in lost_set]
         joint = robot.parent_joint.get(name)
         what = "has no <inertial>" if link.inertial is None else "has zero mass"
+        kept_below: list[str] = []
+        if name in conv.uncreated:
+            # Fixed to 'world' by a joint lumping would reduce: sdformat creates no link for
+            # it but converts the links below it (sensorkit.model.sdf's module doc, with the
+            # lines of sdformat 9, 12 and 14). Only what it holds itself is lost.
+            kept_below = [
+                j.child for j in robot.child_joints.get(name, [])
+                if j.child is not None and j.child not in lost_set
+            ]
+            if not sensors and not any(_has_body(robot.link_map[n]) for n in lost) and not kept_below:
+                continue  # nothing Gazebo would simulate is lost, and sdformat says nothing
         if joint is None:
             where = f"the root link {name!r} {what}, even with the links fixed to it"
             loss = "Gazebo drops the whole robot"
+        elif name in conv.uncreated:
+            where = f"link {name!r} (fixed joint {joint.name!r} to 'world') {what}"
+            loss = (
+                "sdformat never lumps a link into 'world' and creates no link without mass, so "
+                "Gazebo has no such link; the links below it are still converted"
+            )
         elif joint.name in conv.preserved_joints:
             where = f"link {name!r} (fixed joint {joint.name!r} with preserveFixedJoint) {what}"
             loss = "Gazebo drops it and everything below it"
@@ -140,6 +159,12 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
             cons = Consequence(Role.OUTPUT, f"sensors {_few(sensors)}", "none of them")
         elif bodies:
             cons = Consequence(Role.GEOMETRY, f"the bodies of {_few(bodies)}", "none of them")
+        elif kept_below:
+            # The joints to the links below name a parent the SDF lacks (sdformat writes the
+            # URDF parent's name: gazebosim/sdformat@sdf9 9ee2d4f3:src/parser_urdf.cc:3066, in CreateJoint);
+            # what Gazebo then does with them sensorkit has not read.
+            cons = Consequence(Role.GEOMETRY, f"joints from {name!r} to {_few(kept_below)}", UNKNOWN)
+            detail += f"; the joints to {_few(kept_below)} name it as their parent"
         else:
             # Nothing Gazebo would simulate: no sensor, visual or collision. Such a link only
             # names a frame for TF (robot_state_publisher places it from the URDF), e.g. PR2's

@@ -1,0 +1,78 @@
+"""Findings the fresh robots of issue 35 showed false, or errors that change nothing: each
+rule's trigger and near miss, with the simulator's source for what it now says."""
+
+from __future__ import annotations
+
+from builders import inertial, joint, link
+
+from sensorkit.base.findings import Severity
+
+
+def _world_robot(led_body: str = "", below: str = "", preserve: bool = False) -> str:
+    """A robot fixed to 'world', with a massless 'led_ring_link' fixed to world beside it
+    (NiryoRobotics/ned_ros niryo_ned2.urdf.xacro:30 and :274-278)."""
+    keep = (
+        '<gazebo reference="joint_led_ring"><preserveFixedJoint>true</preserveFixedJoint></gazebo>'
+        if preserve else ""
+    )
+    return (
+        '<?xml version="1.0"?><robot name="arm"><link name="world"/>'
+        + link("base_link", inertial(1.0, 0.01))
+        + joint("joint_world", "world", "base_link")
+        + f'<link name="led_ring_link">{led_body}</link>'
+        + joint("joint_led_ring", "world", "led_ring_link", "0 0 0.0923")
+        + below + keep + "</robot>"
+    )
+
+
+_VISUAL = '<visual><geometry><cylinder length="0.002" radius="0.08"/></geometry></visual>'
+_CHILD = link("ring_arm", inertial() + _VISUAL) + joint(
+    "ring_joint", "led_ring_link", "ring_arm", type="revolute",
+    extra='<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>',
+)
+
+
+def _sk301(check, text: str, target: str = "classic"):
+    return [f for f in check(text, target=target).findings if f.rule == "SK301"]
+
+
+def test_sk301_massless_link_fixed_to_world_holding_nothing_is_no_finding(check) -> None:
+    # sdformat never lumps into 'world' (gazebosim/sdformat@sdf9 9ee2d4f3:
+    # src/parser_urdf.cc:412; @sdf12 b9417e5b :421; @sdf14 8512585c :424), and CreateSDF
+    # does not return early for a link whose fixed parent joint it reduces (parentJointReduced:
+    # sdf9 :2679-2683; sdf12 :2697-2701; sdf14 :2700-2704): the link is not created (zero
+    # mass, sdf9 :2765-2772) and its children are still converted (sdf9 :2776-2780). With
+    # nothing in it, nothing changes and sdformat prints nothing: no finding, on every target.
+    for target in ("classic", "fortress", "harmonic"):
+        assert _sk301(check, _world_robot(), target) == [], target
+
+
+def test_sk301_massless_link_fixed_to_world_loses_only_what_it_holds(check) -> None:
+    # A visual on it is lost (the link is never created): an error, that says the links
+    # below are kept.
+    (f,) = _sk301(check, _world_robot(led_body=_VISUAL))
+    assert f.severity is Severity.ERROR
+    assert "the links below it are still converted" in f.message and "led_ring_link" in f.message
+    # A link below it on a revolute joint is converted, not dropped: its joint names a
+    # parent the SDF lacks (CreateJoint writes the URDF parent: sdf9 :3066), which
+    # sensorkit does not follow further: info, and 'ring_arm' is not said to be lost.
+    (g,) = _sk301(check, _world_robot(below=_CHILD))
+    assert g.severity is Severity.INFO and "ring_arm" in g.message
+    assert "everything below it" not in g.message
+
+
+def test_sk301_preserved_fixed_joint_to_world_drops_the_subtree(check) -> None:
+    # With preserveFixedJoint the joint is not one sdformat reduces: CreateSDF returns before
+    # the children (sdf9 :2683-2760): the link and everything below it are dropped.
+    (f,) = _sk301(check, _world_robot(below=_CHILD, preserve=True))
+    assert "everything below it" in f.message and "ring_arm" in f.message
+    assert f.severity is Severity.ERROR  # ring_arm's visual is lost
+
+
+def test_sk301_a_massless_link_lumped_into_a_real_parent_is_no_finding(check) -> None:
+    # The near miss of the common case: fixed to a link with mass, it is lumped (sdf9 :412-463).
+    text = _world_robot().replace(
+        joint("joint_led_ring", "world", "led_ring_link", "0 0 0.0923"),
+        joint("joint_led_ring", "base_link", "led_ring_link", "0 0 0.0923"),
+    )
+    assert _sk301(check, text) == []
