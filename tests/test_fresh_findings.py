@@ -76,3 +76,29 @@ def test_sk301_a_massless_link_lumped_into_a_real_parent_is_no_finding(check) ->
         joint("joint_led_ring", "base_link", "led_ring_link", "0 0 0.0923"),
     )
     assert _sk301(check, text) == []
+
+
+def test_sk406_one_vertical_sample_at_a_fine_resolution_says_both_values(check) -> None:
+    # bitcraze/crazyflie-simulation model.sdf:47-58: a gpu_lidar with one vertical sample at
+    # resolution 0.01. gz-sensors publishes max(1, floor(samples x resolution)) rows
+    # (gazebosim/gz-sensors@gz-sensors8 c8159af:src/Lidar.cc:389-397, Lidar::VerticalRangeCount)
+    # and renders <samples> rows (src/GpuLidarSensor.cc:212-214): 1 written, 1 published.
+    from builders import gz_robot
+
+    vertical = (
+        "<vertical><samples>1</samples><resolution>0.01</resolution>"
+        "<min_angle>0</min_angle><max_angle>0</max_angle></vertical>"
+    )
+    text = gz_robot().replace("</horizontal></scan>", f"</horizontal>{vertical}</scan>")
+    found = [f for f in check(text, target="harmonic").findings if f.rule == "SK406"]
+    assert [f.severity for f in found] == [Severity.INFO]
+    msg = found[0].message
+    assert "publishes 1 row, the 1 sample written" in msg and "written 1 row; the simulator uses 1 row" in msg
+    assert "not a whole beam count" not in msg
+    assert found[0].consequence is not None and found[0].consequence.changes_nothing
+    # Near miss: two samples at 0.01 still give one row, not the two written: a warning.
+    two = text.replace(
+        "<samples>1</samples><resolution>0.01</resolution><min_angle>0</min_angle><max_angle>0",
+        "<samples>2</samples><resolution>0.01</resolution><min_angle>-0.1</min_angle><max_angle>0.1",
+    )
+    assert [f.severity for f in check(two, target="harmonic").findings if f.rule == "SK406"] == [Severity.WARNING]
