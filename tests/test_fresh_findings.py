@@ -102,3 +102,34 @@ def test_sk406_one_vertical_sample_at_a_fine_resolution_says_both_values(check) 
         "<samples>2</samples><resolution>0.01</resolution><min_angle>-0.1</min_angle><max_angle>0.1",
     )
     assert [f.severity for f in check(two, target="harmonic").findings if f.rule == "SK406"] == [Severity.WARNING]
+
+
+def _imu(params: str) -> str:
+    from builders import robot
+
+    imu = (
+        '<link name="imu_link">' + inertial() + "</link>" + joint("imu_joint", "base_link", "imu_link")
+        + '<gazebo reference="imu_link"><sensor name="imu_sensor" type="imu"><update_rate>100</update_rate>'
+        f'<plugin filename="libgazebo_ros_imu_sensor.so" name="imu_plugin">{params}</plugin></sensor></gazebo>'
+    )
+    return robot(extra=imu)
+
+
+def test_sk602_xyz_offset_says_what_ros1_did_with_it(check) -> None:
+    # nasa-jpl/osr-rover-code gazebo.urdf.xacro:145. ROS 1's imu sensor plugin reads
+    # <xyzOffset> under "POSITION OFFSET, UNUSED" and applies only offset.Rot()
+    # (ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a460:gazebo_plugins/src/
+    # gazebo_ros_imu_sensor.cpp:237-247, :107), while ROS 1's gazebo_ros_imu (:105-111, :252)
+    # and gazebo_ros_p3d (:97-103, :301) apply theirs: "no ROS 1 plugin used it" was false.
+    found = {
+        f.message.split(">")[0].lstrip("<"): f
+        for f in check(_imu("<frame_name>imu_link</frame_name><xyzOffset>0.1 0 0</xyzOffset><bodyName>imu_link</bodyName>"), target="classic").findings
+        if f.rule == "SK602"
+    }
+    xyz, body = found["xyzOffset"], found["bodyName"]
+    assert xyz.severity is Severity.INFO and body.severity is Severity.INFO
+    assert "libgazebo_ros_imu_sensor.so read it but applied only the rotation offset" in xyz.message
+    assert "libgazebo_ros_imu_sensor.so never read it either" in body.message
+    assert all("no ROS 1 plugin" not in f.message for f in found.values())
+    # Near miss: the ROS 2 tags alone say nothing.
+    assert [f for f in check(_imu("<frame_name>imu_link</frame_name>"), target="classic").findings if f.rule == "SK602"] == []

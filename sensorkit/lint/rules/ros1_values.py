@@ -5,7 +5,7 @@ tag's ROS 2 form when written, else the ROS 2 default. ``consequence`` states th
 :class:`~sensorkit.base.consequence.Consequence`: the role of the tag's value (from
 ``ROS1_PARAM_ROLE`` in sensorkit.knowledge.gazebo_ros, with sources), the value the ROS 1
 tag holds (intended) and what the ROS 2 plugin uses (effective); severity_of makes it a
-severity. A tag no ROS 1 plugin read either changes nothing (info); a value sensorkit cannot
+severity. A tag ROS 1 did not apply either changes nothing (info); a value sensorkit cannot
 tell is UNKNOWN (info: a rule must know before it reports more).
 
 A frame tag is compared as a frame (:mod:`sensorkit.lint.rules.coincide`): the frame
@@ -57,9 +57,11 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
     """The consequence of ROS 1 ``tag`` holding ``value`` in ``p``, and words for the
     message (what ROS 2 does instead, or why nothing changes)."""
     role = ROS1_PARAM_ROLE.get(tag, Role.FLAG)
-    if tag in ROS1_READ_BY_NO_PLUGIN or tag in ROS1_UNUSED_BY_ROS1.get(p.library, ()):
-        # Read by nothing in either generation: what it sets is nothing at all.
-        return Consequence(Role.COSMETIC, value, None), ", and no ROS 1 plugin used it either"
+    unused = ROS1_READ_BY_NO_PLUGIN.get(tag) or ROS1_UNUSED_BY_ROS1.get(p.library, {}).get(tag)
+    if unused is not None:
+        # Applied by nothing in either generation: what it sets is nothing at all. The
+        # words say what ROS 1 did with it (knowledge.gazebo_ros, with sources).
+        return Consequence(Role.COSMETIC, value, None), f", and {unused}"
     if tag in ROS1_TOPIC_REMAPS.get(p.library, {}):
         ros1, ros2 = _topics(p, tag, value)
         shown = "" if ros1 == value else f" (ROS 1 resolved {value} to {ros1})"
