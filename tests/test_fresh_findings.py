@@ -133,3 +133,46 @@ def test_sk602_xyz_offset_says_what_ros1_did_with_it(check) -> None:
     assert all("no ROS 1 plugin" not in f.message for f in found.values())
     # Near miss: the ROS 2 tags alone say nothing.
     assert [f for f in check(_imu("<frame_name>imu_link</frame_name>"), target="classic").findings if f.rule == "SK602"] == []
+
+
+def _bb2(params: str) -> str:
+    # esa-prl/rover_config bb2.gazebo:8-40: a ROS 1 camera plugin under ROS 2, sensor
+    # 'loc_cam/left', <cameraName>loc_cam</cameraName>.
+    from builders import camera_sensor, robot
+
+    return robot(camera=camera_sensor("loc_cam/left", params="<frame_name>camera_optical_frame</frame_name>" + params))
+
+
+def _sk602_by_tag(check, text: str) -> dict[str, tuple[Severity, str]]:
+    return {
+        f.message.split(">")[0].lstrip("<"): (f.severity, f.message)
+        for f in check(text, target="classic").findings
+        if f.rule == "SK602"
+    }
+
+
+def test_sk602_topic_tag_whose_leaf_is_the_ros2_default_changes_nothing(check) -> None:
+    # ROS 2's camera publishes camera_name + "/image_raw" and + "/camera_info"
+    # (ros-simulation/gazebo_ros_pkgs@ros2 d52f7c47:gazebo_plugins/src/gazebo_ros_camera.cpp:187,
+    # :200): the leaves written are the leaves used; the topic moves only through
+    # <cameraName> (ROS 2 takes camera_name, default the sensor name: :179), an error on its line.
+    found = _sk602_by_tag(check, _bb2(
+        "<cameraName>loc_cam</cameraName><imageTopicName>image_raw</imageTopicName>"
+        "<cameraInfoTopicName>camera_info</cameraInfoTopicName>"
+    ))
+    assert found["cameraName"][0] is Severity.ERROR
+    for tag in ("imageTopicName", "cameraInfoTopicName"):
+        sev, msg = found[tag]
+        assert sev is Severity.INFO, msg
+        assert "the topic differs only through <cameraName>, reported on its own line" in msg
+        assert "nothing changes" in msg
+    assert "it publishes /loc_cam/left/image_raw, ROS 1 published /loc_cam/image_raw" in found["imageTopicName"][1]
+
+
+def test_sk602_topic_tag_whose_leaf_differs_stays_an_error(check) -> None:
+    # Near misses: a leaf other than ROS 2's own is a topic the data no longer reaches; and
+    # with no <cameraName> or <robotNamespace> to report the move, the tag's own line keeps it.
+    found = _sk602_by_tag(check, _bb2("<cameraName>loc_cam</cameraName><imageTopicName>image_color</imageTopicName>"))
+    assert found["imageTopicName"][0] is Severity.ERROR
+    found = _sk602_by_tag(check, _bb2("<imageTopicName>image_raw</imageTopicName>"))
+    assert found["imageTopicName"][0] is Severity.ERROR

@@ -65,7 +65,9 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
     if tag in ROS1_TOPIC_REMAPS.get(p.library, {}):
         ros1, ros2 = _topics(p, tag, value)
         shown = "" if ros1 == value else f" (ROS 1 resolved {value} to {ros1})"
-        return _compare(role, ros1, ros2), shown
+        c = _compare(role, ros1, ros2)
+        same_leaf = _same_leaf(p, tag, value, ros1, ros2, c)
+        return (c, shown) if same_leaf is None else same_leaf
     ros2 = _ros2_value(ctx, p, tag)
     if ros2 is None:
         return Consequence(role, value, UNKNOWN), ""
@@ -85,6 +87,34 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
         c = frame_consequence(ctx.robot, p.sensor, value, ros2)
         return c, coincide_note(ctx.robot, p.sensor, value, ros2) if c.equal else ""
     return _compare(role, value, ros2), ""
+
+
+def _same_leaf(
+    p: Plugin, tag: str, value: str, ros1: str, ros2: str | None, c: Consequence
+) -> tuple[Consequence, str] | None:
+    """A topic tag whose written (relative) name is the ROS 2 plugin's own leaf, in a plugin
+    whose namespace or camera name tag SK602 reports on its own line: ignoring this tag
+    changes nothing, the topic differs only through that other tag. None otherwise.
+
+    E.g. <imageTopicName>image_raw</imageTopicName> beside <cameraName>: ROS 2's camera
+    publishes camera_name + "/image_raw" and "/camera_info" (ros-simulation/gazebo_ros_pkgs@ros2
+    d52f7c47:gazebo_plugins/src/gazebo_ros_camera.cpp:187, :200), so the leaf written is the
+    leaf used, and what moves the topic is <cameraName> (or <robotNamespace>), judged there."""
+    if ros2 is None or c.changes_nothing or value.startswith(("/", "~")):
+        return None
+    leaf = ROS1_TOPIC_REMAPS[p.library][tag]
+    if value.strip("/") != leaf:
+        return None
+    movers = ["robotNamespace"] + (["cameraName"] if p.library in ROS1_CAMERA_RELATIVE else [])
+    written = [f"<{t}>" for t in movers if p.param(t) is not None]
+    if not written:
+        return None  # nothing else reports the move: this tag's finding keeps it
+    note = (
+        f": the name written, {value}, is the ROS 2 plugin's own (it publishes {ros2}, ROS 1 "
+        f"published {ros1}); the topic differs only through {' and '.join(written)}, "
+        "reported on its own line"
+    )
+    return Consequence(Role.TOPIC, value, leaf, equal=True), note
 
 
 def _compare(role: Role, ros1: str, ros2: str | None) -> Consequence:
