@@ -176,3 +176,44 @@ def test_sk602_topic_tag_whose_leaf_differs_stays_an_error(check) -> None:
     assert found["imageTopicName"][0] is Severity.ERROR
     found = _sk602_by_tag(check, _bb2("<imageTopicName>image_raw</imageTopicName>"))
     assert found["imageTopicName"][0] is Severity.ERROR
+
+
+def _sdf_leg(ixx: str) -> str:
+    return (
+        '<?xml version="1.0"?><sdf version="1.9"><model name="spot"><link name="body">'
+        '<inertial><mass>16</mass><inertia><ixx>0.1</ixx><iyy>0.5</iyy><izz>0.5</izz>'
+        "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial></link>"
+        '<link name="front_left_lower_leg"><pose>0.3 0.1 -0.3 0 0 0</pose><inertial><mass>0.3</mass>'
+        f"<inertia><ixx>{ixx}</ixx><iyy>0.0074</iyy><izz>0.0001</izz>"
+        "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial></link>"
+        '<joint name="knee" type="revolute"><parent>body</parent><child>front_left_lower_leg</child>'
+        "<axis><xyz>0 1 0</xyz><limit><lower>-1</lower><upper>1</upper></limit></axis></joint>"
+        "</model></sdf>"
+    )
+
+
+def test_sk302_sdf_number_with_trailing_words_is_the_number_sdformat_reads(check) -> None:
+    # g1y5x3/spot_ros2_gazebo model.sdf:826: <ixx>0.00743438Source Control</ixx>. sdformat
+    # parses a double with std::stod and no end pointer (gazebosim/sdformat@sdf9 9ee2d4f3:
+    # src/Param.cc:359-362; @sdf12 b9417e5b:src/Param.cc:707-709; @sdf14 8512585c:
+    # src/Param.cc:916-919): it reads 0.00743438 and ignores the words, without a word.
+    for target in ("classic", "harmonic"):
+        found = [f for f in check(_sdf_leg("0.00743438Source Control"), target=target, suffix=".sdf").findings if f.rule == "SK302"]
+        assert [f.severity for f in found] == [Severity.INFO], (target, [f.message for f in found])
+        assert "sdformat reads the 0.00743438 it starts with and ignores 'Source Control'" in found[0].message
+    # Digits after the number leave what was meant unclear: a warning naming what is read.
+    found = [f for f in check(_sdf_leg("0.0074,5"), target="harmonic", suffix=".sdf").findings if f.rule == "SK302"]
+    assert [f.severity for f in found] == [Severity.WARNING] and "sdformat reads 0.0074 and ignores ',5'" in found[0].message
+    # Near miss: a number alone says nothing; a text with no number first stays an error.
+    assert [f for f in check(_sdf_leg("0.00743438"), target="harmonic", suffix=".sdf").findings if f.rule == "SK302"] == []
+    found = [f for f in check(_sdf_leg("Source Control"), target="harmonic", suffix=".sdf").findings if f.rule == "SK302"]
+    assert [f.severity for f in found] == [Severity.ERROR] and "is not a number" in found[0].message
+
+
+def test_stod_prefix_reads_what_strtod_reads() -> None:
+    from sensorkit.model.parse import stod_prefix
+
+    assert stod_prefix("0.00743438Source Control") == (0.00743438, "Source Control")
+    assert stod_prefix(" 1e-3kg") == (0.001, "kg")
+    assert stod_prefix("1.5") is None and stod_prefix("abc") is None and stod_prefix("") is None
+    assert stod_prefix(".5.5") == (0.5, ".5")

@@ -89,7 +89,7 @@ def convert(robot: Robot) -> Conversion:
         return conv
     conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
     preserved = conv.preserved_joints
-    target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
+    target_of, mass_of = conv.target_of, conv.mass_of
     parent_joint, child_joints, link_map = robot.parent_joint, robot.child_joints, robot.link_map
     order: list[str] = []
     # Depth first from each root; a link's survivor is settled when it is reached, after
@@ -126,7 +126,15 @@ def convert(robot: Robot) -> Conversion:
             if inertial is not None and inertial.mass is not None:
                 mass = inertial.mass
         mass_of[target] = mass_of.get(target, 0.0) + mass
-    # CreateSDF: walk surviving links from each root; a massless one drops its subtree.
+    _create_sdf(robot, conv, order)
+    return conv
+
+
+def _create_sdf(robot: Robot, conv: Conversion, order: list[str]) -> None:
+    """CreateSDF: walk surviving links from each root; a massless one drops its subtree,
+    except one fixed to 'world' (``uncreated``: see the module doc)."""
+    target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
+    parent_joint, preserved = robot.parent_joint, conv.preserved_joints
     for name in order:
         if target_of[name] != name or name in dropped:
             continue
@@ -151,4 +159,3 @@ def convert(robot: Robot) -> Conversion:
         target = target_of[name]
         if target != name and target in dropped:
             dropped[name] = dropped[target]
-    return conv

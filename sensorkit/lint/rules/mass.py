@@ -15,6 +15,7 @@ from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
+from sensorkit.model.parse import stod_prefix
 from sensorkit.model.parts import Inertial, Link
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
@@ -200,11 +201,13 @@ def _few(names: list[str], n: int = 8) -> str:
 
 @rule(
     "SK302",
-    "error/warning",
+    "error/warning/info",
     "inertia finite, positive definite, triangle inequality (tolerance as gz-math): an error on Gazebo Sim "
     "for a link that survives fixed-joint lumping (sdformat refuses it and gz-sim refuses to spawn the "
     "robot); moments that are not positive definite or break the triangle inequality are a warning "
-    "otherwise (Gazebo Classic simulates the values as written)",
+    "otherwise (Gazebo Classic simulates the values as written). An SDF number followed by other text "
+    "is read by sdformat as the number it starts with: info when words follow (the number written is "
+    "the one simulated), a warning when digits or a separator follow",
     "gz sdf -k",
     formats=("urdf", "sdf"),
 )
@@ -231,6 +234,8 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
         inertial = link.inertial
         if inertial is None:
             continue
+        for tag, text, value in inertial.lenient:
+            yield _lenient_number(ctx, link.name, tag, text, value, inertial)
         if inertial.problems:
             problem = inertia_problem(inertial)
         else:
@@ -253,6 +258,42 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
                 link=link.name,
                 fix="compute the inertia from the link's shape and mass (box, cylinder, sphere formulas)",
             )
+
+
+def _lenient_number(
+    ctx: Context, link: str, key: str, text: str, value: float, inertial: Inertial
+) -> Finding:
+    """An SDF inertial number followed by other text: sdformat's std::stod reads the number
+    and ignores the rest without a word (sensorkit.model.parse.stod_prefix, with the lines
+    of sdformat 9, 12 and 14), so the value simulated is that number. Words after it (a
+    pasted "Source Control") leave the number the author wrote: info, naming it. Digits or
+    a separator after it ("1,5", "0.5.3") leave what was meant unclear: a warning."""
+    rest = _rest(text)
+    shown = f"{key} {text.strip()!r}"
+    if rest[:1] in tuple("0123456789.,"):
+        return ctx.finding(
+            "SK302",
+            Severity.WARNING,
+            f"link {link!r} inertial: {shown} is not a number; sdformat reads {value:g} and "
+            f"ignores {rest!r}, which may have been meant as part of it",
+            inertial.source,
+            link=link,
+            fix=f"write the number alone, e.g. {value:g} if that is what was meant",
+        )
+    return ctx.judged(
+        "SK302",
+        Consequence(Role.GEOMETRY, value, value),
+        f"link {link!r} inertial: {shown} is not a number as a whole; sdformat reads the "
+        f"{value:g} it starts with and ignores {rest!r} without a word",
+        inertial.source,
+        link=link,
+        fix=f"write {value:g} alone",
+    )
+
+
+def _rest(text: str) -> str:
+    read = stod_prefix(text)
+    return read[1] if read is not None else ""
 
 
 @rule(
