@@ -217,3 +217,48 @@ def test_stod_prefix_reads_what_strtod_reads() -> None:
     assert stod_prefix(" 1e-3kg") == (0.001, "kg")
     assert stod_prefix("1.5") is None and stod_prefix("abc") is None and stod_prefix("") is None
     assert stod_prefix(".5.5") == (0.5, ".5")
+
+
+def _crazyflie(rel: str, mount: str = "0 0 0.1 0 0 0") -> str:
+    # bitcraze/crazyflie-simulation model.sdf:43-44: a gpu_lidar on the body link posed
+    # relative_to 'crazyflie/base_link', a frame the model does not have.
+    return (
+        '<?xml version="1.0"?><sdf version="1.9"><model name="crazyflie">'
+        '<link name="crazyflie/body"><inertial><mass>0.025</mass><inertia><ixx>1.6e-5</ixx>'
+        "<iyy>1.6e-5</iyy><izz>2.9e-5</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>"
+        f'<sensor name="multiranger" type="gpu_lidar"><pose relative_to="{rel}">0 0 0.1 0 0 0</pose>'
+        "<topic>lidar</topic><update_rate>10</update_rate><lidar><scan><horizontal><samples>4</samples>"
+        "<resolution>1</resolution><min_angle>-3.14</min_angle><max_angle>1.57</max_angle></horizontal>"
+        "</scan><range><min>0.01</min><max>3.49</max></range></lidar></sensor></link>"
+        f'<frame name="crazyflie/lidar_mount" attached_to="crazyflie/body"><pose>{mount}</pose></frame>'
+        "</model></sdf>"
+    )
+
+
+def _sk510(check, text: str) -> list[tuple[Severity, str]]:
+    return [(f.severity, f.message) for f in check(text, target="harmonic", suffix=".sdf").findings if f.rule == "SK510"]
+
+
+def test_sk510_unknown_frame_is_a_warning_that_says_where_the_sensor_is(check) -> None:
+    # gz-sim falls back to the raw pose when the semantic pose does not resolve
+    # (gazebosim/gz-sim@gz-sim8 b81e26dab:src/SdfEntityCreator.cc:131-141; the renderer
+    # src/rendering/RenderUtil.cc:1333-1338; gazebosim/gz-sensors@gz-sensors8 c8159af:
+    # src/Sensor.cc:198-204): the lidar works at 0 0 0.1 in its link. libsdformat does not
+    # report it at load: a sensor is no vertex of the pose graph (gazebosim/sdformat@sdf14
+    # 8512585c:src/FrameSemantics.cc:296-519); resolving returns POSE_RELATIVE_TO_INVALID.
+    ((sev, msg),) = _sk510(check, _crazyflie("crazyflie/base_link"))
+    assert sev is Severity.WARNING, msg
+    assert "libsdformat reports nothing at load" in msg and "POSE_RELATIVE_TO_INVALID" in msg
+    assert "which frame was meant is not known" in msg
+
+
+def test_sk510_typo_of_a_frame_elsewhere_is_an_error(check) -> None:
+    # 'crazyflie/lidar_mnt' is two letters from 'crazyflie/lidar_mount', 0.1 m above the body:
+    # placed there the lidar would sit 100 mm from where gz-sim puts it.
+    ((sev, msg),) = _sk510(check, _crazyflie("crazyflie/lidar_mnt"))
+    assert sev is Severity.ERROR and "100.0 mm" in msg, msg
+    # Near misses: the same typo of a frame at the link's own place changes nothing (a
+    # warning); the frame's own name is no finding.
+    ((sev, msg),) = _sk510(check, _crazyflie("crazyflie/lidar_mnt", mount="0 0 0.0005 0 0 0"))
+    assert sev is Severity.WARNING and "same place and rotation" in msg, msg
+    assert _sk510(check, _crazyflie("crazyflie/lidar_mount")) == []
