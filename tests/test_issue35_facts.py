@@ -56,7 +56,7 @@ def test_gz_vertical_rows_are_at_least_one(check: Callable) -> None:
     # One vertical sample at resolution 0.5: 0.5 rows, clamped to the one row cast: info.
     found = _sk406(check, _vertical("1", "0.5"))
     assert [s for s, _ in found] == [Severity.INFO]
-    assert "publishes 1, at least one row" in found[0][1]
+    assert "publishes 1 row, the 1 sample written" in found[0][1] and "nothing changes" in found[0][1]
     # Near miss, Gazebo Classic has no such clamp (a warning, it publishes 0 rows).
     from builders import lidar_sensor, robot
 

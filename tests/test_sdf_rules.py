@@ -16,8 +16,11 @@ Severity rests on what gz-sim does with those errors:
   (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:144-153, :803-811): error;
 - a sensor pose that does not resolve: its raw pose in its link is used
   (gazebosim/gz-sim@gz-sim8_8.14.0:src/SdfEntityCreator.cc:131-141, :1078;
-  gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-121, :891): SK510
-  error;
+  gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/SdfEntityCreator.cc:111-121, :891): the
+  sensor works there, so SK510 is an error only where the frame meant can be told (an
+  enclosing model's, or a typo of the model's own) and the sensor sits elsewhere than it
+  would there (sk510_outer.sdf: 0.36 m), a warning otherwise (sk510_world.sdf names another
+  model's link, whose pose sensorkit does not place; test_fresh_findings.py has the typo);
 - a Fuel URI is downloaded by the server (gazebosim/gz-sim@gz-sim8_8.14.0:src/Server.cc:
   72-74), which sensorkit does not do: info.
 """
@@ -55,7 +58,7 @@ TRIGGERS = [
     ("sk209_relative_to.sdf", "SK209", "error", ("LOAD", "POSE_RELATIVE_TO_CYCLE")),
     ("sk209_self.sdf", "SK209", "error", ("LOAD", "POSE_RELATIVE_TO_CYCLE")),
     ("sk209_world.sdf", "SK209", "error", ("LOAD", "FRAME_ATTACHED_TO_CYCLE")),
-    ("sk510_world.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
+    ("sk510_world.sdf", "SK510", "warning", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
     ("sk510_outer.sdf", "SK510", "error", ("SENSOR", "POSE_RELATIVE_TO_INVALID")),
 ]
 NEAR_MISSES = [

@@ -330,6 +330,7 @@ def extend_conversion(
         target_of=dict(conv.target_of),
         mass_of=dict(conv.mass_of),
         dropped=dict(conv.dropped),
+        uncreated=set(conv.uncreated),
         preserved_joints=preserved,
     )
     order: list[str] = []

@@ -250,7 +250,8 @@ CLASSIC_NO_INTRINSICS_TYPES = frozenset({"wideanglecamera", "wide_angle_camera"}
 #   CALIBRATION:   what camera_info or the IMU orientation says: error;
 #   GEOMETRY:      the joints and wheel geometry a drive plugin moves: error;
 #   RATE, NOISE, LIMIT, FLAG: the sensor works, not as tuned: warning.
-# Tags no plugin reads (ROS1_READ_BY_NO_PLUGIN) change nothing: info.
+# Tags no plugin reads or applies (ROS1_READ_BY_NO_PLUGIN, ROS1_UNUSED_BY_ROS1) change
+# nothing: info.
 _FRAME_TAGS = ("frameName", "bodyName", "odometryFrame", "robotBaseFrame")
 ROS1_PARAM_ROLE: dict[str, Role] = {
     **dict.fromkeys(_FRAME_TAGS, Role.FRAME),
@@ -316,24 +317,38 @@ ROS1_PARAM_ROLE: dict[str, Role] = {
         Role.FLAG,
     ),
 }
-# Tags read by no ROS 1 plugin at all (or for logging only): ignoring them changes nothing.
-# alwaysOn: no plugin in ROS 1's gazebo_plugins or gazebo_ros reads it (noetic-devel
-# f9e1a46: `git grep '"alwaysOn"'` finds nothing); rosDebugLevel sets the log level only
-# (gazebo_ros_utils.cpp); serviceName names ROS 1's IMU calibration service. <baseline>
-# and <depthImageInfoTopicName>: `git grep -n 'baseline\|depthImageInfo' noetic-devel --
+# Tags whose value changes nothing in either generation, with what ROS 1 did with them (the
+# words SK602 says; ros-simulation/gazebo_ros_pkgs@noetic-devel f9e1a46, gazebo_plugins and
+# gazebo_ros). alwaysOn: `git grep '"alwaysOn"'` finds no reader. <baseline> and
+# <depthImageInfoTopicName>: `git grep -n 'baseline\|depthImageInfo' noetic-devel --
 # gazebo_plugins gazebo_ros` finds only hackBaseline (gazebo_ros_camera_utils.cpp:191-197,
 # gazebo_ros_multicamera.cpp:92-93) and depthImageCameraInfoTopicName
 # (gazebo_ros_depth_camera.cpp:121-124, gazebo_ros_openni_kinect.cpp:96-99): no ROS 1
 # plugin reads either, so ROS 2 ignoring them changes nothing (issue 35 item 8).
-ROS1_READ_BY_NO_PLUGIN = frozenset(
-    {"alwaysOn", "rosDebugLevel", "serviceName", "baseline", "depthImageInfoTopicName"}
-)
-# Tags a ROS 1 plugin of the same library read but never used, or never read at all: they
-# change nothing in either generation. gazebo_ros_imu_sensor (noetic-devel f9e1a46):
-# frameName is its frame (:200-210), bodyName is read by nothing; xyzOffset is read
-# "POSITION OFFSET, UNUSED" (:237-247) and only offset.Rot() is applied (:107).
-ROS1_UNUSED_BY_ROS1: dict[str, frozenset[str]] = {
-    "gazebo_ros_imu_sensor": frozenset({"bodyName", "xyzOffset"}),
+# rosDebugLevel is read, for the log level only (gazebo_ros_utils.cpp:60, :82-84).
+ROS1_READ_BY_NO_PLUGIN: dict[str, str] = {
+    "alwaysOn": "no ROS 1 gazebo_ros_pkgs plugin read it either",
+    "baseline": "no ROS 1 gazebo_ros_pkgs plugin read it either",
+    "depthImageInfoTopicName": "no ROS 1 gazebo_ros_pkgs plugin read it either",
+    "rosDebugLevel": "ROS 1 read it for the log level only",
+}
+# Tags the ROS 1 plugin of the same library never read, or read and never applied: they
+# change nothing in either generation (other ROS 1 plugins may read the same tag, so the
+# words name the library). gazebo_ros_imu_sensor (noetic-devel f9e1a46:
+# gazebo_plugins/src/gazebo_ros_imu_sensor.cpp): frameName is its frame (:200-210);
+# bodyName and serviceName it never reads (they are the model plugin gazebo_ros_imu's:
+# gazebo_ros_imu.cpp:73-79, :97-103); xyzOffset it reads under "POSITION OFFSET, UNUSED"
+# (:237-247) and applies only offset.Rot() (:107). ROS 1's gazebo_ros_imu (:105-111, :252)
+# and gazebo_ros_p3d (:97-103, :301) do apply an xyzOffset.
+ROS1_UNUSED_BY_ROS1: dict[str, dict[str, str]] = {
+    "gazebo_ros_imu_sensor": {
+        "bodyName": "ROS 1's libgazebo_ros_imu_sensor.so never read it either (it stamps <frameName>)",
+        "serviceName": "ROS 1's libgazebo_ros_imu_sensor.so never read it either",
+        "xyzOffset": (
+            "ROS 1's libgazebo_ros_imu_sensor.so read it but applied only the rotation offset "
+            "(its position offset is unused)"
+        ),
+    },
 }
 # What the ROS 2 plugin does when the tag's ROS 2 form is absent, for tags whose ROS 2
 # behaviour is a plain value (names and camera numbers are computed by the rule from the

@@ -8,6 +8,7 @@ not read is ``None`` plus why.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -63,6 +64,30 @@ def parse_float(text: str | None) -> tuple[float | None, str | None]:
     if value - value != 0.0:
         return None, f"{text!r} is not finite"
     return value, None
+
+
+# The longest prefix std::strtod reads as a decimal number, an infinity or a NaN (hex
+# floats are left out: a text they start is reported unread).
+_STOD_PREFIX = re.compile(r"\s*([+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan))", re.I)
+
+
+def stod_prefix(text: str) -> tuple[float, str] | None:
+    """What sdformat reads from a ``double`` that is not a number as a whole, and the text
+    it ignores; None when it reads nothing (std::stod throws, sdformat reports the value).
+
+    sdformat parses a double with ``std::stod(tmp)`` and no end pointer, so the digits that
+    start the text are the value and the rest is ignored without a word
+    (gazebosim/sdformat@sdf9 9ee2d4f3:src/Param.cc:359-362, Gazebo Classic; @sdf12
+    b9417e5b:src/Param.cc:707-709, Fortress; @sdf14 8512585c:src/Param.cc:916-919,
+    Harmonic); std::stod skips leading white space itself."""
+    m = _STOD_PREFIX.match(text)
+    if m is None or m.end() == len(text.rstrip()):
+        return None
+    rest = text[m.end():].strip()
+    try:
+        return float(m.group(1)), rest
+    except ValueError:  # pragma: no cover - the pattern reads only what float() reads
+        return None
 
 
 def local(el: etree._Element) -> str:

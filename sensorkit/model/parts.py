@@ -41,6 +41,10 @@ class Inertial(_Located):
     element: etree._Element
     doc: Document
     problems: tuple[str, ...] = ()
+    # Numbers the simulator reads from text that is more than a number: (element, text
+    # written, value read). sdformat's std::stod reads "0.0074Source Control" as 0.0074
+    # (sensorkit.model.parse.stod_prefix); the value is in mass/inertia, not a problem.
+    lenient: tuple[tuple[str, str, float], ...] = ()
 
 
 @dataclass(slots=True)

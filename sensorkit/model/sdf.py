@@ -6,6 +6,17 @@
   ``<disableFixedJointLumping>true</disableFixedJointLumping>`` in its gazebo block.
 - A surviving link with no inertial or zero (lumped) mass is not modelled, and neither are its
   joint and everything below it (``CreateSDF``). A root named ``world`` is exempt.
+- Except a massless link whose fixed joint would be lumped but whose parent is ``world``:
+  ``ReduceFixedJoints`` never lumps into ``world``, and ``CreateSDF`` returns early only
+  when the parent joint is not one it reduces, so such a link is not created (its own
+  visuals, collisions and sensors are lost) while the links below it are still converted.
+  The same code on every target: gazebosim/sdformat@sdf9 (9ee2d4f3, Gazebo Classic):
+  src/parser_urdf.cc:412 (no lumping into world), :2679-2683 (parentJointReduced: no
+  return), :2765-2772 (no link created for zero mass), :2776-2780 (children converted);
+  @sdf12 (b9417e5b, Fortress): :421, :2697-2701, :2780, :2791; @sdf14 (8512585c,
+  Harmonic): :424, :2700-2704, :2783, :2794. With preserveFixedJoint or
+  disableFixedJointLumping the joint is not one it reduces, so the early return drops the
+  link and its subtree (sdf9 :2683-2760).
 """
 
 from __future__ import annotations
@@ -34,6 +45,9 @@ class Conversion:
     target_of: dict[str, str] = field(default_factory=dict)  # link -> surviving link
     mass_of: dict[str, float] = field(default_factory=dict)  # surviving link -> lumped mass
     dropped: dict[str, str] = field(default_factory=dict)  # link -> massless link that drops it
+    # massless links fixed to 'world' by a joint lumping would reduce: not created, but the
+    # links below them are converted (a subset of dropped's causes; see the module doc)
+    uncreated: set[str] = field(default_factory=set)
     preserved_joints: set[str] = field(default_factory=set)
 
     def survivor(self, link: str) -> str:
@@ -75,7 +89,7 @@ def convert(robot: Robot) -> Conversion:
         return conv
     conv = Conversion(preserved_joints=preserved_fixed_joints(robot))
     preserved = conv.preserved_joints
-    target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
+    target_of, mass_of = conv.target_of, conv.mass_of
     parent_joint, child_joints, link_map = robot.parent_joint, robot.child_joints, robot.link_map
     order: list[str] = []
     # Depth first from each root; a link's survivor is settled when it is reached, after
@@ -112,22 +126,36 @@ def convert(robot: Robot) -> Conversion:
             if inertial is not None and inertial.mass is not None:
                 mass = inertial.mass
         mass_of[target] = mass_of.get(target, 0.0) + mass
-    # CreateSDF: walk surviving links from each root; a massless one drops its subtree.
+    _create_sdf(robot, conv, order)
+    return conv
+
+
+def _create_sdf(robot: Robot, conv: Conversion, order: list[str]) -> None:
+    """CreateSDF: walk surviving links from each root; a massless one drops its subtree,
+    except one fixed to 'world' (``uncreated``: see the module doc)."""
+    target_of, mass_of, dropped = conv.target_of, conv.mass_of, conv.dropped
+    parent_joint, preserved = robot.parent_joint, conv.preserved_joints
     for name in order:
         if target_of[name] != name or name in dropped:
             continue
         joint = parent_joint.get(name)
         if joint is not None and joint.parent is not None:
             parent_target = target_of.get(joint.parent, joint.parent)
-            if parent_target in dropped:
+            if parent_target in dropped and dropped[parent_target] not in conv.uncreated:
                 dropped[name] = dropped[parent_target]
                 continue
         if name == "world" and joint is None:
             continue
         if abs(mass_of.get(name, 0.0)) <= MASS_EPSILON:
             dropped[name] = name
+            if (
+                joint is not None
+                and joint.type == "fixed"
+                and joint.name not in preserved
+                and joint.parent == "world"
+            ):
+                conv.uncreated.add(name)
     for name in order:  # lumped links follow their survivor
         target = target_of[name]
         if target != name and target in dropped:
             dropped[name] = dropped[target]
-    return conv

@@ -21,7 +21,15 @@ from __future__ import annotations
 from lxml import etree
 
 from sensorkit.loading.document import Document
-from sensorkit.model.parse import Origin, child, children, parse_float, parse_vec, text_of
+from sensorkit.model.parse import (
+    Origin,
+    child,
+    children,
+    parse_float,
+    parse_vec,
+    stod_prefix,
+    text_of,
+)
 from sensorkit.model.parts import Inertial, Joint, Link
 from sensorkit.model.robot import Robot
 from sensorkit.model.sdf_frames import between, scoped
@@ -54,22 +62,34 @@ def _inertial(el: etree._Element, doc: Document) -> Inertial:
         return Inertial(1.0, unit, exact_origin(IDENTITY, el, doc), el, doc)
 
     problems: list[str] = []
+    lenient: list[tuple[str, str, float]] = []
+
+    def number(key: str, text: str | None) -> float | None:
+        value, why = parse_float(text)
+        if why and text is not None:
+            # sdformat reads the number the text starts with (parse.stod_prefix): that value
+            # is simulated, and SK302 says so; only a text it cannot read is a problem.
+            read = stod_prefix(text)
+            if read is not None and read[0] - read[0] == 0.0:
+                lenient.append((key, text, read[0]))
+                return read[0]
+            problems.append(f"{key} {why}")
+        return value
+
     mass_text = text_of(el, "mass")
-    mass, why = parse_float(mass_text)
+    mass = number("mass", mass_text)
     if mass_text is None:
         mass = 1.0  # gazebosim/sdformat@sdformat12_12.8.0:sdf/1.9/inertial.sdf:8
-    elif why:
-        problems.append(f"mass {why}")
     inertia: dict[str, float | None] = {}
     for key in _INERTIA_KEYS:
         text = text_of(el, "inertia", key)
-        value, why = parse_float(text)
-        if why:
-            problems.append(f"{key} {why}")
+        value = number(key, text)
         default = 1.0 if key in ("ixx", "iyy", "izz") else 0.0  # inertial.sdf:54-90
         inertia[key] = value if text is not None else default
     raw, _, pose_el, _ = read_pose(el, (1, 9))
-    return Inertial(mass, inertia, exact_origin(raw, pose_el, doc), el, doc, tuple(problems))
+    return Inertial(
+        mass, inertia, exact_origin(raw, pose_el, doc), el, doc, tuple(problems), tuple(lenient)
+    )
 
 
 def _link(item: Element, doc: Document) -> Link:

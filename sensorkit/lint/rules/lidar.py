@@ -178,7 +178,21 @@ def _fractional_beams(
     clamp = ""
     if label == "vertical" and is_gz(ctx.target) and published < 1:
         published, clamp = 1, ", at least one row"
-    sev = Severity.INFO if clamp and published == samples else Severity.WARNING
+    if clamp and published == samples:
+        # One sample written, one row published (the resolution changes nothing): the
+        # rows the author wrote are the rows gz-sensors publishes, so the finding is info
+        # and says both.
+        return ctx.judged(
+            "SK406",
+            Consequence(Role.GEOMETRY, f"{samples} row", f"{published} row"),
+            f"lidar {s.name!r}: vertical resolution {res:g} on {samples} sample gives "
+            f"{beams:g} rows, which gz-sensors raises to at least 1 (Lidar::VerticalRangeCount): "
+            f"it publishes {published} row, the {samples} sample written",
+            spec.source,
+            sensor=s.name,
+            fix="drop the vertical <resolution> (or write 1): it changes nothing on one sample",
+        )
+    sev = Severity.WARNING
     return ctx.finding(
         "SK406",
         sev,

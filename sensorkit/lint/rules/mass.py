@@ -11,10 +11,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from sensorkit.base.consequence import Consequence, Role
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import optical_frame_at
+from sensorkit.model.parse import stod_prefix
 from sensorkit.model.parts import Inertial, Link
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
@@ -102,7 +103,9 @@ def inertia_problem(inertial: Inertial) -> str | None:
     "a link joined by a non-fixed joint has an `<inertial>` with mass > 0, else Gazebo drops "
     "it and its subtree (name what is lost). Severity by consequence: an error when what is "
     "lost holds a sensor (it publishes nothing) or a body (a visual or collision the robot "
-    "loses); info when the links lost hold neither, so they only ever fed TF",
+    "loses); info when the links lost hold neither, so they only ever fed TF. A massless link "
+    "fixed to `world` is not created but the links below it are kept: reported only when it "
+    "holds a sensor, a body or joints to links below",
     "sdformat, at spawn",
 )
 def massless_links(ctx: Context) -> Iterator[Finding]:
@@ -123,9 +126,26 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
         sensors = [s.name for s in robot.sensors if s.reference in lost_set]
         joint = robot.parent_joint.get(name)
         what = "has no <inertial>" if link.inertial is None else "has zero mass"
+        kept_below: list[str] = []
+        if name in conv.uncreated:
+            # Fixed to 'world' by a joint lumping would reduce: sdformat creates no link for
+            # it but converts the links below it (sensorkit.model.sdf's module doc, with the
+            # lines of sdformat 9, 12 and 14). Only what it holds itself is lost.
+            kept_below = [
+                j.child for j in robot.child_joints.get(name, [])
+                if j.child is not None and j.child not in lost_set
+            ]
+            if not sensors and not any(_has_body(robot.link_map[n]) for n in lost) and not kept_below:
+                continue  # nothing Gazebo would simulate is lost, and sdformat says nothing
         if joint is None:
             where = f"the root link {name!r} {what}, even with the links fixed to it"
             loss = "Gazebo drops the whole robot"
+        elif name in conv.uncreated:
+            where = f"link {name!r} (fixed joint {joint.name!r} to 'world') {what}"
+            loss = (
+                "sdformat never lumps a link into 'world' and creates no link without mass, so "
+                "Gazebo has no such link; the links below it are still converted"
+            )
         elif joint.name in conv.preserved_joints:
             where = f"link {name!r} (fixed joint {joint.name!r} with preserveFixedJoint) {what}"
             loss = "Gazebo drops it and everything below it"
@@ -140,6 +160,12 @@ def massless_links(ctx: Context) -> Iterator[Finding]:
             cons = Consequence(Role.OUTPUT, f"sensors {_few(sensors)}", "none of them")
         elif bodies:
             cons = Consequence(Role.GEOMETRY, f"the bodies of {_few(bodies)}", "none of them")
+        elif kept_below:
+            # The joints to the links below name a parent the SDF lacks (sdformat writes the
+            # URDF parent's name: gazebosim/sdformat@sdf9 9ee2d4f3:src/parser_urdf.cc:3066, in CreateJoint);
+            # what Gazebo then does with them sensorkit has not read.
+            cons = Consequence(Role.GEOMETRY, f"joints from {name!r} to {_few(kept_below)}", UNKNOWN)
+            detail += f"; the joints to {_few(kept_below)} name it as their parent"
         else:
             # Nothing Gazebo would simulate: no sensor, visual or collision. Such a link only
             # names a frame for TF (robot_state_publisher places it from the URDF), e.g. PR2's
@@ -175,11 +201,13 @@ def _few(names: list[str], n: int = 8) -> str:
 
 @rule(
     "SK302",
-    "error/warning",
+    "error/warning/info",
     "inertia finite, positive definite, triangle inequality (tolerance as gz-math): an error on Gazebo Sim "
     "for a link that survives fixed-joint lumping (sdformat refuses it and gz-sim refuses to spawn the "
     "robot); moments that are not positive definite or break the triangle inequality are a warning "
-    "otherwise (Gazebo Classic simulates the values as written)",
+    "otherwise (Gazebo Classic simulates the values as written). An SDF number followed by other text "
+    "is read by sdformat as the number it starts with: info when words follow (the number written is "
+    "the one simulated), a warning when digits or a separator follow",
     "gz sdf -k",
     formats=("urdf", "sdf"),
 )
@@ -206,6 +234,8 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
         inertial = link.inertial
         if inertial is None:
             continue
+        for tag, text, value in inertial.lenient:
+            yield _lenient_number(ctx, link.name, tag, text, value, inertial)
         if inertial.problems:
             problem = inertia_problem(inertial)
         else:
@@ -228,6 +258,42 @@ def inertia_valid(ctx: Context) -> Iterator[Finding]:
                 link=link.name,
                 fix="compute the inertia from the link's shape and mass (box, cylinder, sphere formulas)",
             )
+
+
+def _lenient_number(
+    ctx: Context, link: str, key: str, text: str, value: float, inertial: Inertial
+) -> Finding:
+    """An SDF inertial number followed by other text: sdformat's std::stod reads the number
+    and ignores the rest without a word (sensorkit.model.parse.stod_prefix, with the lines
+    of sdformat 9, 12 and 14), so the value simulated is that number. Words after it (a
+    pasted "Source Control") leave the number the author wrote: info, naming it. Digits or
+    a separator after it ("1,5", "0.5.3") leave what was meant unclear: a warning."""
+    rest = _rest(text)
+    shown = f"{key} {text.strip()!r}"
+    if rest[:1] in tuple("0123456789.,"):
+        return ctx.finding(
+            "SK302",
+            Severity.WARNING,
+            f"link {link!r} inertial: {shown} is not a number; sdformat reads {value:g} and "
+            f"ignores {rest!r}, which may have been meant as part of it",
+            inertial.source,
+            link=link,
+            fix=f"write the number alone, e.g. {value:g} if that is what was meant",
+        )
+    return ctx.judged(
+        "SK302",
+        Consequence(Role.GEOMETRY, value, value),
+        f"link {link!r} inertial: {shown} is not a number as a whole; sdformat reads the "
+        f"{value:g} it starts with and ignores {rest!r} without a word",
+        inertial.source,
+        link=link,
+        fix=f"write {value:g} alone",
+    )
+
+
+def _rest(text: str) -> str:
+    read = stod_prefix(text)
+    return read[1] if read is not None else ""
 
 
 @rule(

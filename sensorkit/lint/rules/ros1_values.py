@@ -5,7 +5,7 @@ tag's ROS 2 form when written, else the ROS 2 default. ``consequence`` states th
 :class:`~sensorkit.base.consequence.Consequence`: the role of the tag's value (from
 ``ROS1_PARAM_ROLE`` in sensorkit.knowledge.gazebo_ros, with sources), the value the ROS 1
 tag holds (intended) and what the ROS 2 plugin uses (effective); severity_of makes it a
-severity. A tag no ROS 1 plugin read either changes nothing (info); a value sensorkit cannot
+severity. A tag ROS 1 did not apply either changes nothing (info); a value sensorkit cannot
 tell is UNKNOWN (info: a rule must know before it reports more).
 
 A frame tag is compared as a frame (:mod:`sensorkit.lint.rules.coincide`): the frame
@@ -57,13 +57,17 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
     """The consequence of ROS 1 ``tag`` holding ``value`` in ``p``, and words for the
     message (what ROS 2 does instead, or why nothing changes)."""
     role = ROS1_PARAM_ROLE.get(tag, Role.FLAG)
-    if tag in ROS1_READ_BY_NO_PLUGIN or tag in ROS1_UNUSED_BY_ROS1.get(p.library, ()):
-        # Read by nothing in either generation: what it sets is nothing at all.
-        return Consequence(Role.COSMETIC, value, None), ", and no ROS 1 plugin used it either"
+    unused = ROS1_READ_BY_NO_PLUGIN.get(tag) or ROS1_UNUSED_BY_ROS1.get(p.library, {}).get(tag)
+    if unused is not None:
+        # Applied by nothing in either generation: what it sets is nothing at all. The
+        # words say what ROS 1 did with it (knowledge.gazebo_ros, with sources).
+        return Consequence(Role.COSMETIC, value, None), f", and {unused}"
     if tag in ROS1_TOPIC_REMAPS.get(p.library, {}):
         ros1, ros2 = _topics(p, tag, value)
         shown = "" if ros1 == value else f" (ROS 1 resolved {value} to {ros1})"
-        return _compare(role, ros1, ros2), shown
+        c = _compare(role, ros1, ros2)
+        same_leaf = _same_leaf(p, tag, value, ros1, ros2, c)
+        return (c, shown) if same_leaf is None else same_leaf
     ros2 = _ros2_value(ctx, p, tag)
     if ros2 is None:
         return Consequence(role, value, UNKNOWN), ""
@@ -83,6 +87,34 @@ def consequence(ctx: Context, p: Plugin, tag: str, value: str) -> tuple[Conseque
         c = frame_consequence(ctx.robot, p.sensor, value, ros2)
         return c, coincide_note(ctx.robot, p.sensor, value, ros2) if c.equal else ""
     return _compare(role, value, ros2), ""
+
+
+def _same_leaf(
+    p: Plugin, tag: str, value: str, ros1: str, ros2: str | None, c: Consequence
+) -> tuple[Consequence, str] | None:
+    """A topic tag whose written (relative) name is the ROS 2 plugin's own leaf, in a plugin
+    whose namespace or camera name tag SK602 reports on its own line: ignoring this tag
+    changes nothing, the topic differs only through that other tag. None otherwise.
+
+    E.g. <imageTopicName>image_raw</imageTopicName> beside <cameraName>: ROS 2's camera
+    publishes camera_name + "/image_raw" and "/camera_info" (ros-simulation/gazebo_ros_pkgs@ros2
+    d52f7c47:gazebo_plugins/src/gazebo_ros_camera.cpp:187, :200), so the leaf written is the
+    leaf used, and what moves the topic is <cameraName> (or <robotNamespace>), judged there."""
+    if ros2 is None or c.changes_nothing or value.startswith(("/", "~")):
+        return None
+    leaf = ROS1_TOPIC_REMAPS[p.library][tag]
+    if value.strip("/") != leaf:
+        return None
+    movers = ["robotNamespace"] + (["cameraName"] if p.library in ROS1_CAMERA_RELATIVE else [])
+    written = [f"<{t}>" for t in movers if p.param(t) is not None]
+    if not written:
+        return None  # nothing else reports the move: this tag's finding keeps it
+    note = (
+        f": the name written, {value}, is the ROS 2 plugin's own (it publishes {ros2}, ROS 1 "
+        f"published {ros1}); the topic differs only through {' and '.join(written)}, "
+        "reported on its own line"
+    )
+    return Consequence(Role.TOPIC, value, leaf, equal=True), note
 
 
 def _compare(role: Role, ros1: str, ros2: str | None) -> Consequence:

@@ -39,6 +39,7 @@ errors is not established here; SK107 holds for both.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
@@ -46,12 +47,15 @@ from lxml import etree
 
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.frames import POSITION_TOL
+from sensorkit.lint.rules.optical_text import ANGLE_TOL
 from sensorkit.model.parse import child, text_of
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:  # the SDF reader loads only when an SDF robot is checked
     from sensorkit.model.sdf_frames import FrameGraph, Vertex
     from sensorkit.model.sdf_read import SdfModel
+    from sensorkit.model.transforms import Pose
 
 REFUSED = "Gazebo Sim loads no part of a world that holds it, nor spawns the model"
 SDF = ("sdf",)
@@ -287,14 +291,25 @@ def _elsewhere(sm: SdfModel, scope: str, name: str) -> str:
 
 @rule(
     "SK510",
-    "error",
+    "error/warning",
     "an SDF sensor's `<pose relative_to>` names no frame of its model (a frame of another "
     "model, of the world or of an enclosing model included): gz-sim places the sensor at "
-    "its raw pose in its link (gz targets)",
+    "its raw pose in its link (gz targets). An error when the frame meant can be told (a "
+    "frame of an enclosing model, or a one- or two-letter typo of a frame of its own) and "
+    "the sensor then sits elsewhere than it would there; a warning otherwise (the sensor "
+    "works at the raw pose, what was meant is not known)",
     "libsdformat",
     formats=SDF,
 )
 def sensor_pose_frames(ctx: Context) -> Iterator[Finding]:
+    # libsdformat reports nothing when it loads the file: a sensor is no vertex of the
+    # model's pose graph (gazebosim/sdformat@sdf14 8512585c:src/FrameSemantics.cc:296-519
+    # adds links, frames, joints and models), so the name is looked up only when the pose
+    # is resolved, which returns POSE_RELATIVE_TO_INVALID (:1830-1844). gz-sim
+    # (gazebosim/gz-sim@gz-sim8 b81e26dab:src/SdfEntityCreator.cc:131-141, :1078), the
+    # renderer (src/rendering/RenderUtil.cc:1333-1338) and gz-sensors
+    # (gazebosim/gz-sensors@gz-sensors8 c8159af:src/Sensor.cc:198-204) then take the raw
+    # pose, in the sensor's link, and say nothing.
     from sensorkit.model.sdf_frames import scoped
     from sensorkit.model.sdf_read import read_pose
 
@@ -303,23 +318,95 @@ def sensor_pose_frames(ctx: Context) -> Iterator[Finding]:
         return
     blind = _blind(sm)
     for item in sm.sensors:
-        _raw, rel, pose_el, _problem = read_pose(item.element, item.version)
+        raw, rel, pose_el, _problem = read_pose(item.element, item.version)
         if rel is None or sm.graph.knows(scoped(item.scope, rel)):
             continue
         if _unknowable(blind, item.scope):  # the frame may come with what was not read
             continue
         sensor = item.element.get("name", "")
+        meant = _meant_frame(sm, item.scope, rel)
+        moved = None if meant is None else _offset(sm, item.name, meant[0], raw)
+        sev = Severity.WARNING
+        if meant is None or moved is None:
+            what = "which frame was meant is not known, so it works there as written"
+        elif moved == (0.0, 0.0):
+            what = (
+                f"placed in {meant[0]!r} ({meant[1]}) it would sit at the same place and "
+                "rotation, so the sensor works where it was meant"
+            )
+        else:
+            sev = Severity.ERROR
+            what = (
+                f"placed in {meant[0]!r} ({meant[1]}) it would sit {moved[0] * 1000:.1f} mm "
+                f"and {math.degrees(moved[1]):.1f} degrees from where it does"
+            )
         yield ctx.finding(
             "SK510",
-            Severity.ERROR,
+            sev,
             f"sensor {sensor!r}: <pose relative_to={rel!r}> names no "
             f"frame of model {_model_label(sm, item.scope)!r}"
-            f"{_elsewhere(sm, item.scope, rel)}: libsdformat cannot resolve the pose "
-            "(POSE_RELATIVE_TO_INVALID), and gz-sim then places the sensor at the raw pose "
-            f"in its link {item.name!r}, relative_to ignored",
+            f"{_elsewhere(sm, item.scope, rel)}: libsdformat reports nothing at load, but "
+            "resolving the pose fails (POSE_RELATIVE_TO_INVALID), and gz-sim then places the "
+            f"sensor at the raw pose in its link {item.name!r}, relative_to ignored; {what}",
             pose_el,
             sensor=sensor,
             link=item.name,
             fix="name a frame of the sensor's own model or of a model nested in it (add "
             "a <frame attached_to=...> there if needed)",
         )
+
+
+def _meant_frame(sm: SdfModel, scope: str, name: str) -> tuple[str, str] | None:
+    """The frame a name out of scope most likely means, with words for why: a frame of an
+    enclosing model of that name, or a frame of the sensor's own model one or two letters
+    away (and no other that close). None when it cannot be told."""
+    from sensorkit.model.sdf_frames import scoped
+
+    parts = scope.split("::") if scope else []
+    for i in range(len(parts) - 1, -1, -1):
+        outer = scoped("::".join(parts[:i]), name)
+        if sm.graph.knows(outer):
+            return outer, "the enclosing model's frame of that name"
+    prefix = f"{scope}::" if scope else ""
+    own = [
+        v[len(prefix):] for v in sm.graph.vertices
+        if v.startswith(prefix) and "::" not in v[len(prefix):]
+    ]
+    close = [n for n in own if _edits(name, n) <= 2]
+    if len(close) == 1:
+        return scoped(scope, close[0]), "the model's frame a letter or two away"
+    return None
+
+
+def _edits(a: str, b: str) -> int:
+    """Levenshtein distance, stopping early past 2 (only 'one or two letters' matters)."""
+    if abs(len(a) - len(b)) > 2:
+        return 3
+    prev = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        cur = [i]
+        for j, cb in enumerate(b, 1):
+            cur.append(min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (ca != cb)))
+        if min(cur) > 2:
+            return 3
+        prev = cur
+    return prev[-1]
+
+
+def _offset(sm: SdfModel, link: str, frame: str, raw: Pose) -> tuple[float, float] | None:
+    """How far the sensor placed at ``raw`` in ``frame`` sits from ``raw`` in ``link``:
+    (metres, radians), each 0.0 within the frame rules' 1 mm and 0.5 degree; None when
+    either frame has no pose."""
+    from sensorkit.model.sdf_frames import between
+    from sensorkit.model.transforms import compose
+
+    X_LF = sm.graph.in_frame(frame, link)
+    if X_LF is None:
+        return None
+    d = between(raw, compose(X_LF, raw))
+    dist = math.sqrt(d[9] ** 2 + d[10] ** 2 + d[11] ** 2)
+    angle = math.acos(max(-1.0, min(1.0, (d[0] + d[4] + d[8] - 1.0) / 2.0)))
+    return (
+        0.0 if dist <= POSITION_TOL else dist,  # SK503's 1 mm
+        0.0 if angle <= ANGLE_TOL else angle,  # SK502's 0.5 degree
+    )
