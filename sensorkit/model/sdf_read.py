@@ -52,6 +52,9 @@ class Include:
     why: str = ""
     searched: tuple[str, ...] = ()
     via: str = ""  # "GAZEBO_MODEL_PATH": found only through Gazebo Classic's model path
+    # the URIs of the includes that brought the file this include is written in, outermost
+    # first (empty: written in the file given): a nested include's chain, said with it
+    within: tuple[str, ...] = ()
 
 
 @dataclass
@@ -114,6 +117,7 @@ class _Ctx:
     resolver: PackageResolver
     overlay: Mapping[str, bytes] | None
     stack: list[str] = field(default_factory=list)  # files being included, for loops
+    brought: dict[str, str] = field(default_factory=dict)  # included file -> its URI
     world_includes: list[Include] = field(default_factory=list)  # a world's own (SK107)
 
 
@@ -274,14 +278,16 @@ def _load_include(
     include is kept in ``owner.includes`` with why)."""
     uri = text_of(inc, "uri") or ""
     including = Path(ctx.stack[-1])
+    within = tuple(ctx.brought.get(f, f) for f in ctx.stack[1:])
     if not uri:
-        owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>"))
+        owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>", within=within))
         return None
     got = resolve_model_uri(uri, including, ctx.resolver)
-    record = Include(uri, inc, got.path, got.why, got.searched, got.via)
+    record = Include(uri, inc, got.path, got.why, got.searched, got.via, within)
     owner.includes.append(record)
     if got.path is None:
         return None
+    ctx.brought.setdefault(str(got.path), uri)
     if not ctx.resolver.allows(got.path):  # a model folder's file named elsewhere
         record.path, record.why = None, OUTSIDE
         return None
