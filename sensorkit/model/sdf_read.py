@@ -96,6 +96,10 @@ class SdfModel:
     # a world's own frames and its models' placements (the world graph): on the world's
     # first model only, so that what they hold is said once (SK208, SK209)
     world_graph: FrameGraph | None = None
+    # a world's systems (every model of the world): its own <plugin>s, and every plugin
+    # of the world and its models (SK620: is the Sensors system among them)
+    world_systems: list[etree._Element] = field(default_factory=list)
+    world_plugins: list[etree._Element] = field(default_factory=list)
 
     def pose_of(self, name: str) -> Pose | None:
         """Pose of a frame (link, joint, frame, nested model) in the model's frame."""
@@ -502,5 +506,9 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
         sm.pose_problems.extend(holder.pose_problems)
     if models and all(i.path is not None and not i.why for i in holder.includes):
         models[0].world_graph = graph  # not when an include brought nothing: names unknown
+    systems = [c for c in world if c.tag == "plugin"]
+    plugins = [*world.iter("plugin"), *(el for sm in models for _, el in sm.plugins)]
+    for sm in models:
+        sm.world_systems, sm.world_plugins = systems, plugins
     ctx.world_includes.extend(holder.includes)
     return models
