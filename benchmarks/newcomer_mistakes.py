@@ -568,6 +568,44 @@ LIDAR_ON_BASE = f"""<?xml version="1.0"?>
 """
 
 
+DUP_PACKAGE_XML = (
+    '<?xml version="1.0"?><package format="3"><name>my_robot</name><version>0.0.1</version>'
+    '<description>d</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>'
+    "</package>\n"
+)
+DUP_TOP = "ws/src/b/my_robot/urdf/robot.urdf.xacro"
+DUP_WS: dict[str, Setup] = {
+    "ws/src/a/my_robot/package.xml": DUP_PACKAGE_XML,
+    "ws/src/a/my_robot/urdf/parts.xacro": XACRO_HEAD + '  <link name="old_link"/>\n</robot>\n',
+    "ws/src/b/my_robot/package.xml": DUP_PACKAGE_XML,
+    "ws/src/b/my_robot/urdf/parts.xacro": XACRO_HEAD + '  <link name="new_link"/>\n</robot>\n',
+    DUP_TOP: XACRO_HEAD
+    + f'  <link name="base_link">{INERTIAL}</link>\n'
+    + '  <xacro:include filename="$(find my_robot)/urdf/parts.xacro"/>\n</robot>\n',
+}
+GZ_CAMERA = (
+    '<sensor name="cam" type="camera"><update_rate>30</update_rate><topic>cam</topic>'
+    "<camera><horizontal_fov>1.0</horizontal_fov><image><width>320</width><height>240</height>"
+    "</image><clip><near>0.1</near><far>100</far></clip></camera></sensor>"
+)
+NESTED_WORLD: dict[str, Setup] = {
+    "world.sdf": '<?xml version="1.0"?>\n<sdf version="1.9">\n  <world name="demo">\n'
+    "    <include><uri>model://rover</uri></include>\n  </world>\n</sdf>\n",
+    "rover/model.sdf": '<?xml version="1.0"?>\n<sdf version="1.9">\n  <model name="rover">\n'
+    '    <link name="chassis"><sensor name="imu" type="imu"><update_rate>100</update_rate>'
+    "<topic>imu</topic><imu/></sensor></link>\n"
+    "    <include><uri>model://headd</uri><name>head</name></include>\n  </model>\n</sdf>\n",
+    "head/model.sdf": '<?xml version="1.0"?>\n<sdf version="1.9">\n  <model name="head">\n'
+    f'    <link name="cam_link">{GZ_CAMERA}</link>\n  </model>\n</sdf>\n',
+}
+NO_SENSORS_WORLD = (
+    '<?xml version="1.0"?>\n<sdf version="1.9">\n  <world name="yard">\n'
+    '    <plugin filename="gz-sim-physics-system" name="gz::sim::systems::Physics"/>\n'
+    '    <model name="post"><static>true</static>\n'
+    f'      <link name="l">{GZ_CAMERA}</link>\n    </model>\n  </world>\n</sdf>\n'
+)
+
+
 def second_hour_mistakes() -> list[Mistake]:
     """Issue 38's list: silent wrongs and misleading messages met following the README."""
     u16 = {"r.urdf": FIXED.encode("utf-16")}
@@ -623,6 +661,31 @@ def second_hour_mistakes() -> list[Mistake]:
         m("K22", "a lidar stamped base_link: the fix line", "validate lidar.urdf", 1,
           files={"lidar.urdf": LIDAR_ON_BASE}, words=("publish in 'laser_link'", "--fix does this"),
           forbid=("move 'base_link'",)),
+        m("K23", "two copies of one package in a workspace (colcon refuses it)",
+          f"validate {DUP_TOP}", 1, files=DUP_WS,
+          words=("SK103", "ws/src twice", "Duplicate package names not supported",
+                 "sensorkit read ws/src/b/my_robot", "COLCON_IGNORE")),
+        m("K24", "topics on a robot whose package is twice in the workspace", f"topics {DUP_TOP}", 0,
+          files=DUP_WS, words=("warning", "SK103", "twice"), forbid=("not listed",), one_line=False),
+        m("K25", "topics on a world whose robot's nested include is missing", "topics world.sdf", 0,
+          files=NESTED_WORLD, words=("SK107", "model://headd", "world.sdf -> model://rover", "not listed"),
+          one_line=False),
+        m("K26", "a Harmonic world with a camera and no Sensors system", "validate world.sdf --target harmonic",
+          1, files={"world.sdf": NO_SENSORS_WORLD},
+          words=("SK620", 'filename="gz-sim-sensors-system"', "render_engine"),
+          forbid=("fortress", "ignition")),
+        m("K27", "a Fortress world with a camera and no Sensors system", "validate world.sdf --target fortress",
+          1, files={"world.sdf": NO_SENSORS_WORLD},
+          words=("SK620", 'filename="ignition-gazebo-sensors-system"'), forbid=("gz-sim-sensors-system",)),
+        m("K28", "a world validated for Harmonic: no advice about Fortress",
+          "validate world.sdf --target harmonic", 1,
+          files={"world.sdf": NO_SENSORS_WORLD.replace("<topic>cam</topic>",
+                                                       "<topic>cam</topic><ignition_frame_id>l</ignition_frame_id>")},
+          words=("SK608", "<gz_frame_id>"), forbid=("fortress", "ignition-gazebo")),
+        m("K29", "new: the header names the robot YAML the user has", "new robot.yaml -o bot_description", 0,
+          files={"robot.yaml": "name: bot\nsim: none\nsensors:\n  - {type: imu, name: imu, parent: base_link}\n"},
+          pipe="{ cat >/dev/null; head -6 bot_description/urdf/bot.urdf.xacro; }",
+          words=("Change ../robot.yaml", "sensorkit new robot.yaml -o bot_description")),
     ]
 
 

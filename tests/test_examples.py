@@ -185,8 +185,11 @@ def test_humble_three_sensors_topics() -> None:
 
 
 def test_harmonic_robot_is_exactly_what_sensorkit_new_makes(tmp_path: Path) -> None:
+    # generated beside a copy of the YAML, as the example lies beside its own: the header
+    # names the YAML by its path from the package (../robot.yaml)
+    shutil.copy(HARMONIC_DIR / "robot.yaml", tmp_path / "robot.yaml")
     out = tmp_path / "harmonic_robot_description"
-    result = new_package(HARMONIC_DIR / "robot.yaml", out)
+    result = new_package(tmp_path / "robot.yaml", out)
     committed = sorted(
         p.relative_to(HARMONIC_PKG).as_posix() for p in HARMONIC_PKG.rglob("*") if p.is_file()
     )

@@ -9,6 +9,7 @@ from builders import robot
 from conftest import CORPUS, ROOT, needs_corpus, rules_of
 from conftest import run_cli as cli
 
+from sensorkit.base.findings import Finding
 from sensorkit.lint.engine import Options, validate_file
 from sensorkit.loading.document import looks_like_xacro
 from sensorkit.loading.marks import forbid_entities
@@ -254,3 +255,100 @@ def test_cli_never_prints_a_traceback_on_bad_input(tmp_path: Path) -> None:
     ]
     res = cli("validate", *map(str, files), "--format", "json")
     assert res.returncode == 1 and "Traceback" not in res.stderr
+
+
+def _package(folder: Path, name: str, link: str) -> None:
+    (folder / "urdf").mkdir(parents=True)
+    (folder / "package.xml").write_text(
+        f'<?xml version="1.0"?><package format="3"><name>{name}</name><version>0.0.1</version>'
+        '<description>d</description><maintainer email="a@b.c">a</maintainer>'
+        "<license>MIT</license></package>\n"
+    )
+    (folder / "urdf" / "parts.xacro").write_text(
+        '<?xml version="1.0"?><robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        f'<link name="{link}"/><joint name="j" type="fixed"><parent link="base_link"/>'
+        f'<child link="{link}"/></joint></robot>\n'
+    )
+
+
+DUP_ROBOT = """<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base_link"/>
+  <xacro:include filename="$(find my_robot)/urdf/parts.xacro"/>
+</robot>
+"""
+
+
+def test_a_package_twice_in_the_workspace_is_said_as_colcon_refuses_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 38: two copies of one package in a workspace's src/ (colcon refuses to build
+    it: "Duplicate package names not supported", colcon/colcon-core@b37a8d4:
+    colcon_core/package_selection/__init__.py:185-196) were resolved silently, the first
+    in folder order, here the stale copy. Now the copy holding the file is read, and an
+    SK103 error names both and the one read; a COLCON_IGNORE file (which colcon skips:
+    colcon_core/package_identification/ignore.py:11-15) or --package-path NAME=DIR
+    settles it (near misses)."""
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.chdir(tmp_path)
+    src = tmp_path / "ws" / "src"
+    _package(src / "a" / "my_robot", "my_robot", "old_link")
+    _package(src / "b" / "my_robot", "my_robot", "new_link")
+    top = src / "b" / "my_robot" / "urdf" / "robot.urdf.xacro"
+    top.write_text(DUP_ROBOT)
+
+    def run(*packages: str) -> tuple[list[Finding], list[str]]:
+        report = validate_file(top, Options(target="classic", package_paths=packages, cache=None))
+        assert report.error is None, report.error
+        dups = [f for f in report.findings if f.rule == "SK103"]
+        return dups, [lk.name for lk in report.robot.links] if report.robot else []
+
+    dups, links = run()
+    assert "new_link" in links and "old_link" not in links  # the file's own copy
+    (f,) = dups
+    assert f.severity.name == "ERROR" and f.source.line == 4
+    assert (
+        "package 'my_robot' is in ws/src twice: ws/src/a/my_robot and ws/src/b/my_robot; "
+        'colcon refuses to build such a workspace ("Duplicate package names not supported"'
+    ) in f.message
+    assert "sensorkit read ws/src/b/my_robot (the package holding this file)" in f.message
+    assert "COLCON_IGNORE" in f.fix and "--package-path my_robot=DIR" in f.fix
+    # near misses: the copy chosen by name, or the other one ignored as colcon ignores it
+    assert run(f"my_robot={src / 'b' / 'my_robot'}")[0] == []
+    (src / "a" / "my_robot" / "COLCON_IGNORE").touch()
+    dups, links = run()
+    assert dups == [] and "new_link" in links
+
+
+def test_a_package_twice_around_a_file_in_no_workspace_is_info(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Outside a colcon src/, which copy a build installs is not known: info, naming both
+    and the copy read (a package:// mesh URI is said the same way, once)."""
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.chdir(tmp_path)
+    repo = tmp_path / "repos" / "bot"
+    _package(repo / "desc_a" / "parts", "parts", "one_link")
+    _package(repo / "desc_b" / "parts", "parts", "two_link")
+    (repo / "bringup" / "urdf").mkdir(parents=True)
+    (repo / "bringup" / "package.xml").write_text(
+        (repo / "desc_a" / "parts" / "package.xml").read_text().replace("parts", "bringup")
+    )
+    top = repo / "bringup" / "urdf" / "robot.urdf.xacro"
+    top.write_text(
+        DUP_ROBOT.replace("my_robot", "parts").replace(
+            '<link name="base_link"/>',
+            '<link name="base_link"><visual><geometry><mesh filename="package://parts/m.stl"/>'
+            "</geometry></visual></link>",
+        )
+    )
+    report = validate_file(top, Options(target="classic", cache=None))
+    (f,) = [f for f in report.findings if f.rule == "SK103"]
+    assert f.severity.name == "INFO" and "found twice around this file" in f.message
+    assert "sensorkit read repos/bot/desc_a/parts" in f.message
+    # near miss: one copy, no finding
+    (repo / "desc_b" / "parts" / "package.xml").unlink()
+    report = validate_file(top, Options(target="classic", cache=None))
+    assert [f for f in report.findings if f.rule == "SK103"] == []

@@ -535,3 +535,37 @@ def test_force_through_a_symlinked_output_edits_the_target(tmp_path: Path) -> No
     assert not (target / "stale.txt").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pkg", "real", "robot.yaml"]
     assert [p.name for p in (tmp_path / "real").iterdir()] == ["pkg"]  # no staging left
+
+
+def test_the_header_names_the_yaml_the_user_has(tmp_path: Path) -> None:
+    """Issue 38: the generated header said "Change robot.yaml", which is not in the
+    package. `new` never writes its input into its output (a copy would be a second source
+    of truth that add-* and the user's own YAML would part on, and `new --force` refuses
+    an -o that holds its input), so the header and README name the YAML by its path from
+    the package folder, and the command that generates again; add-* finds the YAML beside
+    the package through the same path."""
+    one = "name: classic_bot\nbase: diff_drive\nsim: none\nsensors:\n  - {type: imu, name: imu, parent: base_link}\n"
+    (tmp_path / "robot.yaml").write_text(one)
+    pkg = tmp_path / "classic_bot_description"
+    result = new_package(tmp_path / "robot.yaml", pkg)
+    assert result.spec.package == pkg.name
+    xacro = pkg / "urdf" / f"{result.spec.name}.urdf.xacro"
+    head = xacro.read_text().split("-->")[0]
+    etree.parse(str(xacro))  # the comment stays XML ("--force" could not be in it)
+    assert "Change ../robot.yaml (the path is from the package folder)" in head
+    assert "`sensorkit new robot.yaml -o classic_bot_description`" in head
+    assert "--" not in head.split("<!--", 1)[1]
+    assert (pkg / "../robot.yaml").resolve() == (tmp_path / "robot.yaml").resolve()
+    readme = (pkg / "README.md").read_text()
+    assert "`../robot.yaml` from" in readme
+    assert "`sensorkit new robot.yaml -o classic_bot_description --force`" in readme
+    # a YAML kept elsewhere: its path from the package, which leads to it
+    designs = tmp_path / "designs"
+    designs.mkdir()
+    shutil.copy(tmp_path / "robot.yaml", designs / "bot.yaml")
+    far = tmp_path / "ws" / "src" / "classic_bot_description"
+    new_package(designs / "bot.yaml", far)
+    head = (far / "urdf" / xacro.name).read_text().split("-->")[0]
+    assert "Change ../../../designs/bot.yaml " in head
+    assert "`sensorkit new ../../designs/bot.yaml -o classic_bot_description`" in head
+    assert (far / "../../../designs/bot.yaml").resolve() == (designs / "bot.yaml").resolve()

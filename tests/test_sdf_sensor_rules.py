@@ -6,6 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -50,6 +51,7 @@ CASES: dict[str, tuple[str, str, str | None]] = {
     "SK615": ("harmonic", "bridged", "bridge_sk615"),
     "SK617": ("harmonic", "bridged", "bridge_sk617"),  # cam's entry runs ROS_TO_GZ
     "SK618": ("harmonic", "bridged", "bridge_sk618"),  # /camm: did you mean cam?
+    "SK620": ("harmonic", "sk620", None),  # a world with systems, none of them Sensors
 }
 
 
@@ -152,3 +154,46 @@ def test_validate_reports_an_sdf_sensor_rule_through_the_cli() -> None:
     )
     assert out.returncode == 1, out.stderr
     assert "sk613_trigger.sdf:5: SK613 error" in out.stdout
+
+
+def test_sk620_a_world_without_the_sensors_system_names_the_target_plugin(tmp_path: Path) -> None:
+    """Issue 38: a world that lists its systems without the Sensors system renders nothing.
+    Only that system enables gz-sim's rendering sensors (gazebosim/gz-sim@gz-sim8_8.14.0:
+    src/systems/sensors/Sensors.cc:808-810, the one SetEnableSensors(true) in src/) and
+    creates the camera and GPU lidar objects (:1119-1169; @ignition-gazebo6_6.16.0 :526,
+    :777-812). A world with no <plugin> gets the default server.config instead
+    (src/SimulationRunner.cc:1762-1769), which a user may have edited: not judged."""
+    trigger = (HERE / "sk620_trigger.sdf").read_text()
+
+    def findings(text: str, target: str) -> list[Any]:
+        path = tmp_path / "world.sdf"
+        path.write_text(text)
+        report = validate_file(path, Options(target=target, select=("SK620",)))
+        assert report.error is None and not report.internal_errors, report
+        return list(report.findings)
+
+    (f,) = findings(trigger, "harmonic")
+    assert f.severity.name == "ERROR" and f.source.line == 3
+    assert "sensor 'cam' of model 'post' publishes no data" in f.message
+    assert f.fix.startswith('add <plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors">')
+    assert "<render_engine>ogre2</render_engine>" in f.fix and "ignition" not in f.fix + f.message
+    (f,) = findings(trigger, "fortress")  # the advice names the chosen target's spelling only
+    assert 'filename="ignition-gazebo-sensors-system" name="ignition::gazebo::systems::Sensors"' in f.fix
+    assert "gz-sim-sensors" not in f.fix and "Fortress" in f.message
+    gpu = trigger.replace('type="camera"', 'type="gpu_lidar"')
+    assert [f.rule for f in findings(gpu, "jetty")] == ["SK620"]
+    # near misses: Classic; no system listed at all; the Sensors system in any spelling a
+    # release loads, or on a model; a world whose sensors render nothing
+    assert not findings(trigger, "classic")
+    plugins = [ln for ln in trigger.splitlines() if "<plugin " in ln]
+    bare = "\n".join(ln for ln in trigger.splitlines() if ln not in plugins)
+    assert not findings(bare, "harmonic")
+    for spelled in (
+        '<plugin filename="libignition-gazebo6-sensors-system.so" name="x"/>',
+        '<plugin filename="custom" name="ignition::gazebo::systems::Sensors"/>',
+    ):
+        assert not findings(trigger.replace(plugins[0], spelled), "harmonic"), spelled
+    on_model = trigger.replace("<static>", '<plugin filename="gz-sim-sensors-system" name="s"/><static>')
+    assert not findings(on_model, "harmonic")
+    imu = trigger.replace('type="camera"', 'type="imu"')
+    assert not findings(imu, "harmonic")

@@ -52,7 +52,7 @@ PLAIN_URDF = frozenset(
     sensorkit.knowledge.sdf_values sensorkit.lint sensorkit.lint.config sensorkit.lint.engine
     sensorkit.lint.fleet sensorkit.lint.report sensorkit.lint.rules sensorkit.lint.rules.base
     sensorkit.lint.rules.bridge sensorkit.lint.rules.focal sensorkit.lint.rules.frame_joints
-    sensorkit.lint.rules.frames sensorkit.lint.rules.gz_frames sensorkit.lint.rules.input
+    sensorkit.lint.rules.frames sensorkit.lint.rules.gz_frames sensorkit.lint.rules.gz_world sensorkit.lint.rules.input
     sensorkit.lint.rules.lidar sensorkit.lint.rules.mass sensorkit.lint.rules.noise
     sensorkit.lint.rules.placement sensorkit.lint.rules.plugins sensorkit.lint.rules.principal
     sensorkit.lint.rules.ros1 sensorkit.lint.rules.ros1_values sensorkit.lint.rules.sdf

@@ -916,3 +916,60 @@ def test_a_triggered_camera_subscribes_to_image_trigger_under_its_name(tmp_path:
     assert "front_camera/image_trigger" in names("<triggered>true</triggered>")
     assert "front_camera/image_trigger" not in names("", "<triggered>true</triggered>")
     assert "front_camera/image_trigger" not in names("<triggered>false</triggered>")
+
+
+NESTED_ROVER = """<?xml version="1.0"?>
+<sdf version="1.9">
+  <model name="rover">
+    <link name="chassis">
+      <sensor name="imu" type="imu"><update_rate>100</update_rate><topic>imu</topic><imu/></sensor>
+    </link>
+    <include><uri>model://HEAD</uri><name>head</name><pose>0 0 0.5 0 0 0</pose></include>
+  </model>
+</sdf>
+"""
+NESTED_HEAD = f"""<?xml version="1.0"?>
+<sdf version="1.9">
+  <model name="head">
+    <link name="cam_link">
+      <sensor name="cam" type="camera"><update_rate>30</update_rate><topic>cam</topic>
+        {camera_block()}</sensor>
+    </link>
+  </model>
+</sdf>
+"""
+NESTED_WORLD = """<?xml version="1.0"?>
+<sdf version="1.9">
+  <world name="demo"><include><uri>model://rover</uri></include></world>
+</sdf>
+"""
+
+
+def test_a_missing_nested_include_is_said_with_its_chain(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 38: a model included by a model the world includes, when missing, left half
+    the sensors out of `topics` without a word (exit 0). It is said as a world's own
+    include is (SK107, what libsdformat does with it: sdf_includes.py), naming the chain
+    of includes; validate's SK107 names the chain too."""
+    models = tmp_path / "models"
+    for name, text in (("rover", NESTED_ROVER.replace("HEAD", "hed")), ("head", NESTED_HEAD)):
+        (models / name).mkdir(parents=True)
+        (models / name / "model.sdf").write_text(text)
+    monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", str(models))  # as gz-sim finds models
+    world = write(tmp_path, NESTED_WORLD, "world.sdf")
+    res = run("topics", world)
+    assert res.exit_code == 0
+    said = [ln for ln in res.stderr.splitlines() if "SK107" in ln]
+    assert len(said) == 1, res.stderr
+    assert "model.sdf:7: SK107: <include> 'model://hed' does not resolve" in said[0]
+    assert "world.sdf -> model://rover -> model://hed)" in said[0] and "(nested: " in said[0]
+    assert "(what it holds is not listed)" in said[0]
+    res = run("validate", world, "--target", "harmonic", "--format", "json")
+    (f,) = [f for f in json.loads(res.stdout)["findings"] if f["rule"] == "SK107"]
+    assert f["severity"] == "error" and "model://rover -> model://hed)" in f["message"]
+    # near miss: the nested include found, both sensors listed and nothing said
+    (models / "rover" / "model.sdf").write_text(NESTED_ROVER.replace("HEAD", "head"))
+    res = run("topics", world)
+    assert res.exit_code == 0 and "SK107" not in res.stderr and "warning" not in res.stderr
+    assert "/cam" in res.stdout and "/imu" in res.stdout

@@ -94,6 +94,7 @@ class Settings:
     ) -> list[Any]:
         """As :meth:`describe`, for every model of an SDF world (one for other files)."""
         from sensorkit.describe.sensorinfo import describe, load_models
+        from sensorkit.loading.input_findings import KEEP_ONE
 
         said: list[Any] = []
         robots = load_models(
@@ -108,7 +109,8 @@ class Settings:
         for finding in said:  # e.g. a misspelt xacro arg: said here, as validate reports it
             where = f"{finding.source}: " if finding.source.line is not None else ""
             what = f"; {finding.fix}" if finding.rule == "SK102" and finding.fix else ""
-            missing = "" if finding.rule == "SK102" else " (what it holds is not listed)"
+            whole = finding.rule == "SK102" or (finding.fix or "").startswith(KEEP_ONE)
+            missing = "" if whole else " (what it holds is not listed)"
             typer.echo(
                 f"sensorkit: warning: {where}{finding.rule}: {finding.message}{what}{missing}",
                 err=True,

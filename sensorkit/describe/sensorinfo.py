@@ -184,16 +184,17 @@ def load_models(
 
 
 def _world_include_errors(robots: list[Robot]) -> list[Finding]:
-    """The SK107 errors of a world's own includes that brought no model: validate's SK107
-    rule says them on the world's first model (model/sdf_read.py), which loading alone
-    does not report."""
+    """The SK107 errors of includes that brought no model: a world's own, and those a
+    model holds, nested ones included (what they bring is missing from the list). The
+    SK107 rule says them in validate; loading alone does not report them."""
     from sensorkit.model.sdf_includes import include_finding
 
-    out = []
+    out: list[Finding] = []
     for robot in robots:
-        for inc in robot.sdf.world_includes if robot.sdf is not None else ():
+        sm = robot.sdf
+        for inc in [*sm.includes, *sm.world_includes] if sm is not None else ():
             found = include_finding(inc, robot.document)
-            if found is not None and found.severity is Severity.ERROR:
+            if found is not None and found.severity is Severity.ERROR and found not in out:
                 out.append(found)
     return out
 

@@ -155,7 +155,8 @@ def read_package(source: Path, data: bytes, *, untrusted: bool) -> PackageContex
     except InputError as exc:
         ctx.notes.append(f"{shown} not updated: it does not read ({exc})")
         return ctx
-    expected = render.robot_xacro(spec, ctx.yaml_name).encode("utf-8")
+    regen = render.regen_for(spec_path, pkg)
+    expected = render.robot_xacro(spec, regen).encode("utf-8")
     if source.name != f"{spec.name}.urdf.xacro" or expected != data:
         ctx.notes.append(
             f"{shown} not updated: {where} is not what it generates (edited by hand, or "
@@ -266,6 +267,7 @@ def plan_generated(
     ctx: PackageContext, source: Path, spliced: bytes, sensor: NewSensor
 ) -> PackagePlan:
     """Append the sensor to the robot YAML and regenerate the package (module doc)."""
+    from sensorkit.generate import render
     from sensorkit.generate.package import build_package
     from sensorkit.generate.spec import parse_spec
     from sensorkit.generate.spec_edit import SensorEntry, append_sensor
@@ -291,8 +293,9 @@ def plan_generated(
         old_dir.mkdir()
         new_dir.mkdir()
         try:
-            build_package(ctx.spec, old_dir, yaml_name=ctx.yaml_name)
-            build_package(new_spec, new_dir, yaml_name=ctx.yaml_name)
+            regen = render.regen_for(ctx.spec_path, ctx.root)
+            build_package(ctx.spec, old_dir, regen=regen)
+            build_package(new_spec, new_dir, regen=regen)
         except InputError as exc:
             msg = f"{shown}: the package does not generate with the sensor added: {exc}"
             raise EditRefused(msg) from None

@@ -115,8 +115,9 @@ def camera_images(topics: Sequence[Topic]) -> list[render.CameraImage]:
     ]
 
 
-def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[BridgeEntry]:
-    """Write every file of the package for ``spec`` into the (empty) folder ``root``.
+def build_package(spec: RobotSpec, root: Path, *, regen: render.Regen) -> list[BridgeEntry]:
+    """Write every file of the package for ``spec`` into the (empty) folder ``root``;
+    ``regen`` says where its YAML is (the header and README name it).
 
     Returns the bridge entries (empty unless ``spec.sim == "gz"``).
 
@@ -125,7 +126,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
             publish on the same ROS topic.
     """
     urdf = f"urdf/{spec.name}.urdf.xacro"
-    _write(root, urdf, render.robot_xacro(spec, yaml_name))
+    _write(root, urdf, render.robot_xacro(spec, regen))
     base = spec.base_macro
     _write(root, f"urdf/{base.file.name}", base.file.read_bytes())
     for macro in {s.type: s.macro for s in spec.sensors}.values():
@@ -165,7 +166,7 @@ def build_package(spec: RobotSpec, root: Path, *, yaml_name: str) -> list[Bridge
         programs.append(render.SAVE_FRAMES_NODE)
     _write(root, "package.xml", render.package_xml(spec, python_node=bool(programs)))
     _write(root, "CMakeLists.txt", render.cmakelists(spec, sorted(install), programs))
-    _write(root, "README.md", readme(spec, yaml_name, entries, images, unshown, frame))
+    _write(root, "README.md", readme(spec, regen, entries, images, unshown, frame))
     return entries
 
 
@@ -203,6 +204,6 @@ def new_package(
         spec = load_spec(spec_path, defaults)
         check_replaceable(out, force=force, inputs=[spec_path], flag="-o")
         with staged_folder(out, publish=not dry_run) as temp:
-            entries = build_package(spec, temp, yaml_name=spec_path.name)
+            entries = build_package(spec, temp, regen=render.regen_for(spec_path, out))
             files = _listing(temp)
     return GeneratedPackage(spec, out, files, entries, dry_run)

@@ -13,7 +13,7 @@ from sensorkit.generate.rviz import rviz_unshown_groups
 
 if TYPE_CHECKING:
     from sensorkit.describe.bridge import BridgeEntry
-    from sensorkit.generate.render import CameraImage
+    from sensorkit.generate.render import CameraImage, Regen
     from sensorkit.generate.rviz import Unshown
     from sensorkit.generate.spec import RobotSpec
 
@@ -24,15 +24,16 @@ def _simulated(spec: RobotSpec) -> bool:
     return spec.sim in ("gz", "classic")
 
 
-def _head(spec: RobotSpec, yaml_name: str) -> list[str]:
+def _head(spec: RobotSpec, regen: Regen) -> list[str]:
     """The title, description and sensor table."""
     lines = [
         f"# {spec.package}",
         "",
         f"{spec.description}",
         "",
-        f"Written by `sensorkit new {yaml_name}`: change the YAML and generate again rather",
-        "than editing these files by hand.",
+        f"Written by `sensorkit new {regen.yaml_name}`: change the YAML (`{regen.yaml_at}` from",
+        "this folder) and generate again rather than editing these files by hand; from the",
+        f"folder holding this package: `sensorkit new {regen.yaml_arg} -o {spec.package} --force`.",
         "",
         "| sensor | type | parent | xyz | rpy |",
         "|---|---|---|---|---|",
@@ -170,7 +171,7 @@ def _save_frames(spec: RobotSpec, images: Sequence[CameraImage]) -> list[str]:
 
 def readme(
     spec: RobotSpec,
-    yaml_name: str,
+    regen: Regen,
     entries: Sequence[BridgeEntry],
     images: Sequence[CameraImage] = (),
     unshown: Sequence[Unshown] = (),
@@ -180,7 +181,7 @@ def readme(
     the camera images save_frames saves, ``unshown`` the topics RViz2 has no display for."""
     xacro_rel = f"urdf/{spec.name}.urdf.xacro"
     lines = [
-        *_head(spec, yaml_name),
+        *_head(spec, regen),
         *_try_it(spec, xacro_rel),
         *_rviz(spec, unshown, fixed_frame),
         *_topics(spec, entries, xacro_rel),

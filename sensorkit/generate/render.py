@@ -15,9 +15,11 @@ same bytes.
 from __future__ import annotations
 
 import json
+import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from xml.sax.saxutils import escape, quoteattr
 
 from sensorkit.base.resources import templates_dir
@@ -182,7 +184,30 @@ def _attrs(pairs: Sequence[tuple[str, str]], indent: str) -> str:
     return "\n" + "\n".join(f"{indent}    {p}" for p in parts)
 
 
-def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
+@dataclass(frozen=True)
+class Regen:
+    """Where the robot YAML a package was generated from lies, as its files say it: the
+    YAML stays the user's file, outside the package (``new`` never writes an input into
+    its output), so the header and README name it by its path from the package, and
+    the command that generates again names the folder by the package's name (the folder
+    ROS users give a package; a package generated elsewhere stays byte for byte the same)."""
+
+    yaml_name: str  # the YAML's file name (what add-* looks for beside the package)
+    yaml_at: str  # its path from the package folder: "../robot.yaml"
+    yaml_arg: str  # its path from the package's parent folder, where `new` runs again
+
+
+def regen_for(spec_path: Path, pkg: Path) -> Regen:
+    """The :class:`Regen` of the YAML at ``spec_path`` for the package folder ``pkg``."""
+    spec, out = Path(os.path.realpath(spec_path)), Path(os.path.realpath(pkg))
+    return Regen(
+        spec.name,
+        Path(os.path.relpath(spec, out)).as_posix(),
+        Path(os.path.relpath(spec, out.parent)).as_posix(),
+    )
+
+
+def robot_xacro(spec: RobotSpec, regen: Regen) -> str:
     """The top-level ``urdf/<robot>.urdf.xacro``: include the base and each sensor macro
     (relative paths, so plain ``xacro`` expands it anywhere) and call them."""
     base = spec.base_macro
@@ -191,9 +216,10 @@ def robot_xacro(spec: RobotSpec, yaml_name: str) -> str:
         '<?xml version="1.0"?>',
         "<!--",
         f"  {spec.name}: a {spec.base} base with {len(spec.sensors)} sensor"
-        f"{'' if len(spec.sensors) == 1 else 's'}, written by `sensorkit new {yaml_name}`.",
-        f"  Change {yaml_name} and run sensorkit new again (with force) rather than editing",
-        "  this file: a new run replaces the whole package.",
+        f"{'' if len(spec.sensors) == 1 else 's'}, written by `sensorkit new {regen.yaml_name}`.",
+        f"  Change {regen.yaml_at} (the path is from the package folder) rather than editing",
+        "  this file, and generate again with force from the folder holding the package:",
+        f"  `sensorkit new {regen.yaml_arg} -o {spec.package}` (it replaces the whole package).",
         "",
         "  Argument:",
         f"    sim   classic | gz | none (default {spec.sim}). none gives the links and joints",

@@ -14,6 +14,7 @@ Gazebo Sim.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 
@@ -430,3 +431,56 @@ def gz_msg_name(gz_type: str) -> str:
 def ros_msg_name(ros_type: str) -> str:
     """``sensor_msgs/msg/Image`` -> ``sensor_msgs/Image`` (the ROS 1 spelling)."""
     return ros_type.strip().replace("/msg/", "/")
+
+
+# The Sensors system renders. Only it enables sensor creation in gz-sim's RenderUtil
+# (gazebosim/gz-sim@gz-sim8_8.14.0:src/systems/sensors/Sensors.cc:808-810, the one
+# SetEnableSensors(true, ...) in src/; @ignition-gazebo6_6.16.0: :526), and its CreateSensor
+# makes the gz-sensors object of each rendering type (gz-sim8 Sensors.cc:1119-1169: CAMERA,
+# DEPTH_CAMERA, GPU_LIDAR, RGBD_CAMERA, THERMAL_CAMERA, BOUNDINGBOX_CAMERA,
+# SEGMENTATION_CAMERA, WIDE_ANGLE_CAMERA; ign-gazebo6 :777-812 the same but the wide angle
+# camera). Without it these sensors are entities with no sensor behind them: no image, no
+# scan. The SDF type strings that parse as those types:
+# gazebosim/sdformat@sdformat14_14.9.0:src/Sensor.cc:279-352.
+GZ_RENDERING_SENSOR_TYPES = frozenset(
+    {
+        "camera",
+        "depth", "depth_camera",
+        "rgbd", "rgbd_camera",
+        "thermal", "thermal_camera",
+        "segmentation", "segmentation_camera",
+        "boundingbox", "boundingbox_camera",
+        "wideanglecamera", "wide_angle_camera",
+        "gpu_ray", "gpu_lidar",
+    }
+)  # fmt: skip
+GZ_SENSORS_SYSTEM_SOURCE = {
+    "fortress": "gazebosim/gz-sim@ignition-gazebo6_6.16.0:src/systems/sensors/Sensors.cc:526, 777-812",
+    "harmonic": "gazebosim/gz-sim@gz-sim8_8.14.0:src/systems/sensors/Sensors.cc:808-810, 1119-1169",
+    "jetty": "gazebosim/gz-sim@gz-sim10_10.4.0:src/systems/sensors/Sensors.cc:808-810, 1119-1169",
+}
+# Its library and class, any spelling a release loads: gz-sim maps ignition-gazebo to gz-sim
+# (gz-sim8 src/SystemLoader.cc:67-75) and Fortress gz-sim to ignition-gazebo from 6.16
+# (ign-gazebo6 src/SystemLoader.cc:73-79); installed names carry the major version
+# (libgz-sim8-sensors-system.so); the class is registered under both names (ign-gazebo6
+# Sensors.cc:1034-1037, gz-sim8 :1371).
+GZ_SENSORS_SYSTEM_FILE = re.compile(r"^(lib)?(gz-sim|ignition-gazebo)\d*-sensors-system(\.so)?$")
+GZ_SENSORS_SYSTEM_CLASS = re.compile(r"^(gz::sim|ignition::gazebo)::systems::Sensors$")
+# When a world lists no <plugin> that loads, gz-sim loads the default server.config
+# (gz-sim8 src/SimulationRunner.cc:1762-1769, src/ServerConfig.cc:971-1010;
+# ign-gazebo6 src/SimulationRunner.cc:199-206), which as installed holds Physics,
+# UserCommands and SceneBroadcaster, not Sensors (gz-sim8 include/gz/sim/server.config),
+# but a user may have edited it (~/.gz/sim/<N>/server.config): only a world that lists
+# systems is judged.
+
+
+def gz_sensors_system_line(target: str) -> str:
+    """The world <plugin> line of the Sensors system for ``target`` (Fortress spells it
+    ignition-gazebo; render_engine ogre2 is the default, Sensors.cc:700-701)."""
+    if target == "fortress":
+        lib, cls = "ignition-gazebo-sensors-system", "ignition::gazebo::systems::Sensors"
+    else:
+        lib, cls = "gz-sim-sensors-system", "gz::sim::systems::Sensors"
+    return (
+        f'<plugin filename="{lib}" name="{cls}"><render_engine>ogre2</render_engine></plugin>'
+    )

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sensorkit.base.errors import InputError, UsageError
-from sensorkit.base.findings import Finding, Severity
+from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.lint.rules import RULES, Context, MissingFile, RuleInfo
 from sensorkit.lint.rules.base import Bridge
 from sensorkit.lint.suppress import collect
@@ -174,6 +174,8 @@ def find_missing_files(
             else:
                 target = resolve_uri(uri, base, resolver)
             path, pkg = target.path, target.missing_package
+            if pkg is None and path is not None and uri.startswith("package://"):
+                findings += _duplicate(resolver, uri, src, robot, seen_pkg)
             if pkg is not None:
                 if pkg not in seen_pkg:
                     seen_pkg.add(pkg)
@@ -196,6 +198,23 @@ def find_missing_files(
             if not exists[path]:
                 missing.append(MissingFile(uri, src, f"no file at {path}", link.name))
     return missing, findings
+
+
+def _duplicate(
+    resolver: PackageResolver, uri: str, src: SourceRef, robot: Robot, seen: set[str]
+) -> list[Finding]:
+    """SK103 for a mesh's package found twice (said once, and not again when the
+    expansion's own ``$(find)`` said it: input_findings.duplicate_findings)."""
+    name = uri[len("package://") :].partition("/")[0]
+    if name in seen or name in robot.document.packages:
+        return []
+    seen.add(name)
+    dup = resolver.duplicate(name)
+    if dup is None:
+        return []
+    from sensorkit.loading.input_findings import duplicate_finding
+
+    return [duplicate_finding(dup, src, display_path)]
 
 
 def load_launch(robot: Robot, options: Options) -> LaunchFacts | None:

@@ -19,6 +19,7 @@ from lxml import etree
 from sensorkit.base.errors import InputError
 from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.loading.input_findings import (
+    duplicate_findings,
     encoding_finding,
     limit_finding,
     prefixed_root_finding,
@@ -171,6 +172,7 @@ class Document:
     # every file the expansion read, when it was recorded (sensorkit.loading.reads):
     # includes, and YAML files read with xacro.load_yaml, which ``files`` does not hold
     reads: list[str] = field(default_factory=list)
+    packages: list[str] = field(default_factory=list)  # what $(find) and package:// resolved
 
     _display: str | None = field(default=None, repr=False)
     _file_display: dict[int, str] = field(default_factory=dict, repr=False)
@@ -427,6 +429,8 @@ def load_description(
     del xml
     _check_root(root, where, sdf)
     said = _arg_findings(where, data, args or {}, outcome.files, overlay, root)
+    used = [*outcome.packages, *(n for n, f in (outcome.deps.packages if outcome.deps else {}).items() if f)]
+    said += duplicate_findings(resolver, used, outcome.files or [str(path)], display_path) if used else []
     doc = Document(
         path=path,
         root=drop_default_namespace(root),
@@ -434,6 +438,7 @@ def load_description(
         expanded=True,
         includes=outcome.includes,
         reads=sorted(outcome.deps.files) if outcome.deps is not None else [],
+        packages=used,
     )
     return LoadResult(doc, said)
 

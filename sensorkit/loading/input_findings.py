@@ -4,11 +4,28 @@ formed, a file past a size bound, an encoding ROS's readers refuse, a prefixed r
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from lxml import etree
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
 
-__all__ = ["encoding_finding", "limit_finding", "prefixed_root_finding", "xml_finding"]
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable, Sequence
+    from pathlib import Path
+
+    from sensorkit.loading.packages import Duplicate, PackageResolver
+
+    Show = Callable[[str | Path], str]
+
+__all__ = [
+    "duplicate_finding",
+    "duplicate_findings",
+    "encoding_finding",
+    "limit_finding",
+    "prefixed_root_finding",
+    "xml_finding",
+]
 
 
 def xml_finding(file: str, message: str, line: int | None, column: int | None) -> Finding:
@@ -81,3 +98,72 @@ def prefixed_root_finding(root: etree._Element, where: str) -> Finding | None:
         SourceRef(where, root.sourceline),
         fix=f"write the root as <{local}> with no prefix (a default xmlns=\"...\" is fine)",
     )
+
+
+KEEP_ONE = "keep one copy"  # the fix of a package found twice: nothing is missing
+
+
+def duplicate_finding(dup: Duplicate, where: SourceRef, display_path: Show) -> Finding:
+    """SK103 for a package the robot uses that is in one searched folder twice: colcon
+    refuses to build such a workspace (an error: nothing of it is installed); around a
+    file in no colcon workspace, which copy a build would use is unknown (info).
+    ``display_path`` shows a path (document.display_path)."""
+    from sensorkit.loading.packages import COLCON_DUPLICATE_SOURCE
+
+    copies = " and ".join(display_path(f) for f in dup.folders)
+    used = display_path(dup.used) + (" (the package holding this file)" if dup.own else "")
+    if dup.workspace:
+        sev = Severity.ERROR
+        said = (
+            f"package {dup.name!r} is in {display_path(dup.root)} twice: {copies}; colcon "
+            f"refuses to build such a workspace (\"Duplicate package names not supported\", "
+            f"{COLCON_DUPLICATE_SOURCE}), so nothing of it is installed; sensorkit read {used}"
+        )
+    else:
+        sev = Severity.INFO
+        said = (
+            f"package {dup.name!r} is found twice around this file: {copies}; which one a "
+            f"build installs is unknown; sensorkit read {used}"
+        )
+    return Finding(
+        "SK103",
+        sev,
+        said,
+        where,
+        fix=(
+            f"{KEEP_ONE}: delete the other, or put an empty COLCON_IGNORE file in its "
+            f"folder (colcon and sensorkit then skip it); or choose one with --package-path "
+            f"{dup.name}=DIR"
+        ),
+    )
+
+
+def duplicate_findings(
+    resolver: PackageResolver, names: Iterable[str], files: Sequence[str], display_path: Show
+) -> list[Finding]:
+    """:func:`duplicate_finding` of each package of ``names`` found twice, located at the
+    first ``$(find NAME)`` or ``package://NAME/`` of ``files`` (the expansion's files)."""
+    out = []
+    for name in sorted(set(names)):
+        dup = resolver.duplicate(name)
+        if dup is None:
+            continue
+        where = SourceRef(display_path(files[0]) if files else "")
+        for file in files:
+            line = _line_naming(file, (f"$(find {name})", f"package://{name}/"))
+            if line is not None:
+                where = SourceRef(display_path(file), line)
+                break
+        out.append(duplicate_finding(dup, where, display_path))
+    return out
+
+
+def _line_naming(file: str, needles: tuple[str, ...]) -> int | None:
+    try:
+        with open(file, encoding="utf-8", errors="replace") as f:
+            for i, line in enumerate(f, 1):
+                if any(n in line for n in needles):
+                    return i
+    except OSError:
+        pass
+    return None

@@ -69,7 +69,13 @@ def scan_packages(root: Path, *, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, P
     Like colcon: a package folder is not descended into, folders holding COLCON_IGNORE,
     AMENT_IGNORE or CATKIN_IGNORE and hidden or build folders are skipped.
     """
-    found: dict[str, Path] = {}
+    return {name: folders[0] for name, folders in scan_all(root, max_depth=max_depth).items()}
+
+
+def scan_all(root: Path, *, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, list[Path]]:
+    """As :func:`scan_packages`, with every folder of each name, in the order found (two
+    for a package copied within ``root``, which colcon refuses: :class:`Duplicate`)."""
+    found: dict[str, list[Path]] = {}
     if not root.is_dir():
         return found
     stack: list[tuple[Path, int]] = [(root, 0)]
@@ -85,8 +91,8 @@ def scan_packages(root: Path, *, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, P
             continue
         if "package.xml" in names:
             name = package_name(folder / "package.xml")
-            if name and name not in found:
-                found[name] = folder
+            if name:
+                found.setdefault(name, []).append(folder)
             continue
         if depth >= max_depth:
             continue
@@ -175,6 +181,26 @@ def inside(real: str, roots: Iterable[str]) -> bool:
     return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
 
 
+# colcon refuses a workspace holding two packages of one name: get_packages raises
+# "Duplicate package names not supported" (colcon/colcon-core@b37a8d4:
+# colcon_core/package_selection/__init__.py:185-196), and a COLCON_IGNORE file makes it
+# skip a folder (colcon_core/package_identification/ignore.py:11-15).
+COLCON_DUPLICATE_SOURCE = "colcon/colcon-core@b37a8d4:colcon_core/package_selection/__init__.py:185-196"
+
+
+@dataclass(frozen=True)
+class Duplicate:
+    """A package found twice or more in one folder searched (a workspace's ``src``, a
+    ``--package-path DIR``, or the folders around a file in no workspace)."""
+
+    name: str
+    root: Path
+    folders: tuple[Path, ...]
+    used: Path
+    own: bool  # ``used`` is the package holding the file being read
+    workspace: bool  # ``root`` is what colcon builds: a ``src`` or a --package-path DIR
+
+
 @dataclass
 class PackageResolver:
     """Maps package names to folders; records every place it searched."""
@@ -186,7 +212,7 @@ class PackageResolver:
     frozen_env: dict[str, str] | None = None
     confined: list[str] | None = None  # --untrusted: the real folders paths must lie in
     _cache: dict[str, Path | None] = field(default_factory=dict, repr=False)
-    _scanned: dict[Path, dict[str, Path]] = field(default_factory=dict, repr=False)
+    _scanned: dict[Path, dict[str, list[Path]]] = field(default_factory=dict, repr=False)
 
     @classmethod
     def from_options(
@@ -254,9 +280,9 @@ class PackageResolver:
             other.confine_to(path)
         return other
 
-    def _scan(self, root: Path, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, Path]:
+    def _scan(self, root: Path, max_depth: int = MAX_SCAN_DEPTH) -> dict[str, list[Path]]:
         if root not in self._scanned:
-            self._scanned[root] = scan_packages(root, max_depth=max_depth)
+            self._scanned[root] = scan_all(root, max_depth=max_depth)
         return self._scanned[root]
 
     def freeze_environment(self) -> None:
@@ -295,25 +321,52 @@ class PackageResolver:
         return result
 
     def _find(self, name: str) -> Path | None:
+        hit = self._where(name)
+        return hit[0] if hit is not None else None
+
+    def _where(self, name: str) -> tuple[Path, Path | None, bool] | None:
+        """(folder of ``name``, the scanned root it was found in or None, whether that
+        root is what colcon builds)."""
         if name in self.explicit:
-            return self.explicit[name]
+            return self.explicit[name], None, False
         for root in self.scan_dirs:
-            hit = self._scan(root).get(name)
-            if hit:
-                return hit
+            hits = self._scan(root).get(name)
+            if hits:
+                return hits[0], root, True
         for prefix in self._env_paths("AMENT_PREFIX_PATH"):
             share = prefix / "share" / name
             if (share / "package.xml").is_file() or share.is_dir():
-                return share
+                return share, None, False  # an overlay: the first prefix wins, by design
         for root in self._env_paths("ROS_PACKAGE_PATH"):
-            hit = self._scan(root).get(name)
-            if hit:
-                return hit
+            hits = self._scan(root).get(name)
+            if hits:
+                return hits[0], None, False
+        own = self._own()
         for root in self._workspace():
-            hit = self._scan(root, max_depth=3).get(name)
-            if hit:
-                return hit
+            hits = self._scan(root, max_depth=3).get(name)
+            if hits:
+                # the package holding the file is the copy it means (its own includes)
+                first = own if own is not None and own in hits else hits[0]
+                return first, root, root.name == "src"
         return None
+
+    def _own(self) -> Path | None:
+        if self.workspace_of is None:
+            return None
+        own = own_package(self.workspace_of)
+        return own.resolve() if own is not None else None
+
+    def duplicate(self, name: str) -> Duplicate | None:
+        """The copies of package ``name`` in the one folder searched that gave it, when
+        there are two or more (colcon refuses such a workspace: COLCON_DUPLICATE_SOURCE);
+        None when it has one, or came from ``NAME=DIR`` or an install prefix."""
+        where = self._where(name) if valid_package_name(name) else None
+        if where is None or where[1] is None or (found := self.find(name)) is None:
+            return None
+        folders = self._scanned[where[1]][name]  # scanned by _where
+        if len(folders) < 2:
+            return None
+        return Duplicate(name, where[1], tuple(folders), found, found == self._own(), where[2])
 
     def known(self) -> Iterable[str]:
         """Names found so far (for messages)."""

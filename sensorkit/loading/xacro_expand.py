@@ -66,6 +66,7 @@ class ExpandOutcome:
     searched: list[str] = field(default_factory=list)
     # what the expansion read (see sensorkit.loading.reads); None: not recorded
     deps: ExpandDeps | None = None
+    packages: list[str] = field(default_factory=list)  # the names $(find) resolved
 
 
 def _loc_parser(
@@ -237,7 +238,7 @@ def expand_in_process(
         from sensorkit.loading.untrusted import confinement_for
 
         confine = confinement_for(path, resolver.explicit.values(), resolver.scan_dirs)
-    find = _finder(resolver, confine)
+    find = _finder(resolver, confine, out.packages)
     _reset_xacro()
     undo: list[Any] = []
     xacro_fast.speed_up(xacro, undo)
@@ -278,8 +279,9 @@ def expand_in_process(
     return out
 
 
-def _finder(resolver: PackageResolver, confine: Confinement | None) -> Any:
-    """``$(find pkg)`` through ``resolver`` (a folder found joins ``confine``)."""
+def _finder(resolver: PackageResolver, confine: Confinement | None, found: list[str]) -> Any:
+    """``$(find pkg)`` through ``resolver`` (a folder found joins ``confine``; its name
+    joins ``found``)."""
 
     def find(pkg: str) -> str:
         # resolver.find finds nothing for what cannot be a package name (an absolute
@@ -290,6 +292,8 @@ def _finder(resolver: PackageResolver, confine: Confinement | None) -> Any:
             raise PackageMissing(pkg, resolver.searched())
         if confine is not None:
             confine.add(hit)
+        if pkg not in found:
+            found.append(pkg)
         return str(hit)
 
     return find

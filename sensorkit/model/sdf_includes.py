@@ -21,6 +21,7 @@ not download, so that is a limit of what it knows (info), as is an include that
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
@@ -58,6 +59,8 @@ class Include(Protocol):
     def searched(self) -> tuple[str, ...]: ...
     @property
     def via(self) -> str: ...
+    @property
+    def within(self) -> tuple[str, ...]: ...
 
 
 FUEL_SCHEMES = ("http://", "https://")
@@ -81,7 +84,16 @@ def _classic(target: str | None) -> bool:
 
 def include_finding(inc: Include, doc: Document, target: str | None = None) -> Finding | None:
     """The SK107 finding of an include that brought no file (None when it did), said for
-    ``target`` (None: not known, Gazebo Sim's words)."""
+    ``target`` (None: not known, Gazebo Sim's words). A nested include (written in a
+    model another include brought) names the chain of includes from the file given."""
+    found = _include_finding(inc, doc, target)
+    if found is None or not inc.within:
+        return found
+    chain = " -> ".join([doc.display, *inc.within, inc.uri or "<include>"])
+    return dataclasses.replace(found, message=f"{found.message} (nested: {chain})")
+
+
+def _include_finding(inc: Include, doc: Document, target: str | None) -> Finding | None:
     uri_el = next((c for c in inc.element if c.tag == "uri"), None)
     where = doc.locate(uri_el if uri_el is not None else inc.element)
     shown = repr(inc.uri)

@@ -52,6 +52,9 @@ class Include:
     why: str = ""
     searched: tuple[str, ...] = ()
     via: str = ""  # "GAZEBO_MODEL_PATH": found only through Gazebo Classic's model path
+    # the URIs of the includes that brought the file this include is written in, outermost
+    # first (empty: written in the file given): a nested include's chain, said with it
+    within: tuple[str, ...] = ()
 
 
 @dataclass
@@ -93,6 +96,10 @@ class SdfModel:
     # a world's own frames and its models' placements (the world graph): on the world's
     # first model only, so that what they hold is said once (SK208, SK209)
     world_graph: FrameGraph | None = None
+    # a world's systems (every model of the world): its own <plugin>s, and every plugin
+    # of the world and its models (SK620: is the Sensors system among them)
+    world_systems: list[etree._Element] = field(default_factory=list)
+    world_plugins: list[etree._Element] = field(default_factory=list)
 
     def pose_of(self, name: str) -> Pose | None:
         """Pose of a frame (link, joint, frame, nested model) in the model's frame."""
@@ -114,6 +121,7 @@ class _Ctx:
     resolver: PackageResolver
     overlay: Mapping[str, bytes] | None
     stack: list[str] = field(default_factory=list)  # files being included, for loops
+    brought: dict[str, str] = field(default_factory=dict)  # included file -> its URI
     world_includes: list[Include] = field(default_factory=list)  # a world's own (SK107)
 
 
@@ -274,14 +282,16 @@ def _load_include(
     include is kept in ``owner.includes`` with why)."""
     uri = text_of(inc, "uri") or ""
     including = Path(ctx.stack[-1])
+    within = tuple(ctx.brought.get(f, f) for f in ctx.stack[1:])
     if not uri:
-        owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>"))
+        owner.includes.append(Include(uri, inc, None, "the <include> has no <uri>", within=within))
         return None
     got = resolve_model_uri(uri, including, ctx.resolver)
-    record = Include(uri, inc, got.path, got.why, got.searched, got.via)
+    record = Include(uri, inc, got.path, got.why, got.searched, got.via, within)
     owner.includes.append(record)
     if got.path is None:
         return None
+    ctx.brought.setdefault(str(got.path), uri)
     if not ctx.resolver.allows(got.path):  # a model folder's file named elsewhere
         record.path, record.why = None, OUTSIDE
         return None
@@ -496,5 +506,9 @@ def _read_world(ctx: _Ctx, world: etree._Element, version: tuple[int, ...]) -> l
         sm.pose_problems.extend(holder.pose_problems)
     if models and all(i.path is not None and not i.why for i in holder.includes):
         models[0].world_graph = graph  # not when an include brought nothing: names unknown
+    systems = [c for c in world if c.tag == "plugin"]
+    plugins = [*world.iter("plugin"), *(el for sm in models for _, el in sm.plugins)]
+    for sm in models:
+        sm.world_systems, sm.world_plugins = systems, plugins
     ctx.world_includes.extend(holder.includes)
     return models

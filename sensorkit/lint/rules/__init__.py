@@ -15,6 +15,7 @@ from sensorkit.lint.rules import (  # noqa: F401  (registration)
     frame_joints,
     frames,
     gz_frames,
+    gz_world,
     input,
     lidar,
     mass,
@@ -52,6 +53,7 @@ RULE_ORDER = (
     "SK806", "SK807", "SK808", "SK809", "SK810",  # recording
     "SK616",  # model_plugins
     "SK617", "SK618", "SK619",  # bridge_flow
+    "SK620",  # gz_world
 )  # fmt: skip
 put_in_order(RULE_ORDER)
 

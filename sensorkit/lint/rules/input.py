@@ -30,8 +30,11 @@ declare(
 )
 declare(
     "SK103",
-    "error",
-    "`$(find pkg)` / `package://pkg/...` resolve; list every place searched",
+    "error/info",
+    "`$(find pkg)` / `package://pkg/...` resolve; list every place searched; a package the "
+    "robot uses found twice in a colcon `src/` or a `--package-path DIR`, which colcon "
+    "refuses to build (error), or around a file in no workspace (info), naming both copies "
+    "and the one read",
     "xacro at run time",
     ("urdf", "sdf"),  # SDF: package:// mesh URIs (an include's is SK107)
 )
