@@ -6,6 +6,7 @@ the closest name, and an arg value with white space that ends up in link names i
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -287,3 +288,32 @@ def test_topics_says_a_world_include_that_does_not_resolve(
     assert "(what it holds is not listed)" in res.stderr
     # near miss: the world as it is, its include found
     assert "warning" not in run_cli("topics", str(world)).stderr
+
+
+FORTRESS_WORDS = re.compile(
+    r"Fortress|ignition-gazebo|ign-gazebo|ignition\.msgs|ros_ign|ign_topic|ignition::", re.I
+)
+
+
+def test_advice_names_only_the_chosen_gz_release() -> None:
+    """Issue 38: a world validated for Harmonic got advice about Fortress. Every SDF model
+    and world of the tests and every example, validated for Harmonic, says nothing of
+    Fortress or its ignition names; validated for Fortress (the near miss) they do."""
+    from sensorkit.lint.engine import Options, validate_file
+
+    sdf = ROOT / "tests" / "robots" / "sdf"
+    files = sorted(p for p in sdf.rglob("*") if p.suffix in (".sdf", ".world"))
+    files += sorted((ROOT / "examples").rglob("*.urdf.xacro"))
+    assert len(files) > 60
+    said: dict[str, list[str]] = {"harmonic": [], "fortress": []}
+    for target, lines in said.items():
+        for path in files:
+            report = validate_file(path, Options(target=target))
+            assert not report.internal_errors, (path, report.internal_errors)
+            lines += [
+                f"{path.name} {f.rule}: {f.message} {f.fix or ''}"
+                for f in report.findings
+                if FORTRESS_WORDS.search(f"{f.message} {f.fix or ''}")
+            ]
+    assert said["harmonic"] == []
+    assert len(said["fortress"]) > 10, said["fortress"]
