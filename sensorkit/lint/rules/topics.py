@@ -37,11 +37,12 @@ def _is_range(s: Sensor) -> bool:
 
 @rule(
     "SK605",
-    "error/info",
+    "error/warning/info",
     "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; "
     "`~/out` + remappings). Severity by consequence: an error when subscribers get two streams of "
     "different data interleaved; info when the only topics shared are camera_info and both cameras "
-    "publish the same K and P (a duplicate, not wrong data)",
+    "publish the same K and P (a duplicate, not wrong data); a warning on Gazebo Sim when a known "
+    "bridge carries none of the shared gz topics to ROS (only gz subscribers get the mixed stream)",
     formats=("urdf", "sdf"),
 )
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
