@@ -109,8 +109,9 @@ class Settings:
             where = f"{finding.source}: " if finding.source.line is not None else ""
             what = f"; {finding.fix}" if finding.rule == "SK102" and finding.fix else ""
             missing = "" if finding.rule == "SK102" else " (what it holds is not listed)"
+            level = "note" if finding.severity.label == "info" else "warning"
             typer.echo(
-                f"sensorkit: warning: {where}{finding.rule}: {finding.message}{what}{missing}",
+                f"sensorkit: {level}: {where}{finding.rule}: {finding.message}{what}{missing}",
                 err=True,
             )
         infos = []

@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, get_args
 
 from sensorkit.base.errors import InputError, UsageError
-from sensorkit.base.findings import Severity
 from sensorkit.describe.intrinsics import Convention, InvalidValue
 from sensorkit.describe.published import convention_of, lidar_scans, published_intrinsics
 from sensorkit.describe.sensor_topics import sensor_topics
@@ -184,16 +183,17 @@ def load_models(
 
 
 def _world_include_errors(robots: list[Robot]) -> list[Finding]:
-    """The SK107 errors of a world's own includes that brought no model: validate's SK107
-    rule says them on the world's first model (model/sdf_read.py), which loading alone
-    does not report."""
+    """The SK107 findings of a world's own includes that brought no model (an error, or
+    the info of a model:// URI on no path searched, which may resolve when the simulation
+    runs): what they hold is not listed. Validate's SK107 rule says them on the world's
+    first model (model/sdf_read.py), which loading alone does not report."""
     from sensorkit.model.sdf_includes import include_finding
 
     out = []
     for robot in robots:
         for inc in robot.sdf.world_includes if robot.sdf is not None else ():
             found = include_finding(inc, robot.document)
-            if found is not None and found.severity is Severity.ERROR:
+            if found is not None:
                 out.append(found)
     return out
 
