@@ -181,3 +181,18 @@ def test_sk502_points_only_in_an_x_forward_frame_is_info(tmp_path: Path) -> None
     turned = link("back_frame") + joint("back_frame_joint", "camera_link", "back_frame", "0 0 0", "0 0 3.14159265")
     found = _of(_validate(tmp_path / "d", _depth("back_frame", turned), points), "SK502")
     assert [x.severity for x in found] == [Severity.ERROR]
+
+
+def test_sk618_is_silent_too_when_an_unread_include_may_hold_the_sensor(tmp_path: Path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    # '/cma' may be the image of a camera inside the unread include: "did you mean /cam"
+    # cannot be known (the same reason as SK612's)
+    for var in ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH", "GAZEBO_MODEL_PATH"):
+        monkeypatch.delenv(var, raising=False)
+    bridge = _entry("/cma", *IMAGE)
+    include = "<include merge='true'><uri>model://sk_standoffs</uri></include>"
+    report = _validate(tmp_path / "a", SDF_MODEL.format(include=include), bridge, name="model.sdf")
+    assert not _of(report, "SK618") and not _of(report, "SK612")
+    # near miss: no include: the misspelt entry is said, with "did you mean"
+    report = _validate(tmp_path / "b", SDF_MODEL.format(include=""), bridge, name="model.sdf")
+    (f,) = _of(report, "SK618")
+    assert "did you mean 'cam'" in f.message

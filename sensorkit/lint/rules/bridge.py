@@ -328,7 +328,7 @@ SENSOR_MSG_TYPES = frozenset(
 )
 
 
-def _unread_includes(ctx: Context) -> list[str]:
+def unread_includes(ctx: Context) -> list[str]:
     """The URIs of the SDF includes whose model sensorkit did not read (SK107 says why):
     their sensors are unknown to it."""
     sm = ctx.robot.sdf
@@ -349,7 +349,7 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
         return
-    if _shares_world(ctx) or _unread_includes(ctx):
+    if _shares_world(ctx) or unread_includes(ctx):
         # An include that brought no model (SK107) may hold the sensor the entry names:
         # ArduPilot/ardupilot_gz@main iris_with_lidar includes model://iris_with_standoffs,
         # another repository's model whose imu_sensor its bridge's IMU entry carries.
