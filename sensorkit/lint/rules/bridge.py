@@ -328,15 +328,6 @@ SENSOR_MSG_TYPES = frozenset(
 )
 
 
-def unread_includes(ctx: Context) -> list[str]:
-    """The URIs of the SDF includes whose model sensorkit did not read (SK107 says why):
-    their sensors are unknown to it."""
-    sm = ctx.robot.sdf
-    if sm is None:
-        return []
-    return [inc.uri or "(no <uri>)" for inc in [*sm.includes, *sm.world_includes] if inc.path is None]
-
-
 @rule(
     "SK612",
     "info",
@@ -349,6 +340,8 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
         return
+    from sensorkit.lint.rules.bridge_flow import misspelt_entries, unread_includes
+
     if _shares_world(ctx) or unread_includes(ctx):
         # An include that brought no model (SK107) may hold the sensor the entry names:
         # ArduPilot/ardupilot_gz@main iris_with_lidar includes model://iris_with_standoffs,
@@ -364,8 +357,6 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
             explicit.update(gz_topics(s))
         else:
             scoped.append(f"/sensor/{s.name}/")
-    from sensorkit.lint.rules.bridge_flow import misspelt_entries
-
     misspelt = misspelt_entries(ctx)  # SK618 says these, with the sensor left unbridged
     for t in bridge.topics:
         if (t.file, t.line) in misspelt:
