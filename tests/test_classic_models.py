@@ -56,16 +56,22 @@ def test_a_model_gazebo11_installs_resolves_on_classic(tmp_path: Path, inc: str,
         f = _sk107(_run(tmp_path / target, inc, target))
         assert [x.severity.label for x in f] == ["info"] and "Gazebo 11 installs" in f[0].message
         assert "models/CMakeLists.txt:4-12" in f[0].message
-    # near miss: Gazebo Sim installs no such model: the error stands, in its own search path
+    # near miss: Gazebo Sim installs no such model: it resolves only if GZ_SIM_RESOURCE_PATH
+    # holds one when the simulation runs, which sensorkit cannot tell (info, issue 35), said
+    # in the target's own search path
     f = _sk107(_run(tmp_path / "gz", inc, "harmonic"))
-    assert [x.severity.label for x in f] == ["error"] and "GZ_SIM_RESOURCE_PATH" in f[0].message
+    assert [x.severity.label for x in f] == ["info"] and "GZ_SIM_RESOURCE_PATH" in f[0].message
+    assert "Gazebo 11 installs" not in f[0].message and "cannot tell" in f[0].message
 
 
 def test_a_missing_model_on_classic_names_gazebo_model_path(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)
+    # model://crate may be on GAZEBO_MODEL_PATH when the simulation runs: info (issue 35),
+    # saying what Gazebo Classic does if it is not
     f = _sk107(_run(tmp_path, "crate", "classic"))
-    assert [x.severity.label for x in f] == ["error"]
+    assert [x.severity.label for x in f] == ["info"]
     assert "GAZEBO_MODEL_PATH" in (f[0].fix or "") and "skips the include" in f[0].message
+    assert "GAZEBO_MODEL_PATH holds a folder with crate/" in f[0].message
     assert "GZ_SIM_RESOURCE_PATH" not in f[0].message + (f[0].fix or "")
 
 

@@ -17,7 +17,7 @@ def test_wrong_data_roles_are_errors_when_they_differ_and_info_when_equal(role: 
     assert severity_of(role, "camera_link", "camera_link") is Severity.INFO
 
 
-@pytest.mark.parametrize("role", [Role.RATE, Role.NOISE, Role.LIMIT, Role.FLAG])
+@pytest.mark.parametrize("role", [Role.RATE, Role.NOISE, Role.LIMIT, Role.FLAG, Role.SIM_TOPIC])
 def test_tuning_roles_are_warnings_when_they_differ_and_info_when_equal(role: Role) -> None:
     assert severity_of(role, 30, 10) is Severity.WARNING
     assert severity_of(role, "30", 30.0) is Severity.INFO

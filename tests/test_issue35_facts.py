@@ -116,11 +116,12 @@ def test_segmentation_camera_sub_topics(check: Callable, tmp_path) -> None:  # t
     assert not {"SK607", "SK612", "SK615"} & {f.rule for f in report.findings}
     sensor = next(s for s in report.robot.sensors if s.name == "front_camera")  # type: ignore[attr-defined]
     assert gz_topics(sensor) == ["/cam/colored_map", "/cam/labels_map", "/cam/camera_info"]
-    # Near miss: bridging TOPIC itself, as for a plain camera, carries nothing.
+    # Near miss: bridging TOPIC itself, as for a plain camera, carries nothing: ROS receives
+    # nothing of the camera (an error, issue 35).
     bad = _bridge(tmp_path, _entry("cam", *IMAGE), _entry("camera_info", *INFO))
     found = check(_cam("segmentation_camera"), target="harmonic", bridges=(bad,)).findings
     sk607 = [f for f in found if f.rule == "SK607"]
-    assert [f.severity for f in sk607] == [Severity.WARNING]
+    assert [f.severity for f in sk607] == [Severity.ERROR]
     assert {f.rule for f in found if f.severity is Severity.INFO} >= {"SK612"}
 
 

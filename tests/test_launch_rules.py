@@ -69,8 +69,10 @@ def test_sk607_launch_bridge_counts_as_bridged(tmp_path: Path) -> None:
     report = _run(tmp_path, _facts(SCAN, IMAGE, INFO))
     assert not _of(report, "SK607")
     # Near miss: the launch bridges the camera only: the lidar is reported, naming the launch.
+    # ROS receives nothing of it (ros_gz_bridge bridges its entries only: gazebosim/ros_gz@
+    # jazzy 739cb42:ros_gz_bridge/src/ros_gz_bridge.cpp:54-62): an error (issue 35).
     miss = _of(_run(tmp_path / "b", _facts(IMAGE, INFO)), "SK607")
-    assert [f.sensor for f in miss] == ["laser"] and miss[0].severity.label == "warning"
+    assert [f.sensor for f in miss] == ["laser"] and miss[0].severity.label == "error"
     assert LAUNCH in miss[0].message
 
 
@@ -79,8 +81,8 @@ def test_sk607_unreadable_launch_bridge_is_info_never_not_bridged(tmp_path: Path
     sk607 = _of(report, "SK607")
     assert [f.sensor for f in sk607] == ["laser"] and sk607[0].severity.label == "info"
     assert "could not be read" in sk607[0].message
-    # Near miss: the same launch read fully says the lidar is not bridged (warning).
-    assert _of(_run(tmp_path / "b", _facts(IMAGE, INFO)), "SK607")[0].severity.label == "warning"
+    # Near miss: the same launch read fully says the lidar is not bridged (error, issue 35).
+    assert _of(_run(tmp_path / "b", _facts(IMAGE, INFO)), "SK607")[0].severity.label == "error"
     # issue 38: of several launch files read, the one whose bridge could not be read is named
     facts = LaunchFacts(files=[LAUNCH, "other.launch.py"], bridges=[IMAGE, INFO],
                         bridge_unknown=True, bridge_unknown_in=["other.launch.py"])  # fmt: skip
@@ -88,15 +90,16 @@ def test_sk607_unreadable_launch_bridge_is_info_never_not_bridged(tmp_path: Path
     assert "a bridge started in other.launch.py could not be read" in f.message, f.message
 
 
-def test_sk607_camera_info_only_is_warning_when_the_launch_bridges_are_known(tmp_path: Path) -> None:
-    # The YAML carries the camera_info, the launch the scan: nothing carries the image.
+def test_sk607_camera_info_only_is_an_error_when_the_launch_bridges_are_known(tmp_path: Path) -> None:
+    # The YAML carries the camera_info, the launch the scan: nothing carries the image, so
+    # ROS receives no image (issue 35: a sensor that publishes nothing to ROS is an error).
     yaml_info = (
         "- gz_topic_name: front_camera/camera_info\n  ros_topic_name: front_camera/camera_info\n"
         "  ros_type_name: sensor_msgs/msg/CameraInfo\n  gz_type_name: gz.msgs.CameraInfo\n"
         "  direction: GZ_TO_ROS\n"
     )
     sk607 = _of(_run(tmp_path, _facts(SCAN), bridge_text=yaml_info), "SK607")
-    assert [(f.sensor, f.severity.label) for f in sk607] == [("front_camera", "warning")]
+    assert [(f.sensor, f.severity.label) for f in sk607] == [("front_camera", "error")]
     # Near misses: the launch's bridge carries the image (silent); no launch known (info,
     # an image_bridge may carry it: MOGI-ROS/Week-9-10-Simple-arm@425c335, see bridge.py).
     assert not _of(_run(tmp_path / "b", _facts(SCAN, IMAGE), bridge_text=yaml_info), "SK607")

@@ -111,9 +111,11 @@ def test_gz_sensor_an_unknown_plugin_names_is_cannot_tell(tmp_path: Path) -> Non
     # and subscribes to that IMU (:1111-1187): its data may reach ROS another way (info).
     f = _of(_gz_with(tmp_path / "a", ARDUPILOT.format(imu="imu_sensor")), "SK607", "imu_sensor")
     assert [x.severity.label for x in f] == ["info"] and "cannot tell" in f[0].message
-    # near miss: it names another IMU: the unbridged sensor is the warning it was
+    # near miss: it names another IMU: the known bridge carries nothing of the sensor to ROS
+    # (ros_gz_bridge bridges its entries only: gazebosim/ros_gz@jazzy 739cb42:ros_gz_bridge/
+    # src/ros_gz_bridge.cpp:54-62): an error (issue 35)
     f = _of(_gz_with(tmp_path / "b", ARDUPILOT.format(imu="other_imu")), "SK607", "imu_sensor")
-    assert [x.severity.label for x in f] == ["warning"]
+    assert [x.severity.label for x in f] == ["error"]
 
 
 def _control(cls: str, plugin: str = "libgazebo_ros2_control.so") -> str:
@@ -138,9 +140,10 @@ def test_ros2_control_fork_or_custom_class_is_cannot_tell(check) -> None:
         for target in ("classic", "ros1"):
             f = _of(check(robot(camera=bare, extra=extra), target=target), "SK607", "front_camera")
             assert [x.severity.label for x in f] == ["info"], (extra, target, f)
-    # near miss: the known class on the known plugin reads no camera: the warning stands
+    # near miss: the known class on the known plugin reads no camera: nothing publishes it to
+    # ROS, which the robot's gazebo_ros plugins show it is meant for (error, issue 35)
     f = _of(check(robot(camera=bare, extra=_control("gazebo_ros2_control/GazeboSystem")), target="classic"), "SK607", "front_camera")
-    assert [x.severity.label for x in f] == ["warning"]
+    assert [x.severity.label for x in f] == ["error"]
 
 
 # --- item 5: --target auto weighs package.xml --------------------------------------------------

@@ -45,7 +45,7 @@ def test_realsense_reads_prefix_plus_stream_name(check) -> None:
         assert not _sk607(check(robot(camera=bare, extra=_realsense("rs_")), target=target), "rs_color")
     # near miss: another prefix reads rs2_color, not rs_color
     f = _sk607(check(robot(camera=bare, extra=_realsense("rs2_")), target="classic"), "rs_color")
-    assert [x.severity.label for x in f] == ["warning"]
+    assert [x.severity.label for x in f] == ["error"]
 
 
 def test_realsense_does_not_read_a_sensor_it_merely_names(check) -> None:
@@ -77,17 +77,18 @@ def test_pal_hardware_gazebo_may_read_any_imu_so_sk607_is_info(check) -> None:
     # camera still publishes nothing
     cam = camera_sensor(plugin="")
     f = _sk607(check(robot(camera=cam, extra=_ros_control("pal_hardware_gazebo/PalHardwareGazebo")), target="ros1"), "front_camera")
-    assert [x.severity.label for x in f] == ["warning"]
+    assert [x.severity.label for x in f] == ["error"]
 
 
 def test_default_robot_hw_sim_reads_no_sensor(check) -> None:
     # <robotSimType> defaults to DefaultRobotHWSim (ros-simulation/gazebo_ros_pkgs@noetic-devel
     # f9e1a46:gazebo_ros_control/src/gazebo_ros_control_plugin.cpp:105-111), which looks up no
-    # sensor (default_robot_hw_sim.cpp): the bare IMU publishes nothing (warning).
+    # sensor (default_robot_hw_sim.cpp): the bare IMU publishes nothing to ROS, which the
+    # gazebo_ros plugins show it is meant for (error, issue 35).
     assert HARDWARE_SIMS["gazebo_ros_control/DefaultRobotHWSim"] is None
     for sim in (None, "gazebo_ros_control/DefaultRobotHWSim"):
         f = _sk607(check(robot(extra=IMU.format(name="imu") + _ros_control(sim)), target="ros1"), "imu")
-        assert [x.severity.label for x in f] == ["warning"]
+        assert [x.severity.label for x in f] == ["error"]
 
 
 def test_unknown_robot_sim_type_is_not_assumed_either_way(check) -> None:
@@ -116,7 +117,7 @@ def test_ros2_control_reads_imu_and_force_torque_by_name_only(check) -> None:
     )
     # a camera named in <ros2_control> is not read (only imu / force_torque are)
     f = _sk607(check(robot(camera=camera_sensor(plugin=""), extra=control), target="classic"), "front_camera")
-    assert [x.severity.label for x in f] == ["warning"]
+    assert [x.severity.label for x in f] == ["error"]
 
 
 # --- `sensorkit topics` agrees with SK607 ---------------------------------------------------

@@ -425,7 +425,7 @@ def test_gz_navsat_publishes_on_its_scoped_topic(check, tmp_path) -> None:
         return [f for f in report.findings if f.rule == "SK607"]
 
     lacking = sk607(others)
-    assert [(f.sensor, f.severity.label) for f in lacking] == [("gps", "warning")]
+    assert [(f.sensor, f.severity.label) for f in lacking] == [("gps", "error")]  # ROS gets no fix (issue 35)
     assert "/gps/fix" in lacking[0].message
     assert sk607(others + entry) == []
 

@@ -8,7 +8,8 @@ where consequence becomes severity:
 - the effective value equals the intended one: info, however wrong the spelling;
 - a frame, a topic, a calibration, a geometry, or whether the sensor publishes at all
   (``OUTPUT``) differs: error (ROS receives wrong data, or none);
-- a rate, noise, a limit or a flag differs: warning (it works, not as tuned);
+- a rate, noise, a limit or a flag differs: warning (it works, not as tuned); so does a
+  topic only the simulator's side sees (``SIM_TOPIC``: no bridge carries it to ROS);
 - a cosmetic difference: info;
 - sensorkit cannot tell the effective value (``UNKNOWN``): info, since a rule must know
   before it reports above info.
@@ -66,6 +67,9 @@ class Role(str, enum.Enum):
     NOISE = "noise"
     LIMIT = "limit"
     FLAG = "flag"
+    # a topic on the simulator's side that no bridge carries to ROS (two gz sensors on one
+    # gz topic nothing bridges): ROS receives nothing wrong, the simulator's stream is
+    SIM_TOPIC = "simulator topic"
     COSMETIC = "cosmetic"
 
 
@@ -93,7 +97,7 @@ WRONG_DATA: Final = frozenset(
     {Role.FRAME, Role.TOPIC, Role.CALIBRATION, Role.GEOMETRY, Role.OUTPUT}
 )
 # A difference in these means the sensor works, not as tuned.
-TUNING: Final = frozenset({Role.RATE, Role.NOISE, Role.LIMIT, Role.FLAG})
+TUNING: Final = frozenset({Role.RATE, Role.NOISE, Role.LIMIT, Role.FLAG, Role.SIM_TOPIC})
 
 
 def _number(value: Any) -> float | None:

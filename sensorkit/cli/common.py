@@ -111,8 +111,9 @@ class Settings:
             what = f"; {finding.fix}" if finding.rule == "SK102" and finding.fix else ""
             whole = finding.rule == "SK102" or (finding.fix or "").startswith(KEEP_ONE)
             missing = "" if whole else " (what it holds is not listed)"
+            level = "note" if finding.severity.label == "info" else "warning"
             typer.echo(
-                f"sensorkit: warning: {where}{finding.rule}: {finding.message}{what}{missing}",
+                f"sensorkit: {level}: {where}{finding.rule}: {finding.message}{what}{missing}",
                 err=True,
             )
         infos = []

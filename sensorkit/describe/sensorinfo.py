@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, get_args
 
 from sensorkit.base.errors import InputError, UsageError
-from sensorkit.base.findings import Severity
 from sensorkit.describe.intrinsics import Convention, InvalidValue
 from sensorkit.describe.published import convention_of, lidar_scans, published_intrinsics
 from sensorkit.describe.sensor_topics import sensor_topics
@@ -184,9 +183,10 @@ def load_models(
 
 
 def _world_include_errors(robots: list[Robot]) -> list[Finding]:
-    """The SK107 errors of includes that brought no model: a world's own, and those a
-    model holds, nested ones included (what they bring is missing from the list). The
-    SK107 rule says them in validate; loading alone does not report them."""
+    """The SK107 findings of includes that brought no model: a world's own, and those a
+    model holds, nested ones included (an error, or the info of a model:// URI on no path
+    searched, which may resolve when the simulation runs): what they hold is not listed.
+    Validate's SK107 rule says them; loading alone does not report them."""
     from sensorkit.model.sdf_includes import include_finding
 
     out: list[Finding] = []
@@ -194,7 +194,7 @@ def _world_include_errors(robots: list[Robot]) -> list[Finding]:
         sm = robot.sdf
         for inc in [*sm.includes, *sm.world_includes] if sm is not None else ():
             found = include_finding(inc, robot.document)
-            if found is not None and found.severity is Severity.ERROR and found not in out:
+            if found is not None and found not in out:
                 out.append(found)
     return out
 

@@ -25,7 +25,7 @@ import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
-from sensorkit.base.consequence import Consequence, Role
+from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.knowledge.classic_models import (
     CLASSIC_INSTALLED_MODELS,
@@ -184,6 +184,24 @@ def _not_found(inc: Include, where: SourceRef, shown: str, target: str | None) -
         if _classic(target)
         else f"libsdformat reports URI_LOOKUP, and {REFUSED}"
     )
+    if inc.uri.startswith("model://"):
+        # A model:// URI names a model by its folder on the simulator's model path, which
+        # is the environment's when the simulation runs, not the files': a model of another
+        # package or repository is put there by its install (ArduPilot/ardupilot_gz includes
+        # model://iris_with_standoffs from ArduPilot/ardupilot_gazebo, whose hooks add its
+        # models to GZ_SIM_RESOURCE_PATH). Not on the paths sensorkit searched, it may still
+        # resolve then: sensorkit cannot tell (issue 35).
+        return Finding(
+            "SK107",
+            Severity.INFO,
+            f"<include> {shown} is not on the paths sensorkit searched ({found}): it resolves "
+            f"only if {var} holds a folder with {name}/ when the simulation runs, which "
+            f"sensorkit cannot tell; the model it brings is not checked (if no folder holds "
+            f"it: {then})",
+            where,
+            fix=fix,
+            consequence=Consequence(Role.GEOMETRY, inc.uri, UNKNOWN),
+        )
     return Finding(
         "SK107",
         Severity.ERROR,

@@ -2,8 +2,10 @@
 
 A sensor that publishes nothing to ROS (no plugin on Classic and no model-level plugin
 that reads it, see sensorkit.model.owners; on Gazebo Sim, no ros_gz_bridge entry for any
-of its topics, or for a camera's image while its camera_info is bridged), and a bridge entry of a sensor message type
-that no sensor of the robot feeds.
+of its topics, or for a camera's image while its camera_info is bridged), and a bridge
+entry of a sensor message type that no sensor of the robot feeds. Both are judged by
+consequence (sensorkit.base.consequence): what the author meant ROS to receive against
+what it receives; an error only where both are known.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_sim import gz_never_created
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.topic_names import gz_primary_topic, gz_topics, is_bridged, norm_topic
-from sensorkit.model.owners import sensor_owner
+from sensorkit.model.owners import Owner, sensor_owner
 from sensorkit.model.sensors import Sensor
 from sensorkit.model.targets import is_gz
 
@@ -59,6 +61,67 @@ def _camera_split(s: Sensor, topics: list[str]) -> tuple[list[str], str] | None:
     return [topics[0]], topics[-1]
 
 
+# What SK607 compares (issue 35): what the author meant ROS to receive from the sensor
+# against what it does receive. A sensor that publishes nothing to ROS is an error where the
+# description shows it is meant for ROS; where sensorkit cannot tell what the author meant,
+# or what reaches ROS, it is info.
+IN_ROS = "its data in ROS"
+
+
+def _unread_bridge(ctx: Context) -> str | None:
+    """The launch files that start a bridge sensorkit could not read, or None."""
+    launch = ctx.launch
+    if launch is None or not launch.bridge_unknown:
+        return None
+    return ", ".join(launch.bridge_unknown_in or launch.files)
+
+
+def known_bridge(ctx: Context) -> set[str] | None:
+    """The gz topics the known bridge carries to ROS (normalized), or None when no bridge
+    is known or a bridge a launch file starts could not be read: then what reaches ROS is
+    not known. Rules that judge a gz stream by whether ROS receives it ask this."""
+    bridge = ctx.bridge
+    if bridge is None or not bridge.files or _unread_bridge(ctx) is not None:
+        return None
+    return {norm_topic(t.gz) for t in bridge.topics if t.to_ros}
+
+
+def no_image_in_ros(ctx: Context, s: Sensor, *, turned: bool) -> str | None:
+    """Why no image or camera_info of the gz camera ``s`` reaches ROS, or None: a known
+    bridge carries none of them (it may carry a depth camera's points, unless the frame
+    they are stamped with is ``turned`` from the render pose: SK502). Those points are
+    computed x-forward, z up (gazebosim/gz-rendering@gz-rendering8 ff0c5b8:ogre2/src/media/
+    materials/programs/GLSL/depth_camera_fs.glsl:112-113; @ign-rendering6 c39b130: :106-107)
+    and stamped with the image's frame (gazebosim/gz-sensors@gz-sensors8 c8159af:src/
+    DepthCameraSensor.cc:446-448; @ign-sensors6 7cfaddf: :553-555), so in an x-forward
+    frame they land right: only the images, which ROS never receives, would be misread."""
+    if not is_gz(ctx.target) or not s.topic or ctx.bridge is None:
+        return None
+    bridged = known_bridge(ctx)
+    if bridged is None:
+        return None
+    topics = gz_topics(s)
+    points = [t for t in topics if t.endswith("/points") and is_bridged(t, False, bridged)]
+    if any(is_bridged(t, False, bridged) for t in topics if not t.endswith("/points")):
+        return None
+    if points and turned:
+        return None  # the points land turned as the frame is
+    said = f"but no entry of {', '.join(ctx.bridge.files)} carries its images or camera_info to ROS"
+    if points:
+        said += (
+            f", only its points ({', '.join(points)}), which gz computes x-forward and stamps "
+            "with that x-forward frame: they land right in TF"
+        )
+    return said + ": nothing ROS receives is misread"
+
+
+def _carried(ctx: Context, bridged: set[str]) -> str:
+    """What the known bridge carries to ROS, in a few words."""
+    names = sorted(bridged)
+    shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
+    return f"the bridge carries {shown}" if names else "the bridge carries nothing to ROS"
+
+
 def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Finding | None:
     """SK607 for a gz sensor when a bridge is known: none of its topics bridged, or a
     camera whose camera_info is bridged and none of its images."""
@@ -67,6 +130,7 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
     files = ", ".join(ctx.bridge.files) if ctx.bridge else ""
     shown = topic if s.topic else f"/world/WORLD/model/{_scoped_path(ctx, s)}{topic}"
     fix_topic = topic.lstrip("/") if s.topic else "..." + topic
+    unread = _unread_bridge(ctx)
     if any(is_bridged(t, scoped, bridged) for t in topics):
         # A camera_info without its image: ROS gets the calibration of a camera it never sees.
         split = _camera_split(s, gz_topics(s) if s.topic else [topic])
@@ -75,67 +139,120 @@ def _gz_unbridged(ctx: Context, s: Sensor, topic: str, bridged: set[str]) -> Fin
         images, info = split
         if any(is_bridged(t, scoped, bridged) for t in images):
             return None
-        # Info, not a warning, when the launch files are not known: projects often bridge the
-        # image with ros_gz_image's image_bridge from a launch file (MOGI-ROS/
+        # Cannot tell when the launch files are not known: projects often bridge the image
+        # with ros_gz_image's image_bridge from a launch file (MOGI-ROS/
         # Week-9-10-Simple-arm@425c335:bme_ros2_simple_arm/launch/spawn_robot.launch.py:133-138
         # bridges /gripper_camera/image and /table_camera/image so, beside a gz_bridge.yaml
         # that carries only their camera_info). When the launch files read start a bridge,
-        # fully read, and none of them carries the image either, it is a warning (issue 23).
+        # fully read, and none of them carries the image either, ROS gets no image: an error.
         launch = ctx.launch
         known = launch is not None and bool(launch.bridges) and not launch.bridge_unknown
-        if known and launch is not None:
-            return ctx.finding(
-                "SK607",
-                Severity.WARNING,
-                f"camera {s.name!r}: {files} bridges its camera_info ({info}) but not its image "
-                f"({', '.join(images)}), and no bridge the launch files start "
-                f"({', '.join(launch.files)}) carries it: ROS gets the calibration of a camera "
-                "it never sees",
-                s.source,
-                sensor=s.name,
-                fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic} (sensor_msgs/msg/Image)",
-            )
-        return ctx.finding(
-            "SK607",
-            Severity.INFO,
+        text = (
             f"camera {s.name!r}: {files} bridges its camera_info ({info}) but not its image "
-            f"({', '.join(images)}): unless a launch file bridges the image some other way "
-            "(ros_gz_image's image_bridge), ROS gets the calibration of a camera it never sees",
+            f"({', '.join(images)})"
+        )
+        if known and launch is not None:
+            text += (
+                f", and no bridge the launch files start ({', '.join(launch.files)}) carries "
+                "it: ROS gets the calibration of a camera it never sees"
+            )
+        else:
+            text += (
+                ": unless a launch file bridges the image some other way (ros_gz_image's "
+                "image_bridge), ROS gets the calibration of a camera it never sees"
+            )
+        return ctx.judged(
+            "SK607",
+            Consequence(Role.OUTPUT, "its image in ROS", None if known else UNKNOWN),
+            text,
             s.source,
             sensor=s.name,
             fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic} (sensor_msgs/msg/Image)",
         )
-    if ctx.launch is not None and ctx.launch.bridge_unknown:
+    if unread is not None:
         # A bridge the launch starts could not be read: it may carry this sensor.
-        return ctx.finding(
+        return ctx.judged(
             "SK607",
-            Severity.INFO,
+            Consequence(Role.OUTPUT, IN_ROS, UNKNOWN),
             f"sensor {s.name!r} publishes on gz topic {shown}, which no bridge entry sensorkit "
-            f"read names; a bridge started in {', '.join(ctx.launch.bridge_unknown_in or ctx.launch.files)} "
-            "could not be read, so "
-            "sensorkit cannot tell whether it reaches ROS",
+            f"read names; a bridge started in {unread} could not be read, so sensorkit cannot "
+            "tell whether it reaches ROS",
             s.source,
             sensor=s.name,
         )
-    return ctx.finding(
+    # The bridge known names none of the sensor's topics: ros_gz_bridge creates one bridge
+    # per entry of its config_file, each for the entry's gz topic only (gazebosim/ros_gz@
+    # jazzy 739cb42:ros_gz_bridge/src/ros_gz_bridge.cpp:54-62, :88-102), so ROS receives
+    # nothing of the sensor.
+    return ctx.judged(
         "SK607",
-        Severity.WARNING,
-        f"sensor {s.name!r} publishes on gz topic {shown}, and no entry of "
-        f"{files} names any of its topics: unless a launch "
-        "file bridges them some other way, ROS never sees this sensor",
+        Consequence(Role.OUTPUT, IN_ROS, None),
+        f"sensor {s.name!r} publishes on gz topic {shown}, and no entry of {files} names any "
+        f"of its topics: ROS receives nothing from it ({_carried(ctx, bridged)})",
         s.source,
         sensor=s.name,
         fix=f"add a GZ_TO_ROS entry with gz_topic_name: {fix_topic}",
     )
 
 
+def _ros_intent(ctx: Context) -> str | None:
+    """Why a Gazebo Classic description is meant for ROS, or None: it loads a gazebo_ros
+    plugin (for another sensor, or the robot), or its package is a ROS package."""
+    from sensorkit.loading.package_xml import package_generation
+    from sensorkit.model.robot import all_plugins
+
+    for p in all_plugins(ctx.robot):
+        base = p.filename.rsplit("/", 1)[-1]
+        if base.startswith(("libgazebo_ros", "gazebo_ros")):
+            return f"it loads the ROS plugin {base}"
+    package = package_generation(ctx.robot.document.path)
+    return None if package is None else package.why
+
+
+def _classic_unpublished(ctx: Context, s: Sensor, owner: Owner | None) -> Finding:
+    """SK607 for a Gazebo Classic sensor with no plugin of its own."""
+    if owner is not None:
+        return ctx.judged(
+            "SK607",
+            Consequence(Role.OUTPUT, IN_ROS, UNKNOWN),
+            f"sensor {s.name!r} has no plugin, and {owner.how}: sensorkit cannot tell "
+            "whether it reads this sensor; if it does not, nothing publishes it to ROS",
+            s.source,
+            sensor=s.name,
+            fix="check in the running simulation that its data reaches ROS (ros2 topic list); "
+            "if not, add the gazebo_ros plugin for its type",
+        )
+    # Gazebo Classic publishes a sensor's data on gz-transport only; a gazebo_ros plugin
+    # in the sensor is what creates its ROS publisher (ros-simulation/gazebo_ros_pkgs@ros2
+    # d52f7c4:gazebo_plugins/src/gazebo_ros_camera.cpp:189-202, gazebo_ros_ray_sensor.cpp:
+    # 119-133, gazebo_ros_imu_sensor.cpp:95).
+    intent = _ros_intent(ctx)
+    return ctx.judged(
+        "SK607",
+        Consequence(Role.OUTPUT, IN_ROS if intent else UNKNOWN, None),
+        f"sensor {s.name!r} has no plugin: Gazebo Classic simulates it but publishes nothing "
+        "to ROS"
+        + (
+            f", though the description is meant for ROS ({intent})"
+            if intent
+            else "; nothing in the description says it is meant for ROS (no gazebo_ros "
+            "plugin, no package.xml), so sensorkit cannot tell whether that matters"
+        ),
+        s.source,
+        sensor=s.name,
+        fix="add the gazebo_ros plugin for its type (libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so, libgazebo_ros_imu_sensor.so)",
+    )
+
+
 @rule(
     "SK607",
-    "warning/info",
-    "a sensor publishes nothing to ROS (no plugin on classic, and no model-level plugin that "
-    "reads it by name: info when one may and sensorkit cannot tell; on gz: no ros_gz_bridge "
-    "entry for its topic when a bridge is known, info for a camera's image when only its "
-    "camera_info is bridged, and on the scoped default topic when no bridge is known)",
+    "error/info",
+    "a sensor publishes nothing to ROS, judged by consequence: an error where the description "
+    "is meant for ROS (Classic: a gazebo_ros plugin or a package.xml; gz: a known bridge that "
+    "names none of the sensor's topics, or the camera_info without the image when the launch "
+    "files' bridges are known); info where sensorkit cannot tell (a model-level plugin it does "
+    "not know names the sensor, a bridge it could not read, only a camera's camera_info "
+    "bridged, no bridge known and the sensor on its scoped default topic)",
     formats=("urdf", "sdf"),
 )
 def publishes_nothing(ctx: Context) -> Iterator[Finding]:
@@ -155,9 +272,9 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 continue
             if bridged is None:
                 if not s.topic:
-                    yield ctx.finding(
+                    yield ctx.judged(
                         "SK607",
-                        Severity.INFO,
+                        Consequence(Role.OUTPUT, IN_ROS, UNKNOWN),
                         f"sensor {s.name!r} has no <topic>: Gazebo Sim publishes it on its scoped default "
                         f"/world/WORLD/model/{_scoped_path(ctx, s)}{topic}; a ros_gz_bridge entry must "
                         "name that topic for ROS to see it (no bridge configuration is known: pass --bridge FILE)",
@@ -172,7 +289,7 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 # whether its data needs a bridge sensorkit cannot tell (issue 35).
                 found = ctx.judged(
                     "SK607",
-                    Consequence(Role.OUTPUT, "published to ROS", UNKNOWN),
+                    Consequence(Role.OUTPUT, IN_ROS, UNKNOWN),
                     f"sensor {s.name!r}: no bridge entry names its gz topics, and {owner.how}: "
                     "sensorkit cannot tell whether its data reaches ROS that way",
                     s.source,
@@ -183,26 +300,8 @@ def publishes_nothing(ctx: Context) -> Iterator[Finding]:
                 yield found
         elif s.plugins or (owner is not None and owner.certain):
             continue
-        elif owner is not None:
-            yield ctx.finding(
-                "SK607",
-                Severity.INFO,
-                f"sensor {s.name!r} has no plugin, and {owner.how}: sensorkit cannot tell "
-                "whether it reads this sensor; if it does not, nothing publishes it to ROS",
-                s.source,
-                sensor=s.name,
-                fix="check in the running simulation that its data reaches ROS (ros2 topic list); "
-                "if not, add the gazebo_ros plugin for its type",
-            )
         else:
-            yield ctx.finding(
-                "SK607",
-                Severity.WARNING,
-                f"sensor {s.name!r} has no plugin: Gazebo Classic simulates it but publishes nothing to ROS",
-                s.source,
-                sensor=s.name,
-                fix="add the gazebo_ros plugin for its type (libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so, libgazebo_ros_imu_sensor.so)",
-            )
+            yield _classic_unpublished(ctx, s, owner)
 
 
 def _shares_world(ctx: Context) -> bool:
@@ -233,14 +332,20 @@ SENSOR_MSG_TYPES = frozenset(
     "SK612",
     "info",
     "a ros_gz_bridge entry of a sensor message type whose gz topic no sensor of the robot publishes "
-    "(a typo, or a sensor outside this description)",
+    "(a typo, or a sensor outside this description: sensorkit cannot tell which, info); silent "
+    "when the model includes a model sensorkit could not read, whose sensors it does not know",
     formats=("urdf", "sdf"),
 )
 def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.files or not is_gz(ctx.target) or not ctx.robot.sensors:
         return
-    if _shares_world(ctx):
+    from sensorkit.lint.rules.bridge_flow import misspelt_entries, unread_includes
+
+    if _shares_world(ctx) or unread_includes(ctx):
+        # An include that brought no model (SK107) may hold the sensor the entry names:
+        # ArduPilot/ardupilot_gz@main iris_with_lidar includes model://iris_with_standoffs,
+        # another repository's model whose imu_sensor its bridge's IMU entry carries.
         return
     from sensorkit.base.findings import SourceRef
     from sensorkit.base.suggest import closest
@@ -252,8 +357,6 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
             explicit.update(gz_topics(s))
         else:
             scoped.append(f"/sensor/{s.name}/")
-    from sensorkit.lint.rules.bridge_flow import misspelt_entries
-
     misspelt = misspelt_entries(ctx)  # SK618 says these, with the sensor left unbridged
     for t in bridge.topics:
         if (t.file, t.line) in misspelt:
@@ -266,10 +369,13 @@ def stale_bridge_entry(ctx: Context) -> Iterator[Finding]:
         if gz in explicit or any(tail in gz + "/" for tail in scoped) or "$" in gz or "<" in gz:
             continue
         hint = closest(gz, explicit)
-        yield ctx.finding(
+        # What the entry carries to ROS: the data of a sensor of another model in the world,
+        # or nothing (a typo): which, sensorkit cannot tell.
+        yield ctx.judged(
             "SK612",
-            Severity.INFO,
-            f"bridge entry for gz topic {t.gz!r} ({t.ros_type}) matches no sensor of this robot",
+            Consequence(Role.OUTPUT, f"sensor data on {t.gz}", UNKNOWN),
+            f"bridge entry for gz topic {t.gz!r} ({t.ros_type}) matches no sensor of this robot: "
+            "a typo, or a sensor of another model in the world",
             SourceRef(t.file, t.line),
             fix=f"did you mean {hint[0].lstrip('/')!r}?"
             if hint

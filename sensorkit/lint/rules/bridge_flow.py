@@ -92,6 +92,15 @@ def _unless(ctx: Context, elsewhere: bool) -> str:
     return "; no bridge the launch files start carries it either: the sensor publishes nothing to ROS"
 
 
+def unread_includes(ctx: Context) -> list[str]:
+    """The URIs of the SDF includes whose model sensorkit did not read (SK107 says why):
+    their sensors are unknown to it."""
+    sm = ctx.robot.sdf
+    if sm is None:
+        return []
+    return [inc.uri or "(no <uri>)" for inc in [*sm.includes, *sm.world_includes] if inc.path is None]
+
+
 def _shares_world(ctx: Context) -> bool:
     sm = ctx.robot.sdf
     return sm is not None and sm.world is not None and sum(
@@ -161,6 +170,8 @@ def misspelt_topic(ctx: Context) -> Iterator[Finding]:
     bridge = ctx.bridge
     if bridge is None or not bridge.topics or not is_gz(ctx.target) or _shares_world(ctx):
         return
+    if unread_includes(ctx):
+        return  # the entry may name a sensor of a model sensorkit could not read (as SK612)
     from sensorkit.base.suggest import closest
 
     sensors = _sensor_topics(ctx)

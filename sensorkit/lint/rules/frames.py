@@ -6,6 +6,7 @@ import math
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
+from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding, Severity, SourceRef
 from sensorkit.knowledge.gazebo_sim import (
     GZ_FRAMED_KINDS,
@@ -13,6 +14,7 @@ from sensorkit.knowledge.gazebo_sim import (
     gz_never_created,
 )
 from sensorkit.lint.rules.base import Context, rule
+from sensorkit.lint.rules.bridge import no_image_in_ros
 from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text, sdf_optical_fix
 from sensorkit.lint.rules.optical_text import ANGLE_TOL, not_optical
 from sensorkit.lint.rules.tf_frames import (
@@ -220,7 +222,7 @@ def _stamped(
 
 @rule(
     "SK502",
-    "error",
+    "error/info",
     "camera/depth image frame is optical: its rotation from the render pose is Rz(-pi/2)*Rx(-pi/2) "
     '(z forward, x right, y down) within 0.5 degree; say what the data will look like otherwise ("point cloud points up")',
     formats=("urdf", "sdf"),
@@ -247,6 +249,11 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             f"camera {s.name!r} stamps its images with {frame!r} ({where}), "
             f"{not_optical(R, is_gz(ctx.target))}"
         )
+        unseen = no_image_in_ros(ctx, s, turned=tf.rotation_angle(R) > ANGLE_TOL)
+        severity = Severity.ERROR if unseen is None else Severity.INFO
+        consequence = None if unseen is None else Consequence(Role.FRAME, frame, frame)
+        if unseen is not None:
+            message = f"{message}; {unseen}"
         # In SDF the rotation is the link's <pose>, not a joint's: no joint is blamed.
         joint, rpy, _why = (None, None, "") if sdf else blamed_optical_joint(ctx, s, fr, frame)
         if joint is not None and rpy is not None:
@@ -256,24 +263,26 @@ def camera_optical(ctx: Context) -> Iterator[Finding]:
             origin = child(joint.element, "origin")
             yield ctx.finding(
                 "SK502",
-                Severity.ERROR,
+                severity,
                 f"{message}; the rotation comes from joint {joint.name!r}",
                 origin if origin is not None else joint.element,
                 sensor=s.name,
                 frame=frame,
                 link=fr.link,
                 joint=joint.name,
+                consequence=consequence,
                 fix=f'write rpy="{text}" on joint {joint.name!r}',
             )
             continue
         yield ctx.finding(
             "SK502",
-            Severity.ERROR,
+            severity,
             message,
             s.source,
             sensor=s.name,
             frame=frame,
             link=fr.link,
+            consequence=consequence,
             fix=(
                 f"publish in {existing!r}, which is already an optical frame at the camera"
                 if existing

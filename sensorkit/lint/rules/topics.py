@@ -37,11 +37,12 @@ def _is_range(s: Sensor) -> bool:
 
 @rule(
     "SK605",
-    "error/info",
+    "error/warning/info",
     "two sensors publish on the same resolved ROS topic (namespace + camera_name/sensor name + suffix; "
     "`~/out` + remappings). Severity by consequence: an error when subscribers get two streams of "
     "different data interleaved; info when the only topics shared are camera_info and both cameras "
-    "publish the same K and P (a duplicate, not wrong data)",
+    "publish the same K and P (a duplicate, not wrong data); a warning on Gazebo Sim when a known "
+    "bridge carries none of the shared gz topics to ROS (only gz subscribers get the mixed stream)",
     formats=("urdf", "sdf"),
 )
 def topic_collisions(ctx: Context) -> Iterator[Finding]:
@@ -71,12 +72,21 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
             if any(x is first for x, _ in its) and any(x is second for x, _ in its)
         ]
         c = _collision(ctx, first, second, shared)
+        unbridged = _gz_only(ctx, shared)
+        if unbridged:
+            c = Consequence(Role.SIM_TOPIC, c.intended, c.effective, c.equal)
         yield ctx.judged(
             "SK605",
             c,
             f"sensors {first.name!r} (on {first.reference!r}) and {second.name!r} (on {second.reference!r}) "
             f"both publish on {', '.join(shared)}: subscribers get both streams interleaved"
-            + (": the same calibration twice" if c.changes_nothing else ""),
+            + (": the same calibration twice" if c.changes_nothing else "")
+            + (
+                f"; no entry of {unbridged} carries {'it' if len(shared) == 1 else 'them'} "
+                "to ROS, so only gz subscribers get the mixed stream"
+                if unbridged
+                else ""
+            ),
             el,
             sensor=second.name,
             fix=(
@@ -85,6 +95,22 @@ def topic_collisions(ctx: Context) -> Iterator[Finding]:
                 else "give each camera its own sensor name or <camera_name>, a <ros><namespace>, or a remapping"
             ),
         )
+
+
+def _gz_only(ctx: Context, shared: list[str]) -> str | None:
+    """The known bridge's files when it carries none of the gz topics ``shared`` to ROS
+    (ros_gz_bridge bridges the entries of its config_file only: gazebosim/ros_gz@jazzy
+    739cb42:ros_gz_bridge/src/ros_gz_bridge.cpp:54-62, :88-102), else None: two sensors
+    mixed on a gz topic nothing bridges give ROS nothing wrong (issue 35)."""
+    from sensorkit.lint.rules.bridge import known_bridge
+    from sensorkit.lint.rules.topic_names import is_bridged
+
+    if not is_gz(ctx.target) or ctx.bridge is None:
+        return None
+    bridged = known_bridge(ctx)
+    if bridged is None or any(is_bridged(t, False, bridged) for t in shared):
+        return None
+    return ", ".join(ctx.bridge.files)
 
 
 def _collision(ctx: Context, first: Sensor, second: Sensor, shared: list[str]) -> Consequence:
