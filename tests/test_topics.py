@@ -962,12 +962,15 @@ def test_a_missing_nested_include_is_said_with_its_chain(
     assert res.exit_code == 0
     said = [ln for ln in res.stderr.splitlines() if "SK107" in ln]
     assert len(said) == 1, res.stderr
-    assert "model.sdf:7: SK107: <include> 'model://hed' does not resolve" in said[0]
+    # A model:// URI on none of the paths searched may still be on the model path when the
+    # simulation runs (issue 35: cannot tell, info): said as a note, never silent.
+    assert "sensorkit: note: " in said[0]
+    assert "model.sdf:7: SK107: <include> 'model://hed' is not on the paths sensorkit searched" in said[0]
     assert "world.sdf -> model://rover -> model://hed)" in said[0] and "(nested: " in said[0]
     assert "(what it holds is not listed)" in said[0]
     res = run("validate", world, "--target", "harmonic", "--format", "json")
     (f,) = [f for f in json.loads(res.stdout)["findings"] if f["rule"] == "SK107"]
-    assert f["severity"] == "error" and "model://rover -> model://hed)" in f["message"]
+    assert f["severity"] == "info" and "model://rover -> model://hed)" in f["message"]
     # near miss: the nested include found, both sensors listed and nothing said
     (models / "rover" / "model.sdf").write_text(NESTED_ROVER.replace("HEAD", "head"))
     res = run("topics", world)
