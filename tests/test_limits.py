@@ -251,3 +251,77 @@ def test_sk409_edge_floor(check, delta: float, want: Severity | None) -> None:
     params = f"<frame_name>camera_optical_frame</frame_name><focal_length>{_FX + delta!r}</focal_length>"
     report = check(robot(camera=camera_sensor(params=params)), target="classic")
     assert _sev(report, "SK409") == ([] if want is None else [want])
+
+
+# --- <camera><pose>: part of the render pose where the target reads it --------------------
+# Gazebo Classic renders from the sensor's <pose> composed with <camera><pose>
+# (gazebo-classic 11.10.2 gazebo/sensors/CameraSensor.cc:168-172, DepthCameraSensor.cc:110-114,
+# MultiCameraSensor.cc:156-159, WideAngleCameraSensor.cc:115-119); Gazebo Sim from the
+# sensor's pose only (gz-sensors8 src/CameraSensor.cc:221, ign-sensors6 :486, gz-sensors10
+# :156; sdformat's Camera::RawPose, sdf12 src/Camera.cc:380-381, is read by no gz-sensors
+# source). sensorkit.model.frames.camera_pose.
+
+
+def _posed_camera(pose: str, *, gz: bool = False, ros1: bool = False) -> str:
+    cam = (
+        f"<camera><pose>{pose}</pose><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width>"
+        "<height>480</height><format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera>"
+    )
+    if gz:
+        from builders import gz_robot
+
+        return gz_robot().replace("<camera><horizontal_fov>1.3962634</horizontal_fov>", cam.split("<image>", maxsplit=1)[0], 1)
+    params = "<frameName>camera_optical_frame</frameName>" if ros1 else "<frame_name>camera_optical_frame</frame_name>"
+    return robot(camera=camera_sensor(camera=cam, params=params))
+
+
+@pytest.mark.parametrize("target", ["classic", "ros1"])
+def test_camera_pose_moves_the_render_point_on_classic(check, target: str) -> None:
+    ros1 = target == "ros1"
+    over = check(_posed_camera("0 0.0011 0 0 0 0", ros1=ros1), target=target)
+    assert _sev(over, "SK503") == [Severity.ERROR]
+    msg = next(f.message for f in over.findings if f.rule == "SK503")
+    assert "1.1 mm" in msg, msg
+    assert _sev(check(_posed_camera("0 0.0009 0 0 0 0", ros1=ros1), target=target), "SK503") == []
+
+
+def test_camera_pose_turn_counts_on_classic(check) -> None:
+    # A yaw in <camera><pose> turns the render frame: the optical frame is then 0.55 degree off.
+    over = check(_posed_camera(f"0 0 0 0 0 {math.radians(0.55)!r}"), target="classic")
+    assert _sev(over, "SK502") == [Severity.ERROR]
+    under = check(_posed_camera(f"0 0 0 0 0 {math.radians(0.45)!r}"), target="classic")
+    assert _sev(under, "SK502") == []
+
+
+def test_camera_pose_is_ignored_on_gazebo_sim(check) -> None:
+    # Harmonic never reads it: SK416 says so, and the frame rules judge the sensor's pose.
+    report = check(_posed_camera("0 0.05 0 0 0 0.3", gz=True), target="harmonic")
+    assert _sev(report, "SK503") == [] and _sev(report, "SK502") == []
+    assert _sev(report, "SK416") == [Severity.ERROR]
+
+
+def test_render_pose_composes_the_camera_pose_after_the_sensor_pose(tmp_path) -> None:
+    # ignition::math Pose3 `B + A` is A then B (Pose3.hh operator+, CoordPositionAdd and
+    # CoordRotationAdd): the camera's offset runs along the sensor's turned axes.
+    from sensorkit.model import load_robot
+    from sensorkit.model.frames import render_pose
+    from sensorkit.model.frames_np import render_pose_np
+
+    cam = (
+        "<camera><pose>0.1 0 0 0 0 0</pose><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width>"
+        "<height>480</height></image><clip><near>0.05</near><far>50</far></clip></camera>"
+    )
+    text = robot(camera=camera_sensor(camera=cam, extra=f"<pose>0 0 0 0 0 {HALF_PI!r}</pose>"))
+    path = tmp_path / "r.urdf"
+    path.write_text(text)
+    r = load_robot(path).robot
+    s = next(x for x in r.sensors if x.name == "front_camera")
+    # camera_link at (0.25, 0, 0.2) from base_footprint; turned 90 degrees, x 0.1 lands on +y
+    T = render_pose(r, s, "classic")
+    assert T is not None
+    assert [round(T[i][3], 9) for i in range(3)] == [0.25, 0.1, 0.2]
+    T_gz = render_pose(r, s, "harmonic")
+    assert T_gz is not None
+    assert [round(T_gz[i][3], 9) for i in range(3)] == [0.25, 0.0, 0.2]
+    T_np = render_pose_np(r, s, "classic")
+    assert T_np is not None and [round(float(v), 9) for v in T_np[:3, 3]] == [0.25, 0.1, 0.2]

@@ -413,7 +413,7 @@ def _gz_stereo_right_eye(ctx: Context, s: Sensor, off: tuple[float, float, float
         return False  # s is the left eye: its baseline stays 0
     else:
         left = first
-    y = [_y_on_link(robot, c, link) for c in (left, s)]
+    y = [_y_on_link(robot, c, link, ctx.target) for c in (left, s)]
     if y[0] is None or y[1] is None:
         return False
     baseline = abs(y[1] - y[0])
@@ -432,11 +432,11 @@ def _gz_topic(s: Sensor, link: str, robot: Robot) -> str:
     return s.topic or f"/world/WORLD/model/{robot.name}/link/{link}/sensor/{s.name}/image"
 
 
-def _y_on_link(robot: Robot, s: Sensor, link: str) -> float | None:
+def _y_on_link(robot: Robot, s: Sensor, link: str, target: str) -> float | None:
     """The sensor's y in ``link``'s frame (its <pose> after lumping)."""
     from sensorkit.model.frames import render_pose
 
-    T_world_link, T_world_render = robot.world_pose(link), render_pose(robot, s)
+    T_world_link, T_world_render = robot.world_pose(link), render_pose(robot, s, target)
     if T_world_link is None or T_world_render is None:
         return None
     return tf.translation(tf.relative(tf.pose_matrix(T_world_link), T_world_render))[1]
