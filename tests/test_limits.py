@@ -325,3 +325,107 @@ def test_render_pose_composes_the_camera_pose_after_the_sensor_pose(tmp_path) ->
     assert [round(T_gz[i][3], 9) for i in range(3)] == [0.25, 0.0, 0.2]
     T_np = render_pose_np(r, s, "classic")
     assert T_np is not None and [round(float(v), 9) for v in T_np[:3, 3]] == [0.25, 0.1, 0.2]
+
+
+# --- the shared ANGLE_TOL / POSITION_TOL beyond SK502-SK506 ------------------------------
+# sensorkit.knowledge.limits holds one POSITION_TOL, ANGLE_TOL and EDGE_PX; each rule below
+# once kept a copy of its own (SK614 0.0087 rad, SK508 and the optical joint, SK416, the
+# SK503 fix's 0.5 degree), so a mutation of the shared one went unseen there.
+
+
+def test_sk614_cloud_stamped_optical_within_half_a_degree(check, tmp_path) -> None:
+    # SK614 speaks of an x-forward cloud stamped with an optical frame: one 0.45 degree off
+    # optical is that; one 0.55 degree off is not optical (SK502's error instead).
+    from builders import gz_robot
+
+    bridge = tmp_path / "bridge.yaml"
+    bridge.write_text(
+        "".join(
+            f"- topic_name: {t}\n  ros_type_name: x\n  gz_type_name: y\n  direction: GZ_TO_ROS\n"
+            for t in ("rgbd/image", "rgbd/depth_image", "rgbd/camera_info", "rgbd/points", "scan")
+        )
+    )
+
+    def rgbd(roll_off: float) -> str:
+        text = gz_robot(camera_type="rgbd_camera", camera_tags="<topic>rgbd</topic><gz_frame_id>camera_optical_frame</gz_frame_id>")
+        return text.replace(f'rpy="{OPTICAL}"', f'rpy="{_optical(roll_off)}"')
+
+    inside = check(rgbd(0.45), target="harmonic", bridges=(str(bridge),))
+    assert _sev(inside, "SK614") == [Severity.WARNING] and _sev(inside, "SK502") == []
+    outside = check(rgbd(0.55), target="harmonic", bridges=(str(bridge),))
+    assert _sev(outside, "SK614") == [] and _sev(outside, "SK502") == [Severity.ERROR]
+
+
+def test_sk508_optical_named_link_half_a_degree(check) -> None:
+    def named(roll_off: float) -> str:
+        extra = link("aux_link") + joint("aux_joint", "base_link", "aux_link", "0 0.1 0.2")
+        extra += '<link name="aux_optical_frame"/>' + joint("aux_optical_joint", "aux_link", "aux_optical_frame", "0 0 0", _optical(roll_off))
+        return robot(extra=extra)
+
+    assert _sev(check(named(0.45), target="classic"), "SK508") == []
+    assert _sev(check(named(0.55), target="classic"), "SK508") == [Severity.WARNING]
+
+
+@pytest.mark.parametrize(
+    ("xyz", "rpy", "want"),
+    [
+        ("0.0009 0 -0.1", "0 0 0", Severity.INFO),
+        ("0.0011 0 -0.1", "0 0 0", Severity.ERROR),
+        ("0 0 -0.1", f"0 0 {math.radians(0.45)!r}", Severity.INFO),
+        ("0 0 -0.1", f"0 0 {math.radians(0.55)!r}", Severity.ERROR),
+    ],
+)
+def test_sk303_lumped_frame_coincides_within_a_millimetre_and_half_a_degree(check, xyz: str, rpy: str, want: Severity) -> None:
+    # A lidar with no frame_name on a lumped link is stamped with the survivor base_footprint
+    # (base_link is lumped too, 0.1 m above it); the data means the same where the two
+    # coincide (sensorkit.lint.rules.coincide).
+    params = "<ros><remapping>~/out:=scan</remapping></ros><output_type>sensor_msgs/LaserScan</output_type>"
+    text = robot(lidar=lidar_sensor(params=params)).replace(
+        '<parent link="base_link"/><child link="laser_link"/><origin xyz="0 0 0.2" rpy="0 0 0"/>',
+        f'<parent link="base_link"/><child link="laser_link"/><origin xyz="{xyz}" rpy="{rpy}"/>',
+    )
+    assert _sev(check(text, target="classic"), "SK303") == [want]
+
+
+def test_optical_frame_at_within_a_millimetre_and_half_a_degree(tmp_path) -> None:
+    # The link SK501/SK502/SK503/SK303 name in their fixes: an optical frame at the camera.
+    from sensorkit.model import load_robot
+    from sensorkit.model.frames import optical_frame_at, render_pose
+
+    def found(xyz: str, roll_off: float) -> str | None:
+        path = tmp_path / "r.urdf"
+        path.write_text(robot(optical_xyz=xyz, optical_rpy=_optical(roll_off)))
+        r = load_robot(path).robot
+        s = next(x for x in r.sensors if x.name == "front_camera")
+        return optical_frame_at(r, render_pose(r, s, "classic"))
+
+    assert found("0.0009 0 0", 0.45) == "camera_optical_frame"
+    assert found("0.0011 0 0", 0.0) is None
+    assert found("0 0 0", 0.55) is None
+
+
+def test_sk509_ten_metres(check) -> None:
+    def mounted(x: str) -> str:
+        return robot().replace('<origin xyz="0.25 0 0.1" rpy="0 0 0"/>', f'<origin xyz="{x} 0 0" rpy="0 0 0"/>', 1)
+
+    assert _sev(check(mounted("9.99"), target="classic"), "SK509") == []
+    assert _sev(check(mounted("10.01"), target="classic"), "SK509") == [Severity.WARNING]
+
+
+# --- EDGE_PX and the pixel floors ---------------------------------------------------------
+
+
+@pytest.mark.parametrize(("cx", "want"), [(320 + 64.1, True), (320 + 63.9, False)])
+def test_sk411_far_is_ten_percent_of_the_width(check, cx: float, want: bool) -> None:
+    params = f"<frame_name>camera_optical_frame</frame_name><cx>{cx!r}</cx>"
+    report = check(robot(camera=camera_sensor(params=params)), target="classic")
+    assert bool(_sev(report, "SK411")) is want
+    assert bool(_sev(report, "SK417")) is not want  # nearer than far: SK417's
+
+
+@pytest.mark.parametrize(("rel", "want"), [(2e-6, Severity.WARNING), (0.5e-6, None)])
+def test_sk409_written_equal_floor(check, rel: float, want: Severity | None) -> None:
+    # <focal_length> within 1e-6 (relative) of the image's fx is the same number written.
+    params = f"<frame_name>camera_optical_frame</frame_name><focal_length>{_FX * (1 + rel)!r}</focal_length>"
+    report = check(robot(camera=camera_sensor(params=params)), target="classic")
+    assert _sev(report, "SK409") == ([] if want is None else [want])

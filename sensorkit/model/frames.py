@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from sensorkit.knowledge import plugins as known
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:
@@ -162,7 +163,10 @@ def _links_near(robot: Robot, tol_m: float) -> tuple[dict[tuple[int, int, int], 
 
 
 def optical_frame_at(
-    robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087
+    robot: Robot,
+    T_world_render: Mat | None,
+    tol_m: float = POSITION_TOL,
+    tol_rad: float = ANGLE_TOL,
 ) -> str | None:
     """A link already placed as the optical frame of a camera rendering from T_world_render.
 

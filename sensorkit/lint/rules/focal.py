@@ -18,6 +18,7 @@ from collections.abc import Iterator
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import CLASSIC_FOCAL_LENGTH_PARAM, CLASSIC_NO_INTRINSICS_TYPES
 from sensorkit.knowledge.gazebo_sim import LENS_BLOCKS_READ, LENS_DEFAULTED_TAGS, lens_block_values
+from sensorkit.knowledge.limits import EDGE_PX
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import publishing_plugin, ros_generation
 from sensorkit.model.parse import parse_float
@@ -58,10 +59,10 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
 
 
 # When a camera_info that disagrees with the image is a wrong calibration (an error) rather
-# than a rounding (a warning). sensorkit's materiality floor, not a simulator fact: a focal
-# length is wrong when it moves the image edge (width / 2 from the centre) by more than one
-# pixel, the unit the image measures in; a principal point when SK411 would call it far.
-EDGE_PX = 1.0
+# than a rounding (a warning). sensorkit's materiality floor, not a simulator fact
+# (sensorkit.knowledge.limits.EDGE_PX): a focal length is wrong when it moves the image edge
+# (width / 2 from the centre) by more than one pixel, the unit the image measures in; a
+# principal point when SK411 would call it far.
 
 
 def _focal_severity(size: int | None, rendered: float, published: float) -> Severity:
@@ -213,7 +214,7 @@ def _k_off_severity(cam: CameraSpec, off: list[tuple[str, float, float]]) -> Sev
         size = cam.width if key in ("fx", "cx") else cam.height
         if key in ("fx", "fy") and _focal_severity(size, rendered, k) is Severity.ERROR:
             return Severity.ERROR
-        if key in ("cx", "cy") and size and abs(rendered - k) > max(FAR * size, 1.0):
+        if key in ("cx", "cy") and size and abs(rendered - k) > max(FAR * size, EDGE_PX):
             return Severity.ERROR
     return Severity.WARNING
 

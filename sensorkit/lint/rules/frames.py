@@ -12,9 +12,10 @@ from sensorkit.knowledge.gazebo_sim import (
     GZ_NAVSAT_TYPES,
     gz_never_created,
 )
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text, sdf_optical_fix
-from sensorkit.lint.rules.optical_text import ANGLE_TOL, not_optical
+from sensorkit.lint.rules.optical_text import not_optical
 from sensorkit.lint.rules.tf_frames import (
     gz_default_in_tf,
     gz_sensor_poses_published,
@@ -33,7 +34,6 @@ if TYPE_CHECKING:
     from sensorkit.model.transforms import Mat
 
 EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
-POSITION_TOL = 1e-3
 OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
 
 
@@ -341,7 +341,7 @@ def _own_link_at(robot: Robot, fr: SensorFrames) -> str | None:
         return None
     gap = tf.norm([a - b for a, b in zip(tf.translation(T), tf.translation(fr.T_world_render), strict=True)])
     turn = tf.angle_between(tf.rotation(T), tf.rotation(fr.T_world_render))
-    return fr.link if gap <= POSITION_TOL and math.degrees(turn) <= 0.5 else None
+    return fr.link if gap <= POSITION_TOL and turn <= ANGLE_TOL else None
 
 
 def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, float]) -> bool:
