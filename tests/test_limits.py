@@ -429,3 +429,82 @@ def test_sk409_written_equal_floor(check, rel: float, want: Severity | None) -> 
     params = f"<frame_name>camera_optical_frame</frame_name><focal_length>{_FX * (1 + rel)!r}</focal_length>"
     report = check(robot(camera=camera_sensor(params=params)), target="classic")
     assert _sev(report, "SK409") == ([] if want is None else [want])
+
+
+# --- the frame rules' side uses of the shared tolerances ---------------------------------
+
+
+def _sk502(report: object) -> list[object]:
+    return [f for f in report.findings if f.rule == "SK502"]  # type: ignore[attr-defined]
+
+
+def test_sk502_blames_the_optical_joint_only_at_the_camera(check) -> None:
+    # The optical link's joint is blamed (its rpy is what to fix) only when the link sits at
+    # the camera, within 1 mm.
+    [at] = _sk502(check(robot(optical_xyz="0.0009 0 0", optical_rpy="0 0 0"), target="classic"))
+    assert at.joint == "camera_optical_joint"  # type: ignore[attr-defined]
+    [off] = _sk502(check(robot(optical_xyz="0.0011 0 0", optical_rpy="0 0 0"), target="classic"))
+    assert off.joint is None  # type: ignore[attr-defined]
+
+
+def test_sk502_spares_an_optical_joint_within_half_a_degree(check) -> None:
+    # The sensor's <pose> turns the camera 11 degrees: the optical joint that writes the
+    # optical rotation (within 0.5 degree) is not to blame; 0.55 degree off it is.
+    cam = camera_sensor(extra="<update_rate>30</update_rate><pose>0 0 0 0 0 0.2</pose>")
+    [spared] = _sk502(check(robot(camera=cam, optical_rpy=_optical(0.45)), target="classic"))
+    assert spared.joint is None  # type: ignore[attr-defined]
+    [blamed] = _sk502(check(robot(camera=cam, optical_rpy=_optical(0.55)), target="classic"))
+    assert blamed.joint == "camera_optical_joint"  # type: ignore[attr-defined]
+
+
+def test_sk502_body_frame_wording_within_half_a_degree(check) -> None:
+    # optical_text: a frame within 0.5 degree of the render pose is "x-forward (a body frame)".
+    near = _sk502(check(robot(optical_rpy=f"0 0 {math.radians(0.45)!r}"), target="classic"))
+    assert len(near) == 1 and "a body frame" in near[0].message  # type: ignore[attr-defined]
+    far = _sk502(check(robot(optical_rpy=f"0 0 {math.radians(0.55)!r}"), target="classic"))
+    assert len(far) == 1 and "a body frame" not in far[0].message  # type: ignore[attr-defined]
+
+
+def test_sk504_names_an_optical_frame_within_half_a_degree(check) -> None:
+    near = [f for f in check(_lidar_in(frame_rpy=_optical(0.45)), target="classic").findings if f.rule == "SK504"]
+    assert len(near) == 1 and "(an optical frame)" in near[0].message
+    far = [f for f in check(_lidar_in(frame_rpy=_optical(0.55)), target="classic").findings if f.rule == "SK504"]
+    assert len(far) == 1 and "(an optical frame)" not in far[0].message
+
+
+@pytest.mark.parametrize(
+    ("pose", "own"),
+    [
+        ("0.0009 0 0 0 0 0", True),
+        ("0.0011 0 0 0 0 0", False),
+        (f"0 0 0 0 0 {math.radians(0.45)!r}", True),
+        (f"0 0 0 0 0 {math.radians(0.55)!r}", False),
+    ],
+)
+def test_sk503_fix_names_the_lidars_own_link_within_the_tolerances(check, pose: str, own: bool) -> None:
+    # A lidar stamped base_link: SK503's fix names its own link when the link sits where it
+    # renders (1 mm, 0.5 degree), else says to move the frame.
+    params = "<ros><remapping>~/out:=scan</remapping></ros><output_type>sensor_msgs/LaserScan</output_type><frame_name>base_link</frame_name>"
+    text = robot(lidar=lidar_sensor(params=params).replace("<update_rate>10</update_rate>", f"<update_rate>10</update_rate><pose>{pose}</pose>"))
+    [f] = [f for f in check(text, target="classic").findings if f.rule == "SK503"]
+    assert ("publish in 'laser_link'" in (f.fix or "")) is own, f.fix
+
+
+@pytest.mark.parametrize(("dx", "flagged"), [("0.0009", False), ("0.0011", True)])
+def test_gz_stereo_right_eye_within_a_millimetre(check, dx: str, flagged: bool) -> None:
+    # gz-sim gives the second camera on a link the baseline to the first (Sensors.cc:831-861):
+    # the right eye stamped with the left's optical frame is accepted within 1 mm of it.
+    from builders import gz_robot
+
+    right = (
+        '<sensor name="right_camera" type="camera"><update_rate>30</update_rate><pose>0 -0.07 0 0 0 0</pose>'
+        "<topic>right/image_raw</topic><gz_frame_id>camera_optical_frame</gz_frame_id>"
+        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera></sensor>"
+    )
+    text = gz_robot(extra=f'<gazebo reference="camera_link">{right}</gazebo>').replace(
+        f'<origin xyz="0 0 0" rpy="{OPTICAL}"/>', f'<origin xyz="{dx} 0 0" rpy="{OPTICAL}"/>'
+    )
+    report = check(text, target="harmonic")
+    eyes = sorted(f.sensor for f in report.findings if f.rule == "SK503")  # type: ignore[attr-defined]
+    assert eyes == (["front_camera", "right_camera"] if flagged else [])
