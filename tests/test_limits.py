@@ -508,3 +508,34 @@ def test_gz_stereo_right_eye_within_a_millimetre(check, dx: str, flagged: bool) 
     report = check(text, target="harmonic")
     eyes = sorted(f.sensor for f in report.findings if f.rule == "SK503")  # type: ignore[attr-defined]
     assert eyes == (["front_camera", "right_camera"] if flagged else [])
+
+
+# --- SK409's lens floors: a lens fx within 1e-3 (relative) of the one compared is the same --
+
+
+def _lens(fx: float) -> str:
+    return (
+        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip>"
+        f"<lens><intrinsics><fx>{fx!r}</fx><fy>{fx!r}</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics></lens></camera>"
+    )
+
+
+@pytest.mark.parametrize(("rel", "want"), [(1.1e-3, [Severity.WARNING]), (0.9e-3, [])])
+def test_sk409_classic_lens_intrinsics_against_camera_info(check, rel: float, want: list[Severity]) -> None:
+    # Classic renders with <lens><intrinsics>; gazebo_ros_camera publishes fx from
+    # horizontal_fov: 1.1e-3 apart is reported (0.35 px at the edge: a warning), 0.9e-3 not.
+    report = check(robot(camera=camera_sensor(camera=_lens(_FX * (1 + rel)))), target="classic")
+    assert _sev(report, "SK409") == want
+
+
+@pytest.mark.parametrize(("rel", "want"), [(1.1e-3, [Severity.WARNING]), (0.9e-3, [])])
+def test_sk409_gz_lens_intrinsics_against_horizontal_fov(check, rel: float, want: list[Severity]) -> None:
+    from builders import gz_robot
+
+    text = gz_robot().replace(
+        "<clip><near>0.05</near><far>50</far></clip></camera>",
+        _lens(_FX * (1 + rel)).split("</image>", 1)[1],
+        1,
+    )
+    assert _sev(check(text, target="harmonic"), "SK409") == want

@@ -65,6 +65,12 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
 # principal point when SK411 would call it far.
 
 
+# Two lens values (fx, or a K entry against the projection) within this relative difference
+# are the same value written twice, rounded: sensorkit's floor, one for every lens comparison
+# (tests/test_limits.py holds a case either side).
+SAME_LENS_REL = 1e-3
+
+
 def _focal_severity(size: int | None, rendered: float, published: float) -> Severity:
     """ERROR when camera_info's focal length ``published`` puts the image edge more than
     EDGE_PX pixels from where the ``rendered`` one draws it."""
@@ -111,7 +117,7 @@ def _classic_intrinsics(
     f, _ = parse_float(plugin.param(tag))
     given = f is not None and f > 0 and math.isfinite(f)
     published = f if given and f is not None else expected
-    if abs(fx - published) <= 1e-3 * published:
+    if abs(fx - published) <= SAME_LENS_REL * published:
         return
     spans = 2.0 * math.atan(cam.width / (2.0 * fx)) if cam.width else hfov
     whence = f"<{tag}>" if given else f"width {cam.width} and horizontal_fov {hfov:g}"
@@ -158,7 +164,7 @@ def _gz_intrinsics(
             if key in proj
             and key in k
             and math.isfinite(proj[key])
-            and abs(proj[key] - k[key]) > 1e-3 * max(1.0, abs(k[key]))
+            and abs(proj[key] - k[key]) > SAME_LENS_REL * max(1.0, abs(k[key]))
         ]
         if off:
             yield _gz_k_off_projection(ctx, s, cam, hfov, off)
@@ -168,7 +174,7 @@ def _gz_intrinsics(
         render_fx, whence = intr[0], f"<lens><intrinsics> fx {intr[0]:g}"
     else:
         return
-    if render_fx > 0 and abs(render_fx - expected) > 1e-3 * expected:
+    if render_fx > 0 and abs(render_fx - expected) > SAME_LENS_REL * expected:
         spans = 2.0 * math.atan(cam.width / (2.0 * render_fx)) if cam.width else hfov
         tag = "p_fx" if proj else "fx"
         yield ctx.finding(
