@@ -539,3 +539,33 @@ def test_sk409_gz_lens_intrinsics_against_horizontal_fov(check, rel: float, want
         1,
     )
     assert _sev(check(text, target="harmonic"), "SK409") == want
+
+
+# --- SK510: where the frame meant would put the sensor, within 1 mm and 0.5 degree ---------
+
+
+@pytest.mark.parametrize(
+    ("mount", "want"),
+    [
+        ("0 0 0.0009 0 0 0", Severity.WARNING),
+        ("0 0 0.0011 0 0 0", Severity.ERROR),
+        (f"0 0 0 0 0 {math.radians(0.45)!r}", Severity.WARNING),
+        (f"0 0 0 0 0 {math.radians(0.55)!r}", Severity.ERROR),
+    ],
+)
+def test_sk510_typo_frame_moves_the_sensor_past_the_tolerances(check, mount: str, want: Severity) -> None:
+    # A typo ('lidar_mnt') of a frame of its own: an error when that frame would place the
+    # sensor more than 1 mm or 0.5 degree from its raw pose (sdf.py _offset), else a warning.
+    text = (
+        '<?xml version="1.0"?><sdf version="1.9"><model name="crazyflie">'
+        '<link name="crazyflie/body"><inertial><mass>0.025</mass><inertia><ixx>1.6e-5</ixx>'
+        "<iyy>1.6e-5</iyy><izz>2.9e-5</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>"
+        '<sensor name="multiranger" type="gpu_lidar"><pose relative_to="crazyflie/lidar_mnt">0 0 0.1 0 0 0</pose>'
+        "<topic>lidar</topic><update_rate>10</update_rate><lidar><scan><horizontal><samples>4</samples>"
+        "<resolution>1</resolution><min_angle>-3.14</min_angle><max_angle>1.57</max_angle></horizontal>"
+        "</scan><range><min>0.01</min><max>3.49</max></range></lidar></sensor></link>"
+        f'<frame name="crazyflie/lidar_mount" attached_to="crazyflie/body"><pose>{mount}</pose></frame>'
+        "</model></sdf>"
+    )  # as test_fresh_findings._crazyflie (bitcraze/crazyflie-simulation model.sdf:43-44)
+    found = [f.severity for f in check(text, target="harmonic", suffix=".sdf").findings if f.rule == "SK510"]
+    assert found == [want]
