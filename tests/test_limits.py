@@ -569,3 +569,15 @@ def test_sk510_typo_frame_moves_the_sensor_past_the_tolerances(check, mount: str
     )  # as test_fresh_findings._crazyflie (bitcraze/crazyflie-simulation model.sdf:43-44)
     found = [f.severity for f in check(text, target="harmonic", suffix=".sdf").findings if f.rule == "SK510"]
     assert found == [want]
+
+
+# --- --fix's angle snapping (SK505's fix): within the same half degree ---------------------
+
+
+def test_fix_snaps_angles_within_half_a_degree_only() -> None:
+    from sensorkit.fix.fixers.angles import exact_angles
+
+    near = repr(-HALF_PI + math.radians(0.45))
+    far = repr(-HALF_PI + math.radians(0.55))
+    assert exact_angles(f"{near} 0 {near}", xacro=True) == "${-pi/2} 0 ${-pi/2}"
+    assert exact_angles(f"{far} 0 0", xacro=True) == f"{far} 0 0"
