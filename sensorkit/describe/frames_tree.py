@@ -237,7 +237,7 @@ def frame_tree(info: RobotInfo) -> FrameTree:
             if hit is not None and entry.name not in hit.stamped_by:
                 hit.stamped_by.append(entry.name)
         if s.sensor.is_camera:
-            optical = optical_frame_at(robot, render_pose(robot, s.sensor))
+            optical = optical_frame_at(robot, render_pose(robot, s.sensor, info.target))
             if optical is not None and optical in frames:
                 frames[optical].optical_for.append(entry.name)
                 entry.optical = optical

@@ -59,7 +59,9 @@ _POSE_TOL_RAD = 1e-3
 # --------------------------------------------------------------------------- frames
 
 
-def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) -> str | None:
+def body_frame(
+    robot: Robot, sensor: Sensor, target: str, prefer: Sequence[str | None] = ()
+) -> str | None:
     """The link placed exactly at the sensor's render pose, x forward (not optical).
 
     Candidates in order: ``prefer``, the sensor's reference link, then every link of its
@@ -70,7 +72,7 @@ def body_frame(robot: Robot, sensor: Sensor, prefer: Sequence[str | None] = ()) 
     from sensorkit.model.frames_np import T_world_link_np, render_pose_np
     from sensorkit.model.transforms_np import angle_between
 
-    T_render = render_pose_np(robot, sensor)
+    T_render = render_pose_np(robot, sensor, target)
     if T_render is None or sensor.reference is None:
         return None
     root = robot.tree_of(sensor.reference)
@@ -289,8 +291,8 @@ def describe(
             frame=frames.published,
             frame_how=frames.how,
             frame_is_default=frames.is_default,
-            body_frame=body_frame(robot, sensor, prefer=(frames.published,)),
-            T_world_render=None if frames.T_world_render is None else render_pose_np(robot, sensor),
+            body_frame=body_frame(robot, sensor, chosen, prefer=(frames.published,)),
+            T_world_render=None if frames.T_world_render is None else render_pose_np(robot, sensor, chosen),
             topics=topics,
             # Gazebo Sim's depth_camera renders depth only; every other camera has colour
             has_colour=sensor.is_camera and not (is_gz(chosen) and sensor.kind == "depth"),

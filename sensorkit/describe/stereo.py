@@ -114,25 +114,25 @@ def _snap(T: Mat) -> Mat:
     return out
 
 
-def T_world_optical(robot: Robot, view: CameraView) -> Mat | None:
-    """Where ``view``'s images are rendered from, as an optical frame (z forward, x right,
-    y down) in the root link's frame; ``None`` when the sensor is not on a known link."""
+def T_world_optical(robot: Robot, view: CameraView, target: str) -> Mat | None:
+    """Where ``view``'s images are rendered from on ``target``, as an optical frame (z
+    forward, x right, y down) in the root link's frame; ``None`` when the sensor is not on
+    a known link. The camera's own ``<pose>`` (a multicamera's cameras have one each)
+    counts where the target reads it (:func:`sensorkit.model.frames.camera_pose`)."""
     from sensorkit.model.frames_np import render_pose_np
 
-    T = render_pose_np(robot, view.sensor)
+    T = render_pose_np(robot, view.sensor, target, view.spec)
     if T is None:
         return None
-    if view.spec.pose is not None:  # a multicamera's camera has its own <pose>
-        T = T @ view.spec.pose.matrix()
     T_render_optical = np.eye(4)
     T_render_optical[:3, :3] = R_BODY_OPTICAL
     out: Mat = T @ T_render_optical
     return out
 
 
-def _relative(robot: Robot, a: CameraView, b: CameraView) -> Mat | None:
+def _relative(robot: Robot, a: CameraView, b: CameraView, target: str) -> Mat | None:
     """``T_a_b``: camera b's optical frame in camera a's."""
-    Ta, Tb = T_world_optical(robot, a), T_world_optical(robot, b)
+    Ta, Tb = T_world_optical(robot, a, target), T_world_optical(robot, b, target)
     if Ta is None or Tb is None:
         return None
     return _snap(invert(Ta) @ Tb)
@@ -172,10 +172,12 @@ def _ros_multicamera(target: str, views: list[CameraView]) -> bool:
     return plugin is not None and plugin.library in _MULTICAMERA_LIBRARIES
 
 
-def _order(robot: Robot, a: CameraView, b: CameraView) -> tuple[CameraView, CameraView, Mat] | None:
+def _order(
+    robot: Robot, a: CameraView, b: CameraView, target: str
+) -> tuple[CameraView, CameraView, Mat] | None:
     """``(left, right, T_left_right)`` from where the two sit, or None when they do not
     sit side by side."""
-    T_a_b = _relative(robot, a, b)
+    T_a_b = _relative(robot, a, b, target)
     if T_a_b is None:
         return None
     if _side_by_side(T_a_b):
@@ -254,7 +256,7 @@ def stereo_pairs(robot: Robot, target: str, sensors: Sequence[SensorInfo]) -> li
         if s.sensor.kind != "multicamera" or not _ros_multicamera(target, s.cameras):
             continue
         a, b = s.cameras
-        ordered = _order(robot, a, b)
+        ordered = _order(robot, a, b, target)
         if ordered is None:
             s.notes.append("its two cameras do not sit side by side: not exported as a pair")
             continue
@@ -278,7 +280,7 @@ def stereo_pairs(robot: Robot, target: str, sensors: Sequence[SensorInfo]) -> li
             stem = _stem(lcam.sensor.name, rcam.sensor.name)
             if stem is None:
                 continue
-            T_named = _relative(robot, lcam, rcam)
+            T_named = _relative(robot, lcam, rcam, target)
             if T_named is None or not _side_by_side(T_named):
                 notes_of[rcam.sensor.name].append(
                     f"named as the right eye of {lcam.sensor.name!r} but does not sit side by "
@@ -301,7 +303,7 @@ def stereo_pairs(robot: Robot, target: str, sensors: Sequence[SensorInfo]) -> li
                 continue
             if (li.width, li.height) != (intr.width, intr.height) or li.baseline_tx != 0.0:
                 continue
-            T_tx = _relative(robot, lcam, rcam)
+            T_tx = _relative(robot, lcam, rcam, target)
             if T_tx is None or not _side_by_side(T_tx):
                 continue
             miss = float(np.linalg.norm(T_tx[:3, 3] - where))

@@ -190,7 +190,7 @@ def _T_cam_imu(view: CameraView, info: RobotInfo, imu: SensorInfo | None) -> Mat
 
     if imu is None or imu.T_world_render is None:
         return None
-    T_world_cam = T_world_optical(info.robot, view)
+    T_world_cam = T_world_optical(info.robot, view, info.target)
     if T_world_cam is None:
         return None
     out: Mat = invert(T_world_cam) @ imu.T_world_render

@@ -21,6 +21,21 @@ from __future__ import annotations
 
 import math
 
+# sensorkit's materiality floors (issue 35, "tests at the limits"): not simulator constants,
+# but the one value each comparison of one kind uses, so that a mutation of any of them is
+# seen by every rule that relies on it (tests/test_limits.py holds a case just over and just
+# under each, rule by rule).
+# - Two frames, or a frame and where a sensor renders, are at one place within POSITION_TOL
+#   (SK503, SK416, SK510, the frames-coincide test behind SK303/SK602/SK608, optical_frame_at
+#   for SK501/SK502/SK503's fixes, the recording checks SK80x, --fix's frame choice).
+# - A rotation is the one meant within ANGLE_TOL (SK502, SK504, SK505, SK506, SK508, SK614,
+#   SK416, SK510, the optical joint SK502 blames, --fix's angle snapping, SK80x).
+# - A camera_info or field of view that moves the image's edge by at most EDGE_PX pixels
+#   changes no pixel a user sees (SK409, SK410's field of view, SK413/SK414/SK417, SK415).
+POSITION_TOL = 1e-3  # m
+ANGLE_TOL = math.radians(0.5)  # rad
+EDGE_PX = 1.0  # pixels
+
 PLAUSIBLE_CAMERA_PIXELS = 4096 * 4096
 PLAUSIBLE_LIDAR_RAYS = 1_000_000
 PROTOBUF_MAX_BYTES = 2**31 - 1

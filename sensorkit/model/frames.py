@@ -15,13 +15,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from sensorkit.knowledge import plugins as known
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.model.targets import is_gz
 
 if TYPE_CHECKING:
     from sensorkit.knowledge.plugins import PluginSpec
+    from sensorkit.model.parse import Origin
     from sensorkit.model.robot import Robot
     from sensorkit.model.sdf import Conversion
-    from sensorkit.model.sensors import Plugin, Sensor
+    from sensorkit.model.sensors import CameraSpec, Plugin, Sensor
     from sensorkit.model.transforms import Mat
 
 # Which sensor-level tag each gz version reads for the frame id, first found wins:
@@ -161,7 +163,10 @@ def _links_near(robot: Robot, tol_m: float) -> tuple[dict[tuple[int, int, int], 
 
 
 def optical_frame_at(
-    robot: Robot, T_world_render: Mat | None, tol_m: float = 1e-3, tol_rad: float = 0.0087
+    robot: Robot,
+    T_world_render: Mat | None,
+    tol_m: float = POSITION_TOL,
+    tol_rad: float = ANGLE_TOL,
 ) -> str | None:
     """A link already placed as the optical frame of a camera rendering from T_world_render.
 
@@ -237,8 +242,32 @@ def ros_plugin(sensor: Sensor, target: str = "classic") -> Plugin | None:
     return publishing_plugin(sensor, target)[0]
 
 
-def render_pose(robot: Robot, sensor: Sensor) -> Mat | None:
-    """T_world_render: the reference link's pose composed with the sensor's ``<pose>``."""
+def camera_pose(sensor: Sensor, target: str, camera: CameraSpec | None = None) -> Origin | None:
+    """The ``<camera><pose>`` the render pose composes on ``target``: ``camera``'s (by
+    default the sensor's first camera), or None where there is none or the target never
+    reads it.
+
+    Gazebo Classic composes it onto the sensor's pose (``cameraPose = <camera><pose> +
+    sensor pose``, ignition::math's ``A + B`` being B then A: gazebo-classic 11.10.2
+    gazebo/sensors/CameraSensor.cc:168-172, DepthCameraSensor.cc:110-114,
+    MultiCameraSensor.cc:156-159, WideAngleCameraSensor.cc:115-119); Gazebo Sim never reads
+    it (gz-sensors8 src/CameraSensor.cc:221 places the camera at the sensor's pose; the
+    sources are at ``sensorkit.knowledge.sensor_blocks.CAMERA_POSE_READ``).
+    """
+    from sensorkit.knowledge.sensor_blocks import CAMERA_POSE_READ
+
+    if not CAMERA_POSE_READ.get(target, False):
+        return None
+    cam = camera if camera is not None else sensor.camera
+    return None if cam is None else cam.pose
+
+
+def render_pose(
+    robot: Robot, sensor: Sensor, target: str, camera: CameraSpec | None = None
+) -> Mat | None:
+    """T_world_render: the reference link's pose composed with the sensor's ``<pose>`` and,
+    on a target that reads it, the camera's ``<camera><pose>`` (:func:`camera_pose`;
+    ``camera``: which of a multicamera's cameras, by default the first)."""
     if sensor.reference is None or sensor.reference not in robot.link_map:
         return None
     P = robot.world_pose(sensor.reference)
@@ -246,7 +275,11 @@ def render_pose(robot: Robot, sensor: Sensor) -> Mat | None:
         return None
     from sensorkit.model.transforms import compose, pose_matrix
 
-    return pose_matrix(compose(P, sensor.pose.pose()))
+    P = compose(P, sensor.pose.pose())
+    extra = camera_pose(sensor, target, camera)
+    if extra is not None:
+        P = compose(P, extra.pose())
+    return pose_matrix(P)
 
 
 def sensor_frames(
@@ -257,7 +290,7 @@ def sensor_frames(
     ``model``: the name the robot is spawned under, when a launch file says (the MODEL of
     a gz default frame); else the URDF's robot name stands for it."""
     link = sensor.reference if sensor.reference in robot.link_map else None
-    T = render_pose(robot, sensor)
+    T = render_pose(robot, sensor, target)
     if is_gz(target):
         published: str | None = None
         how = "default"

@@ -18,7 +18,7 @@ from sensorkit.model.transforms_np import Mat
 
 if TYPE_CHECKING:
     from sensorkit.model.robot import Robot
-    from sensorkit.model.sensors import Sensor
+    from sensorkit.model.sensors import CameraSpec, Sensor
 
 
 def T_world_link_np(robot: Robot, link: str) -> Mat | None:
@@ -28,12 +28,20 @@ def T_world_link_np(robot: Robot, link: str) -> Mat | None:
     return None if T is None else np.array(T, dtype=np.float64)
 
 
-def render_pose_np(robot: Robot, sensor: Sensor) -> Mat | None:
-    """:func:`sensorkit.model.frames.render_pose` in numpy."""
+def render_pose_np(
+    robot: Robot, sensor: Sensor, target: str, camera: CameraSpec | None = None
+) -> Mat | None:
+    """:func:`sensorkit.model.frames.render_pose` in numpy (with ``<camera><pose>`` where
+    ``target`` reads it: :func:`sensorkit.model.frames.camera_pose`)."""
+    from sensorkit.model.frames import camera_pose
+
     if sensor.reference is None or sensor.reference not in robot.link_map:
         return None
     T = T_world_link_np(robot, sensor.reference)
     if T is None:
         return None
     out: Mat = T @ sensor.pose.matrix()
+    extra = camera_pose(sensor, target, camera)
+    if extra is not None:
+        out = out @ extra.matrix()
     return out

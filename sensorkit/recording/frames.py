@@ -20,8 +20,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from sensorkit.base.findings import Finding, Severity, SourceRef
-from sensorkit.lint.rules.frames import POSITION_TOL
-from sensorkit.lint.rules.optical_text import ANGLE_TOL, not_optical
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
+from sensorkit.lint.rules.optical_text import not_optical
 from sensorkit.model.targets import is_gz
 from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between, matrix_to_rpy
 from sensorkit.model.transforms import Mat as Mat3

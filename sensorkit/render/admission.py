@@ -69,7 +69,9 @@ def check_rules(target: str, select: Sequence[str], ignore: Sequence[str]) -> No
     Options(target=target, select=tuple(select), ignore=tuple(ignore))
 
 
-def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays: int) -> None:
+def check_budget(
+    robot: Robot, only: Sequence[str], target: str, *, max_pixels: int, max_rays: int
+) -> None:
     """Refuse (UsageError, exit 2) a sensor whose render would exhaust the machine, or whose
     pose is not a finite place near the robot, naming the sensor and the option to raise."""
     from sensorkit.describe.published import camera_size
@@ -97,7 +99,7 @@ def check_budget(robot: Robot, only: Sequence[str], *, max_pixels: int, max_rays
                     f"resolution) is over the render budget of {max_rays:,}{raise_it}"
                 )
                 raise UsageError(msg)
-        T = render_pose_np(robot, s)
+        T = render_pose_np(robot, s, target)
         if T is not None:
             import numpy as np
 

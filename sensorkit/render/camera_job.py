@@ -39,6 +39,7 @@ def render_camera_job(run: Session, job: Job, progress: Progress | None) -> JobR
     """Render ``job``'s camera into its folder, check it, and draw it in the overview."""
     from sensorkit.describe.intrinsics import InvalidValue
     from sensorkit.describe.published import published_intrinsics
+    from sensorkit.model.frames import camera_pose
     from sensorkit.render.camera import depth_from_buffer, render_camera
     from sensorkit.render.png import write_png
 
@@ -48,8 +49,9 @@ def render_camera_job(run: Session, job: Job, progress: Progress | None) -> JobR
     T_render = run.T_world_render(sensor)
     if T_render is None:
         return skipped(out, f"its reference link {sensor.reference!r} is not a link of the robot")
-    if cam.pose is not None:
-        T_render = T_render @ cam.pose.matrix()
+    extra = camera_pose(sensor, run.target, cam)  # <camera><pose>, where the target reads it
+    if extra is not None:
+        T_render = T_render @ extra.matrix()
     try:
         published, notes = published_intrinsics(sensor, cam, run.target)
     except InvalidValue as exc:

@@ -191,7 +191,7 @@ def _ready(request: _Request) -> _Ready:
     admission.check_sensor_names(robot, request.sensors)
     target, target_reason = admission.chosen_target(robot, request.target, request.target_origin)
     admission.check_budget(
-        robot, request.sensors, max_pixels=request.max_pixels, max_rays=request.max_rays
+        robot, request.sensors, target, max_pixels=request.max_pixels, max_rays=request.max_rays
     )
     admission.check_structure(robot, target)
     admission.check_rules(target, request.select, request.ignore)  # unknown rules: exit 2

@@ -13,6 +13,7 @@ import re
 from sensorkit.base.findings import Finding
 from sensorkit.fix.registry import EXPR, Fix, FixContext, fixer, is_expr
 from sensorkit.fix.source import NotFixable
+from sensorkit.knowledge.limits import ANGLE_TOL  # as SK502/SK505
 from sensorkit.model.parse import child
 
 __all__ = [
@@ -26,7 +27,6 @@ __all__ = [
 ]
 
 HALF_PI = math.pi / 2
-ANGLE_TOL = math.radians(0.5)  # as SK502/SK505
 OPTICAL_RPY_XACRO = "${-pi/2} 0 ${-pi/2}"
 OPTICAL_RPY_URDF = f"{-HALF_PI!r} 0 {-HALF_PI!r}"
 

@@ -27,6 +27,7 @@ from lxml import etree
 
 from sensorkit.base.consequence import Consequence, Role
 from sensorkit.base.findings import Finding
+from sensorkit.knowledge.limits import EDGE_PX
 from sensorkit.knowledge.sensor_blocks import (
     CLASSIC_DEPTH_DISTORTION_SOURCE,
     CLASSIC_DEPTH_TYPES,
@@ -46,7 +47,7 @@ from sensorkit.model.parse import child, parse_float
 from sensorkit.model.sensors import CameraSpec, Plugin, Sensor
 from sensorkit.model.targets import is_gz
 
-PX = 1.0  # pixels: below this a disagreement changes no pixel
+PX = EDGE_PX  # pixels: below this a disagreement changes no pixel (sensorkit.knowledge.limits)
 
 # sdformat's <camera> defaults (sdf/1.7/camera.sdf:12, :18, :21 @sdf9 9ee2d4f; see
 # sensorkit.knowledge.sdf_schema.CAMERA_DEFAULTS).
@@ -304,7 +305,7 @@ def _judge_distortion(
 # materiality plus the half pixel by which the centre conventions differ ((W - 1) / 2 for
 # pixel centres, W / 2 for the frustum's axis, (W + 1) / 2 gazebo_ros's default), so that
 # the point is over a pixel off whichever convention the reader takes.
-PRINCIPAL_PX = 1.5
+PRINCIPAL_PX = EDGE_PX + 0.5
 
 
 @rule(

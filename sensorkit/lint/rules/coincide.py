@@ -19,8 +19,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from sensorkit.base.consequence import Consequence, Role
-from sensorkit.lint.rules.frames import POSITION_TOL
-from sensorkit.lint.rules.optical_text import ANGLE_TOL
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.model import transforms as tf
 
 if TYPE_CHECKING:

@@ -18,6 +18,7 @@ from collections.abc import Iterator
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge.gazebo_ros import CLASSIC_FOCAL_LENGTH_PARAM, CLASSIC_NO_INTRINSICS_TYPES
 from sensorkit.knowledge.gazebo_sim import LENS_BLOCKS_READ, LENS_DEFAULTED_TAGS, lens_block_values
+from sensorkit.knowledge.limits import EDGE_PX
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import publishing_plugin, ros_generation
 from sensorkit.model.parse import parse_float
@@ -58,10 +59,16 @@ def focal_length(ctx: Context) -> Iterator[Finding]:
 
 
 # When a camera_info that disagrees with the image is a wrong calibration (an error) rather
-# than a rounding (a warning). sensorkit's materiality floor, not a simulator fact: a focal
-# length is wrong when it moves the image edge (width / 2 from the centre) by more than one
-# pixel, the unit the image measures in; a principal point when SK411 would call it far.
-EDGE_PX = 1.0
+# than a rounding (a warning). sensorkit's materiality floor, not a simulator fact
+# (sensorkit.knowledge.limits.EDGE_PX): a focal length is wrong when it moves the image edge
+# (width / 2 from the centre) by more than one pixel, the unit the image measures in; a
+# principal point when SK411 would call it far.
+
+
+# Two lens values (fx, or a K entry against the projection) within this relative difference
+# are the same value written twice, rounded: sensorkit's floor, one for every lens comparison
+# (tests/test_limits.py holds a case either side).
+SAME_LENS_REL = 1e-3
 
 
 def _focal_severity(size: int | None, rendered: float, published: float) -> Severity:
@@ -110,7 +117,7 @@ def _classic_intrinsics(
     f, _ = parse_float(plugin.param(tag))
     given = f is not None and f > 0 and math.isfinite(f)
     published = f if given and f is not None else expected
-    if abs(fx - published) <= 1e-3 * published:
+    if abs(fx - published) <= SAME_LENS_REL * published:
         return
     spans = 2.0 * math.atan(cam.width / (2.0 * fx)) if cam.width else hfov
     whence = f"<{tag}>" if given else f"width {cam.width} and horizontal_fov {hfov:g}"
@@ -157,7 +164,7 @@ def _gz_intrinsics(
             if key in proj
             and key in k
             and math.isfinite(proj[key])
-            and abs(proj[key] - k[key]) > 1e-3 * max(1.0, abs(k[key]))
+            and abs(proj[key] - k[key]) > SAME_LENS_REL * max(1.0, abs(k[key]))
         ]
         if off:
             yield _gz_k_off_projection(ctx, s, cam, hfov, off)
@@ -167,7 +174,7 @@ def _gz_intrinsics(
         render_fx, whence = intr[0], f"<lens><intrinsics> fx {intr[0]:g}"
     else:
         return
-    if render_fx > 0 and abs(render_fx - expected) > 1e-3 * expected:
+    if render_fx > 0 and abs(render_fx - expected) > SAME_LENS_REL * expected:
         spans = 2.0 * math.atan(cam.width / (2.0 * render_fx)) if cam.width else hfov
         tag = "p_fx" if proj else "fx"
         yield ctx.finding(
@@ -213,7 +220,7 @@ def _k_off_severity(cam: CameraSpec, off: list[tuple[str, float, float]]) -> Sev
         size = cam.width if key in ("fx", "cx") else cam.height
         if key in ("fx", "fy") and _focal_severity(size, rendered, k) is Severity.ERROR:
             return Severity.ERROR
-        if key in ("cx", "cy") and size and abs(rendered - k) > max(FAR * size, 1.0):
+        if key in ("cx", "cy") and size and abs(rendered - k) > max(FAR * size, EDGE_PX):
             return Severity.ERROR
     return Severity.WARNING
 

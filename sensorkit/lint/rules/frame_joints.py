@@ -14,6 +14,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from sensorkit.base.findings import Finding, Severity
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model import transforms as tf
 from sensorkit.model.parse import child
@@ -24,10 +25,8 @@ if TYPE_CHECKING:
     from sensorkit.model.sensors import Sensor
     from sensorkit.model.transforms import Mat
 
-ANGLE_TOL = math.radians(0.5)  # as SK502
 HALF_PI = math.pi / 2
 FAR_M = 10.0  # SK509
-POSITION_TOL = 1e-3  # as SK503
 
 
 def rpy_text(rpy: tuple[float, float, float], xacro: bool) -> str:

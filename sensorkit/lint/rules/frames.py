@@ -13,10 +13,11 @@ from sensorkit.knowledge.gazebo_sim import (
     GZ_NAVSAT_TYPES,
     gz_never_created,
 )
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.bridge import no_image_in_ros
 from sensorkit.lint.rules.frame_joints import blamed_optical_joint, rpy_text, sdf_optical_fix
-from sensorkit.lint.rules.optical_text import ANGLE_TOL, not_optical
+from sensorkit.lint.rules.optical_text import not_optical
 from sensorkit.lint.rules.tf_frames import (
     gz_default_in_tf,
     gz_sensor_poses_published,
@@ -35,7 +36,6 @@ if TYPE_CHECKING:
     from sensorkit.model.transforms import Mat
 
 EXACT_TOL = 1e-4  # below this an optical rotation counts as written exactly (1.5708 passes)
-POSITION_TOL = 1e-3
 OPTICAL_RPY = "${-pi/2} 0 ${-pi/2}"
 
 
@@ -350,7 +350,7 @@ def _own_link_at(robot: Robot, fr: SensorFrames) -> str | None:
         return None
     gap = tf.norm([a - b for a, b in zip(tf.translation(T), tf.translation(fr.T_world_render), strict=True)])
     turn = tf.angle_between(tf.rotation(T), tf.rotation(fr.T_world_render))
-    return fr.link if gap <= POSITION_TOL and math.degrees(turn) <= 0.5 else None
+    return fr.link if gap <= POSITION_TOL and turn <= ANGLE_TOL else None
 
 
 def _stereo_right_eye(s: Sensor, fr: SensorFrames, off: tuple[float, float, float]) -> bool:
@@ -422,7 +422,7 @@ def _gz_stereo_right_eye(ctx: Context, s: Sensor, off: tuple[float, float, float
         return False  # s is the left eye: its baseline stays 0
     else:
         left = first
-    y = [_y_on_link(robot, c, link) for c in (left, s)]
+    y = [_y_on_link(robot, c, link, ctx.target) for c in (left, s)]
     if y[0] is None or y[1] is None:
         return False
     baseline = abs(y[1] - y[0])
@@ -441,11 +441,11 @@ def _gz_topic(s: Sensor, link: str, robot: Robot) -> str:
     return s.topic or f"/world/WORLD/model/{robot.name}/link/{link}/sensor/{s.name}/image"
 
 
-def _y_on_link(robot: Robot, s: Sensor, link: str) -> float | None:
+def _y_on_link(robot: Robot, s: Sensor, link: str, target: str) -> float | None:
     """The sensor's y in ``link``'s frame (its <pose> after lumping)."""
     from sensorkit.model.frames import render_pose
 
-    T_world_link, T_world_render = robot.world_pose(link), render_pose(robot, s)
+    T_world_link, T_world_render = robot.world_pose(link), render_pose(robot, s, target)
     if T_world_link is None or T_world_render is None:
         return None
     return tf.translation(tf.relative(tf.pose_matrix(T_world_link), T_world_render))[1]

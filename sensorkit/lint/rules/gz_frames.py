@@ -10,6 +10,7 @@ from collections.abc import Iterator
 
 from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding, Severity
+from sensorkit.knowledge.limits import ANGLE_TOL
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.lint.rules.coincide import frame_consequence
 from sensorkit.lint.rules.topic_names import gz_topics, is_bridged, norm_topic
@@ -145,7 +146,7 @@ def xforward_cloud(ctx: Context) -> Iterator[Finding]:
         if T is not None:
             from sensorkit.model.transforms import R_BODY_OPTICAL, angle_between, rotation
 
-            if angle_between(rotation(T), R_BODY_OPTICAL) > 0.0087:
+            if angle_between(rotation(T), R_BODY_OPTICAL) > ANGLE_TOL:
                 continue  # stamped with an x-forward frame: the cloud lands right (SK502 covers images)
         yield ctx.finding(
             "SK614",

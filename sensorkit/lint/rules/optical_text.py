@@ -7,14 +7,14 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from sensorkit.knowledge.limits import ANGLE_TOL
 from sensorkit.model import transforms as tf
 
 if TYPE_CHECKING:
     from sensorkit.model.transforms import Mat
 
-__all__ = ["ANGLE_TOL", "not_optical", "optical_consequence"]
+__all__ = ["not_optical", "optical_consequence"]
 
-ANGLE_TOL = math.radians(0.5)
 
 
 def _describe_axis(v: tuple[float, float, float]) -> str:

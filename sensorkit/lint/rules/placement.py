@@ -145,7 +145,7 @@ def _same_fov(written: str, default: float, s: Sensor) -> bool:
     """Whether a field of view lost to the default draws the same image: the image edge moves
     by at most SK409's one pixel (EDGE_PX) at the width the camera runs with (1.0471976,
     pi/3, is the default 1.047 to 0.07 px at 640 wide)."""
-    from sensorkit.lint.rules.focal import EDGE_PX
+    from sensorkit.knowledge.limits import EDGE_PX
     from sensorkit.model.parse import parse_float
 
     h, _ = parse_float(written)

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from sensorkit.base.findings import Finding, Severity
 from sensorkit.knowledge import plugins as known
 from sensorkit.knowledge.gazebo_ros import PRINCIPAL_POINT_FAMILIES, PRINCIPAL_POINT_PARAMS
+from sensorkit.knowledge.limits import EDGE_PX
 from sensorkit.lint.rules.base import Context, rule
 from sensorkit.model.frames import ros_generation
 from sensorkit.model.parse import child, parse_float
@@ -29,7 +30,7 @@ FAR = 0.10  # of the width (height)
 
 def far_from_centre(value: float, size: int) -> bool:
     """Whether a principal point coordinate is far from the centre of ``size`` pixels."""
-    return abs(value - size / 2.0) > max(FAR * size, 1.0)
+    return abs(value - size / 2.0) > max(FAR * size, EDGE_PX)
 
 
 @rule(

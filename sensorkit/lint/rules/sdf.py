@@ -46,9 +46,8 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from sensorkit.base.findings import Finding, Severity
+from sensorkit.knowledge.limits import ANGLE_TOL, POSITION_TOL
 from sensorkit.lint.rules.base import Context, rule
-from sensorkit.lint.rules.frames import POSITION_TOL
-from sensorkit.lint.rules.optical_text import ANGLE_TOL
 from sensorkit.model.parse import child, text_of
 from sensorkit.model.targets import is_gz
 

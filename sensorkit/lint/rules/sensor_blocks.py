@@ -20,6 +20,7 @@ from lxml import etree
 
 from sensorkit.base.consequence import UNKNOWN, Consequence, Role
 from sensorkit.base.findings import Finding
+from sensorkit.knowledge.limits import ANGLE_TOL, EDGE_PX, POSITION_TOL
 from sensorkit.knowledge.sdf_schema import READ_ANYWAY, SDFORMAT_OF_TARGET
 from sensorkit.knowledge.sensor_blocks import (
     CAMERA_POSE_READ,
@@ -33,9 +34,6 @@ from sensorkit.model.parse import child, local, parse_float
 from sensorkit.model.sensors import CameraSpec, Sensor
 from sensorkit.model.targets import is_gz
 
-EDGE_PX = 1.0  # a field of view is wrong when it moves the image's edge by more than a pixel
-POSITION_TOL = 1e-3  # m, as the frame rules (SK503)
-ANGLE_TOL = math.radians(0.5)  # as the frame rules (SK502)
 _HOMES = ("camera", "ray", "lidar", "imu")
 _SCHEMA = "gazebosim/sdformat@sdf16 9a26f90:sdf/1.0..1.12/{}.sdf"
 
