@@ -220,8 +220,8 @@ def _edit(text: str, rng: random.Random) -> str:
 def test_kept_includes_give_what_a_cold_expansion_gives(
     rel: str, switch: dict[str, list[str]], steps: int
 ) -> None:
-    """The language server keeps each include's result (xacro_fast.keep_includes) and
-    replays it where nothing it read changed. Over random edits of the top file, of the
+    """The language server keeps each include's and macro call's result
+    (xacro_fast.keep_includes) and replays it where nothing it read changed. Over random edits of the top file, of the
     files it includes (as open buffers) and of the args, every expansion with the kept
     results equals a cold one (no kept results) exactly: the XML with its line stamps,
     the files and includes, and everything the expansion read. The cold in-process
@@ -259,6 +259,8 @@ def test_kept_includes_give_what_a_cold_expansion_gives(
             assert kept.deps == cold.deps
             files = cold.files
         assert memo.replayed > 0 and memo.expanded > 0, (memo.replayed, memo.expanded)
+        # includes and macro calls were both kept (the test is not vacuous)
+        assert {k.kind for kept in memo.kept.values() for k in kept} == {"include", "macro"}
     finally:
         xacro_fast.keep_includes(False)
 

@@ -1,16 +1,25 @@
-"""What the language server keeps of included files' expansions, as plain data.
+"""What the language server keeps of xacro's work from edit to edit: the results of
+included files and of macro calls evaluated in the document's own tables.
 
-The replay itself, which reaches into xacro, is ``sensorkit.loading.xacro_fast``
-(:func:`~sensorkit.loading.xacro_fast.reuse_includes`); here are the kept results, their
-store, and how the values of xacro's property tables are compared (by their type and
-``repr``, XML nodes by their XML): nothing here imports or touches xacro.
+The part that reaches into xacro is ``sensorkit.loading.xacro_fast``
+(:func:`~sensorkit.loading.xacro_fast.reuse_includes`, which says what is kept and when
+it is replayed); here, with nothing of xacro imported or touched, are the kept results
+and their store, how property values are compared (by their type and ``repr``, XML nodes
+by their XML), and :class:`Keeper`: what an expansion read (checked again before a
+replay) and the elements put in place (private copies, moved into the new document).
 """
 
 from __future__ import annotations
 
+import glob
+import os
 from collections import OrderedDict
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Any
+
+from sensorkit.base.regular import MAX_READ, read_regular
+from sensorkit.loading.reads import digest
 
 MAX_KEPT = 20_000  # node texts kept at most; the store starts over past it
 
@@ -24,6 +33,7 @@ class Unkept(Exception):
 
 @dataclass
 class Kept:
+    kind: str  # "include" or "macro"
     start: tuple[Any, ...]
     reads: list[tuple[str, str, Any, str]]  # (table, key, value, what) as ExpandDeps.saw
     cwd: str | None  # the working folder, if the include's reads made it matter
@@ -123,3 +133,165 @@ def path_in(node: Any, roots: list[Any]) -> tuple[int, list[int]] | None:
         path.append(up.childNodes.index(node))
         node = up
     return None
+
+
+@dataclass
+class Recorder:
+    """One include or macro call being expanded by xacro, to be kept."""
+
+    place: tuple[Any, ...]
+    start: tuple[Any, ...]
+    macros_before: dict[str, Any]
+    files_at: int
+    includes_at: int
+    single_at: tuple[Any, Any, Any]  # the shared text node's parent and siblings
+    cwd_before: str | None
+    reads: list[tuple[str, str, Any, str]] = field(default_factory=list)
+    ok: bool = True
+    single_seen: tuple[Any, int, Any, Any] | None = None  # (parent, index, siblings)
+    roots: list[tuple[Any, list[Any]]] | None = None
+    slot: tuple[Any, int] | None = None
+
+
+class Keeper:
+    """What one expansion reads while results are recorded, and the DOM side of keeping
+    and replaying them. ``single``: xacro's one shared text node, which its
+    ``remove_previous_comments`` moves about; ``find``: ``$(find)``, unrecorded."""
+
+    def __init__(
+        self,
+        memo: IncludeMemo,
+        recording: Any,
+        find: Callable[[str], Any],
+        files: list[str],
+        single: Any,
+    ) -> None:
+        self.memo, self.find, self.files, self.single = memo, find, files, single
+        self.deps, self.overlay = recording.deps, recording.overlay
+        self.active: list[Recorder] = []
+        self.used: set[int] = set()  # a kept result is put in one place per expansion
+        self.digests: dict[str, str | None] = {}
+
+    def holds(self, kept: Kept) -> bool:
+        """Whether every read of ``kept`` still gives what it gave (read unrecorded: only
+        a replay adds its reads to the expansion's)."""
+        for table, key, value, _what in kept.reads:
+            if table == "files":
+                now: Any = self.digest(key)
+            elif table == "env":
+                now = os.environ.get(key)
+            elif table == "packages":
+                try:
+                    now = str(self.find(key))
+                except Exception:
+                    now = None
+            else:
+                now = sorted(glob.glob(key))
+            if now != value:
+                return False
+        return True
+
+    def digest(self, path: str) -> str | None:
+        """The digest of ``path``'s bytes now (the overlay's), once per expansion."""
+        if path not in self.digests:
+            base = self.overlay.base
+            try:
+                data = base[path] if path in base else read_regular(path, MAX_READ)
+                self.digests[path] = digest(data)
+            except OSError:
+                self.digests[path] = None
+        return self.digests[path]
+
+    def begin(self, place: Any, start: Any, macros: dict[str, Any], includes: int) -> Recorder:
+        s = self.single
+        rec = Recorder(
+            place, start, macros, len(self.files), includes,
+            (s.parentNode, s.previousSibling, s.nextSibling), self.deps.cwd,
+        )  # fmt: skip
+        self.deps.cwd = None  # whether this one's reads make the working folder matter
+        self.active.append(rec)
+        return rec
+
+    def end(self, rec: Recorder) -> str | None:
+        """Stop recording ``rec``; the working folder if its reads made it matter."""
+        self.active.remove(rec)
+        own: str | None = self.deps.cwd
+        self.deps.cwd = rec.cwd_before if rec.cwd_before is not None else own
+        return own
+
+    def seen_single(self, rec: Recorder) -> None:
+        """Where the shared text node is as xacro's tail of the include or call begins."""
+        s = self.single
+        parent = s.parentNode
+        index = parent.childNodes.index(s) if parent is not None else -1
+        rec.single_seen = (parent, index, s.previousSibling, s.nextSibling)
+
+    def capture(self, rec: Recorder, roots: list[Any]) -> None:
+        """Private copies of what the include or call puts in place, and where the shared
+        text node was when xacro's tail began: inside those elements (its slot), or where
+        it was before (else nothing is kept)."""
+        seen = rec.single_seen
+        if seen is None:
+            rec.ok = False
+            return
+        parent, index, before, after = seen
+        found = path_in(parent, roots)
+        if found is None and (parent, before, after) != rec.single_at:
+            rec.ok = False
+            return
+        copies = [r.cloneNode(True) for r in roots]
+        if found is not None:
+            which, path = found
+            slot = copies[which]
+            for i in path:
+                slot = slot.childNodes[i]
+            if self.single.parentNode is parent:  # still there: its copy is not the node
+                slot.removeChild(slot.childNodes[index])
+            rec.slot = (slot, index)
+        rec.roots = [(c, list(c.childNodes)) for c in copies]
+
+    def put_back(self, kept: Kept) -> list[Any]:
+        """Add ``kept``'s reads and files to this expansion and make its elements whole
+        again (a previous document holds them): its roots, for xacro's tail."""
+        deps = self.deps
+        for table, key, value, what in kept.reads:
+            deps.saw(getattr(deps, table), key, value, what)
+        if kept.cwd is not None and deps.cwd is None:
+            deps.cwd = kept.cwd
+        self.files.extend(kept.files)
+        for root, children in kept.roots:
+            for child in children:
+                root.appendChild(child)
+        if kept.slot is not None:
+            parent, index = kept.slot
+            if self.single.parentNode is not None:
+                self.single.parentNode.removeChild(self.single)
+            after = parent.childNodes[index] if index < len(parent.childNodes) else None
+            parent.insertBefore(self.single, after)
+        return [root for root, _children in kept.roots]
+
+    def patch_deps(self) -> Callable[[], None]:
+        """Record every read and refusal of the expansion's ``ExpandDeps`` into the results
+        being recorded; returns what undoes it."""
+        deps = self.deps
+        names = {id(deps.files): "files", id(deps.env): "env", id(deps.packages): "packages"}
+        inner_saw, inner_refuse = deps.saw, deps.refuse
+
+        def saw(table: dict[str, Any], key: str, value: Any, what: str) -> None:
+            name = names.get(id(table), "globs")
+            for rec in self.active:
+                rec.reads.append((name, key, value, what))
+            inner_saw(table, key, value, what)
+
+        def refuse(why: str) -> None:
+            for rec in self.active:
+                rec.ok = False
+            inner_refuse(why)
+
+        deps.saw, deps.refuse = saw, refuse
+
+        def unpatch() -> None:
+            for name in ("saw", "refuse"):
+                vars(deps).pop(name, None)
+
+        return unpatch

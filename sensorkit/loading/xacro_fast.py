@@ -36,16 +36,16 @@ import contextlib
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 from sensorkit.loading.kept_includes import (
     IncludeMemo,
+    Keeper,
     Kept,
+    Recorder,
     Space,
     Unkept,
     node_fp,
-    path_in,
     plain,
     value_fp,
 )
@@ -249,24 +249,25 @@ def bound(xacro: Any, sa: Any, timeout: float, memory: int, undo: list[Callable[
     _set(sa, "_eval", eval_sub, undo)
 
 
-# -- the language server: each included file's result kept -------------------------------
+# -- the language server: included files' and macro calls' results kept ---------------
 #
-# A ``<xacro:include>`` at the top level of the document (no ``ns``, the document's own
-# property and macro tables) is a function of what it starts from and what it reads: the
-# tables (every property, its value and whether it is still unevaluated; every macro, its
-# parameters, defaults and body), the args, the files read so far (their order numbers the
-# line stamps), xacro's file stack, the working folder, and what it reads from the machine
-# (each file's bytes, each ``$(find)``, ``$(env)``, glob; recorded by ``reads``). Its result
-# is the tables and args after it, the elements it puts in place of the include, the
-# namespaces it lifts to the include's parent, the files it added, its reads. An include
-# kept with the same start whose every read still gives what it gave is replayed: the
-# tables set to what they were after it, its elements (kept privately, moved into the new
-# document) put in place with xacro's own ``remove_previous_comments`` and
-# ``replace_node``, its namespaces with ``import_xml_namespaces``, as xacro's
-# ``process_include`` does after it has evaluated the file. Anything else is expanded by
-# xacro and kept. xacro's one shared text node (``_empty_text_node``, which
-# ``remove_previous_comments`` moves about) is put back where the include had left it.
-# tests/test_xacro_fast.py compares every result with a cold expansion over random edits.
+# A ``<xacro:include>`` or a macro call evaluated in the document's own tables (at any
+# depth of elements, but not inside a macro's body) is a function of what it starts from
+# and what it reads: the tables (every property, its value and whether it is still
+# unevaluated, namespaces within; every macro, its parameters, defaults and body), the
+# args, the files read so far (their order numbers the line stamps), xacro's file stack,
+# the working folder, the include's attributes or the call's XML (its blocks), and what it
+# reads from the machine (each file's bytes, each ``$(find)``, ``$(env)``, glob, as
+# ``reads`` records them). Its result is the tables and args after it, the elements it
+# puts in its place, the namespaces it lifts to its parent, the files it added, its
+# reads. One kept with the same start whose every read still gives what it gave is
+# replayed: the tables set to what they were after it, its elements (kept privately, moved
+# into the new document) put in place by xacro's own tail of ``process_include`` or
+# ``handle_macro_call`` (``remove_previous_comments``, ``import_xml_namespaces``,
+# ``replace_node``). Anything else is expanded by xacro and kept. xacro's one shared text
+# node (``_empty_text_node``, which ``remove_previous_comments`` moves about) is put back
+# where xacro had left it. tests/test_xacro_fast.py compares every result with a cold
+# expansion over random edits.
 
 _MEMO: IncludeMemo | None = None
 
@@ -279,15 +280,29 @@ def keep_includes(on: bool = True) -> IncludeMemo | None:
     return _MEMO
 
 
+_MACRO_FP: dict[int, tuple[Any, ...]] = {}  # id(macro) -> (macro, body, params, defaults, fp)
+
+
 def _macro_fp(xacro: Any, macro: Any) -> Any:
     if type(macro) is xacro.NameSpace:  # the macros of an include with ``ns``
         if isinstance(macro.parent, xacro.Table):
             raise Unkept
         return ("ns", tuple((k, _macro_fp(xacro, m)) for k, m in dict.items(macro)))
-    if type(macro) is not xacro.Macro or not plain(macro.defaultmap):
+    if type(macro) is not xacro.Macro:
+        raise Unkept
+    # grab_macro gives a macro defined again a new body, params and defaults
+    known = _MACRO_FP.get(id(macro))
+    parts = (macro, macro.body, macro.params, macro.defaultmap)
+    if known is not None and all(a is b for a, b in zip(known, parts, strict=False)):
+        return known[4]
+    if not plain(macro.defaultmap):
         raise Unkept
     body = node_fp(macro.body) if macro.body is not None else None
-    return (tuple(macro.params), repr(macro.defaultmap), body)
+    fp = (tuple(macro.params), repr(macro.defaultmap), body)
+    if len(_MACRO_FP) >= MAX_KEPT:
+        _MACRO_FP.clear()
+    _MACRO_FP[id(macro)] = (*parts, fp)
+    return fp
 
 
 def _table_fp(xacro: Any, table: Any) -> Any:
@@ -350,162 +365,95 @@ def _top_tables(xacro: Any, macros: Any, symbols: Any) -> bool:
     )
 
 
-@dataclass
-class _Recorder:
-    place: tuple[Any, ...]
-    start: tuple[Any, ...]
-    macros_before: dict[str, Any]
-    files_at: int
-    includes_at: int
-    single_at: tuple[Any, Any, Any]  # the shared text node's parent and siblings
-    cwd_before: str | None
-    reads: list[tuple[str, str, Any, str]] = field(default_factory=list)
-    ok: bool = True
-    single_seen: tuple[Any, int, Any, Any] | None = None  # (parent, index, siblings)
-    roots: list[tuple[Any, list[Any]]] | None = None
-    slot: tuple[Any, int] | None = None
-
-
-class _Run:
-    """One expansion's use of the memo: the patches of ``reuse_includes``."""
+class _Run(Keeper):
+    """One expansion's use of the kept results: the functions ``reuse_includes`` sets."""
 
     def __init__(self, memo: IncludeMemo, xacro: Any, find: Any, files: list[str], rec: Any):
-        self.memo, self.xacro, self.find, self.files = memo, xacro, find, files
-        self.deps, self.overlay = rec.deps, rec.overlay
-        self.active: list[_Recorder] = []
-        self.watch: dict[int, _Recorder] = {}
-        self.used: set[int] = set()
+        super().__init__(memo, rec, find, files, xacro._empty_text_node)
+        self.xacro = xacro
+        self.watch: dict[int, Recorder] = {}
         self.real_include = xacro.process_include
+        self.real_call = xacro.handle_macro_call
         self.real_remove = xacro.remove_previous_comments
         self.real_replace = xacro.replace_node
-        self.single = xacro._empty_text_node
 
-    # -- what an include starts from, and whether a kept one still holds ---------------
-    def start(self, elt: Any, macros: Any, symbols: Any) -> tuple[Any, Any]:
+    def start(self, kind: str, node: Any, macros: Any, symbols: Any) -> tuple[Any, ...]:
+        """(where, what it starts from, the macros' fingerprints); Unkept if not known."""
         x = self.xacro
-        attrs = tuple(sorted(elt.attributes.items()))
-        place = (attrs, tuple(x.filestack or ()), tuple(self.files))
-        table = _table_fp(x, symbols)
+        what = tuple(sorted(node.attributes.items())) if kind == "include" else node.toxml()
+        place = (kind, node.tagName, tuple(x.filestack or ()), tuple(self.files))
         macro_fps = {k: _macro_fp(x, m) for k, m in dict.items(macros)}
         args = x.substitution_args_context.get("arg")
         if not plain(args) or set(x.substitution_args_context) != {"arg"}:
             raise Unkept
-        start = (table, tuple(macro_fps.items()), repr(args), os.getcwd())
-        return (place, start), macro_fps
+        table = _table_fp(x, symbols)
+        start = (what, table, tuple(macro_fps.items()), repr(args), os.getcwd())
+        return place, start, macro_fps
 
-    def holds(self, kept: Kept) -> bool:
-        import glob
-
-        from sensorkit.base.regular import MAX_READ, read_regular
-        from sensorkit.loading.reads import digest
-
-        base = self.overlay.base  # read unrecorded: only a replay adds its reads
-        for table, key, value, _what in kept.reads:
-            if table == "files":
-                try:
-                    now: Any = digest(base[key] if key in base else read_regular(key, MAX_READ))
-                except OSError:
-                    now = None
-            elif table == "env":
-                now = os.environ.get(key)
-            elif table == "packages":
-                try:
-                    now = str(self.find(key))
-                except Exception:
-                    now = None
-            else:
-                now = sorted(glob.glob(key))
-            if now != value:
-                return False
-        return True
-
-    # -- the patched functions -----------------------------------------------------------
-    def process_include(self, elt: Any, macros: Any, symbols: Any, func: Any) -> Any:
+    def kept_or_run(self, kind: str, node: Any, macros: Any, symbols: Any, run: Any) -> Any:
+        """Replay a kept result for ``node``, else ``run()`` xacro's own and keep it."""
         if not _top_tables(self.xacro, macros, symbols):
-            return self.real_include(elt, macros, symbols, func)
+            return run()
         try:
-            (place, start), macro_fps = self.start(elt, macros, symbols)
+            place, start, macro_fps = self.start(kind, node, macros, symbols)
         except Unkept:
-            return self.real_include(elt, macros, symbols, func)
+            return run()
         for kept in self.memo.candidates(place):
             if id(kept) not in self.used and kept.start == start and self.holds(kept):
                 self.used.add(id(kept))
-                self.replay(kept, elt, macros, symbols)
+                self.replay(kept, node, macros, symbols)
                 self.memo.replayed += 1
-                return None
-        s = self.single
-        rec = _Recorder(
-            place, start, macro_fps, len(self.files), len(self.xacro.all_includes),
-            (s.parentNode, s.previousSibling, s.nextSibling), self.deps.cwd,
-        )  # fmt: skip
-        self.deps.cwd = None
-        self.active.append(rec)
-        self.watch[id(elt)] = rec
+                return True
+        rec = self.begin(place, start, macro_fps, len(self.xacro.all_includes))
+        self.watch[id(node)] = rec
         try:
-            self.real_include(elt, macros, symbols, func)
+            result = run()
         finally:
-            self.active.remove(rec)
-            self.watch.pop(id(elt), None)
-            own_cwd = self.deps.cwd
-            self.deps.cwd = rec.cwd_before if rec.cwd_before is not None else own_cwd
+            self.watch.pop(id(node), None)
+            cwd = self.end(rec)
         self.memo.expanded += 1
         if rec.ok and rec.roots is not None:
             with contextlib.suppress(Unkept):
-                self.memo.put(place, self.keep(rec, own_cwd, macros, symbols))
-        return None
+                self.memo.put(place, self.keep(kind, rec, cwd, macros, symbols))
+        return result
+
+    # -- the functions set in xacro's module ---------------------------------------------
+    def process_include(self, elt: Any, macros: Any, symbols: Any, func: Any) -> None:
+        def run() -> None:
+            self.real_include(elt, macros, symbols, func)
+
+        self.kept_or_run("include", elt, macros, symbols, run)
+
+    def handle_macro_call(self, node: Any, macros: Any, symbols: Any) -> Any:
+        if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
+            return self.real_call(node, macros, symbols)
+        return self.kept_or_run(
+            "macro", node, macros, symbols, lambda: self.real_call(node, macros, symbols)
+        )
 
     def remove_previous_comments(self, node: Any) -> Any:
         rec = self.watch.get(id(node))
         if rec is not None and rec.roots is None:
-            s = self.single
-            parent = s.parentNode
-            index = parent.childNodes.index(s) if parent is not None else -1
-            rec.single_seen = (parent, index, s.previousSibling, s.nextSibling)
+            self.seen_single(rec)
         return self.real_remove(node)
 
     def replace_node(self, node: Any, by: Any = None, content_only: bool = False) -> Any:
         rec = self.watch.get(id(node))
-        if rec is not None and rec.roots is None and content_only and isinstance(by, list):
-            self.capture(rec, by)
+        if rec is not None and rec.roots is None and content_only and by is not None:
+            self.capture(rec, by if isinstance(by, list) else [by])
         return self.real_replace(node, by, content_only)
 
     # -- keeping and replaying -----------------------------------------------------------
-    def capture(self, rec: _Recorder, roots: list[Any]) -> None:
-        """Private copies of what the include puts in place, and where the shared text
-        node was when xacro's tail of ``process_include`` began: inside the include's
-        elements (its slot), or where it was before the include (else not kept)."""
-        seen = rec.single_seen
-        if seen is None:
-            rec.ok = False
-            return
-        parent, index, before, after = seen
-        found = path_in(parent, roots)
-        if found is None and (parent, before, after) != rec.single_at:
-            rec.ok = False
-            return
-        copies = [r.cloneNode(True) for r in roots]
-        if found is not None:
-            which, path = found
-            slot = copies[which]
-            for i in path:
-                slot = slot.childNodes[i]
-            if self.single.parentNode is parent:  # still there: its copy is not the node
-                slot.removeChild(slot.childNodes[index])
-            rec.slot = (slot, index)
-        rec.roots = [(c, list(c.childNodes)) for c in copies]
-
-    def keep(self, rec: _Recorder, cwd: str | None, macros: Any, symbols: Any) -> Kept:
+    def keep(self, kind: str, rec: Recorder, cwd: str | None, macros: Any, symbols: Any) -> Kept:
         x = self.xacro
-        changed = []
+        changed = {}
         for name, macro in dict.items(macros):
-            fp = _macro_fp(x, macro)
-            if rec.macros_before.get(name) != fp:
-                changed.append((name, macro))
+            if rec.macros_before.get(name) != _macro_fp(x, macro):
+                changed[name] = macro
         _table_fp(x, symbols)  # every value one that can be compared
-        items = _snapshot(x, symbols, False)
-        macro_items = _snapshot(x, dict(changed), True)
         assert rec.roots is not None
         return Kept(
+            kind=kind,
             start=rec.start,
             reads=rec.reads,
             cwd=cwd,
@@ -513,19 +461,15 @@ class _Run:
             includes=list(x.all_includes[rec.includes_at :]),
             roots=rec.roots,
             slot=rec.slot,
-            symbols=items,
+            symbols=_snapshot(x, symbols, False),
             unevaluated=set(symbols.unevaluated),
-            macros=macro_items,
+            macros=_snapshot(x, changed, True),
             args=dict(x.substitution_args_context["arg"]),
         )
 
-    def replay(self, kept: Kept, elt: Any, macros: Any, symbols: Any) -> None:
-        x, deps = self.xacro, self.deps
-        for table, key, value, what in kept.reads:
-            deps.saw(getattr(deps, table), key, value, what)
-        if kept.cwd is not None and deps.cwd is None:
-            deps.cwd = kept.cwd
-        self.files.extend(kept.files)
+    def replay(self, kept: Kept, node: Any, macros: Any, symbols: Any) -> None:
+        x = self.xacro
+        roots = self.put_back(kept)
         x.all_includes.extend(kept.includes)
         dict.clear(symbols)
         _rebuild(x, kept.symbols, symbols, False)
@@ -535,39 +479,15 @@ class _Run:
         args = x.substitution_args_context["arg"]
         args.clear()
         args.update(kept.args)
-        for root, children in kept.roots:
-            for child in children:
-                root.appendChild(child)
-        if kept.slot is not None:
-            parent, index = kept.slot
-            if self.single.parentNode is not None:
-                self.single.parentNode.removeChild(self.single)
-            after = parent.childNodes[index] if index < len(parent.childNodes) else None
-            parent.insertBefore(self.single, after)
-        for root, _children in kept.roots:
-            x.import_xml_namespaces(elt.parentNode, root.attributes)
-        self.real_remove(elt)
-        self.real_replace(elt, [root for root, _c in kept.roots], True)
-
-    def saw(self, inner: Any) -> Any:
-        deps = self.deps
-        names = {id(deps.files): "files", id(deps.env): "env", id(deps.packages): "packages"}
-
-        def saw(table: dict[str, Any], key: str, value: Any, what: str) -> None:
-            name = names.get(id(table), "globs")
-            for rec in self.active:
-                rec.reads.append((name, key, value, what))
-            inner(table, key, value, what)
-
-        return saw
-
-    def refuse(self, inner: Any) -> Any:
-        def refuse(why: str) -> None:
-            for rec in self.active:
-                rec.ok = False
-            inner(why)
-
-        return refuse
+        if kept.kind == "include":  # as xacro's process_include ends
+            for root in roots:
+                x.import_xml_namespaces(node.parentNode, root.attributes)
+            self.real_remove(node)
+            self.real_replace(node, roots, True)
+        else:  # as xacro's handle_macro_call ends
+            self.real_remove(node)
+            x.import_xml_namespaces(node.parentNode, roots[0].attributes)
+            self.real_replace(node, roots[0], True)
 
 
 def reuse_includes(
@@ -577,8 +497,8 @@ def reuse_includes(
     recording: Any,
     undo: list[Callable[[], None]],
 ) -> None:
-    """Replay kept includes and keep new ones in this expansion (when :func:`keep_includes`
-    is on; see above). ``recording``: the expansion's ``reads.Recording``; ``files``: the
+    """Replay kept includes and macro calls and keep new ones in this expansion (when
+    :func:`keep_includes` is on; see above). ``recording``: the expansion's ``reads.Recording``; ``files``: the
     list the line stamps number; ``find``: ``$(find)`` unrecorded. Call after every other
     patch of the expansion."""
     memo = _MEMO
@@ -586,14 +506,7 @@ def reuse_includes(
         return
     run = _Run(memo, xacro, find, files, recording)
     _set(xacro, "process_include", run.process_include, undo)
+    _set(xacro, "handle_macro_call", run.handle_macro_call, undo)
     _set(xacro, "remove_previous_comments", run.remove_previous_comments, undo)
     _set(xacro, "replace_node", run.replace_node, undo)
-    deps = recording.deps
-    deps.saw = run.saw(deps.saw)
-    deps.refuse = run.refuse(deps.refuse)
-
-    def unpatch() -> None:
-        for name in ("saw", "refuse"):
-            vars(deps).pop(name, None)
-
-    undo.append(unpatch)
+    undo.append(run.patch_deps())
