@@ -251,24 +251,27 @@ class Keeper:
         rec.roots = [(c, list(c.childNodes)) for c in copies]
 
     def put_back(self, kept: Kept) -> list[Any]:
-        """Add ``kept``'s reads and files to this expansion and make its elements whole
-        again (a previous document holds them): its roots, for xacro's tail."""
+        """Add ``kept``'s reads and files to this expansion; the nodes to put in its place
+        (the shared text node back in its slot)."""
         deps = self.deps
         for table, key, value, what in kept.reads:
             deps.saw(getattr(deps, table), key, value, what)
         if kept.cwd is not None and deps.cwd is None:
             deps.cwd = kept.cwd
         self.files.extend(kept.files)
+        single = self.single
+        slot_parent, slot_index = kept.slot if kept.slot is not None else (None, 0)
+        if slot_parent is not None and single.parentNode is not None:
+            single.parentNode.removeChild(single)
+        kids: list[Any] = []
         for root, children in kept.roots:
-            for child in children:
-                root.appendChild(child)
-        if kept.slot is not None:
-            parent, index = kept.slot
-            if self.single.parentNode is not None:
-                self.single.parentNode.removeChild(self.single)
-            after = parent.childNodes[index] if index < len(parent.childNodes) else None
-            parent.insertBefore(self.single, after)
-        return [root for root, _children in kept.roots]
+            if slot_parent is root:
+                children = [*children[:slot_index], single, *children[slot_index:]]  # noqa: PLW2901
+            kids += children
+        if slot_parent is not None and all(slot_parent is not root for root, _c in kept.roots):
+            after = slot_parent.childNodes
+            slot_parent.insertBefore(single, after[slot_index] if slot_index < len(after) else None)
+        return kids
 
     def patch_deps(self) -> Callable[[], None]:
         """Record every read and refusal of the expansion's ``ExpandDeps`` into the results
@@ -295,3 +298,29 @@ class Keeper:
                 vars(deps).pop(name, None)
 
         return unpatch
+
+
+def splice(node: Any, kids: list[Any]) -> None:
+    """What xacro's ``replace_node(node, by=roots, content_only=True)`` makes of kept
+    nodes: ``kids`` in ``node``'s place, in one step instead of one list search each. The
+    documents ``kids`` were in before are let go (a kept result's nodes are its own and
+    are in one document at a time), so they are not taken out of them."""
+    from xml.dom.minidom import _clear_id_cache  # type: ignore[attr-defined]
+
+    parent = node.parentNode
+    at = parent.childNodes.index(node)
+    prev = parent.childNodes[at - 1] if at else None
+    for kid in kids:
+        kid.parentNode = parent
+        kid.previousSibling = prev
+        if prev is not None:
+            prev.nextSibling = kid
+        prev = kid
+    after = node.nextSibling
+    if prev is not None:
+        prev.nextSibling = after
+    if after is not None:
+        after.previousSibling = prev
+    parent.childNodes[at : at + 1] = kids
+    node.parentNode = node.previousSibling = node.nextSibling = None
+    _clear_id_cache(parent)

@@ -47,6 +47,7 @@ from sensorkit.loading.kept_includes import (
     Unkept,
     node_fp,
     plain,
+    splice,
     value_fp,
 )
 
@@ -469,7 +470,7 @@ class _Run(Keeper):
 
     def replay(self, kept: Kept, node: Any, macros: Any, symbols: Any) -> None:
         x = self.xacro
-        roots = self.put_back(kept)
+        kids = self.put_back(kept)
         x.all_includes.extend(kept.includes)
         dict.clear(symbols)
         _rebuild(x, kept.symbols, symbols, False)
@@ -479,15 +480,17 @@ class _Run(Keeper):
         args = x.substitution_args_context["arg"]
         args.clear()
         args.update(kept.args)
+        roots = [root for root, _children in kept.roots]
         if kept.kind == "include":  # as xacro's process_include ends
             for root in roots:
                 x.import_xml_namespaces(node.parentNode, root.attributes)
             self.real_remove(node)
-            self.real_replace(node, roots, True)
         else:  # as xacro's handle_macro_call ends
             self.real_remove(node)
             x.import_xml_namespaces(node.parentNode, roots[0].attributes)
-            self.real_replace(node, roots[0], True)
+        if self.single.parentNode is not None:  # remove_previous_comments moved it out
+            kids = [kid for kid in kids if kid is not self.single]
+        splice(node, kids)  # replace_node(node, roots, content_only=True)
 
 
 def reuse_includes(
