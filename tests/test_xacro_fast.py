@@ -265,6 +265,34 @@ def test_kept_includes_give_what_a_cold_expansion_gives(
         xacro_fast.keep_includes(False)
 
 
+@pytest.mark.parametrize(("places", "budget", "replays"), [(2, 10**6, True), (64, -1, False)])
+def test_a_store_too_small_keeps_what_it_has_and_a_spent_budget_expands_as_xacro(
+    places: int, budget: int, replays: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A robot with more includes and calls than the store holds still replays what the
+    store kept (results are not pushed out, one by one, just before they are needed); past
+    the comparing budget of one expansion, xacro expands the rest. Either way the result is
+    a cold expansion's."""
+    from sensorkit.loading import kept_includes
+
+    monkeypatch.setattr(kept_includes, "MAX_INCLUDES", places)
+    monkeypatch.setattr(kept_includes, "RUN_BUDGET", budget)
+    top = REALWORLD / KEPT[1][0]
+    resolver = PackageResolver.from_options(corpus_package_paths())
+    args = {"use_sim": "true"}
+    overlay = {str(top): top.read_bytes() + b"<!-- edited -->"}
+    cold = _expand_in_process(top, args, resolver, overlay)
+    memo = xacro_fast.keep_includes()
+    try:
+        for _ in range(2):
+            kept = _expand_in_process(top, args, resolver, overlay)
+            assert (kept.xml, kept.files, kept.deps) == (cold.xml, cold.files, cold.deps)
+        assert memo is not None and len(memo.kept) <= places
+        assert (memo.replayed > 0) is replays, (memo.replayed, memo.expanded)
+    finally:
+        xacro_fast.keep_includes(False)
+
+
 def _expand_in_process(
     top: Path, args: dict[str, str], resolver: PackageResolver, overlay: dict[str, bytes]
 ) -> ExpandOutcome:

@@ -23,8 +23,13 @@ from sensorkit.loading.reads import digest
 
 MAX_KEPT = 20_000  # node texts kept at most; the store starts over past it
 
-MAX_INCLUDES = 512  # results kept at most (oldest first out)
+MAX_INCLUDES = 4096  # places kept at most (the least recently used go first)
 PER_PLACE = 4  # results kept for one include in one place (one file stack)
+# What is kept and compared is bounded in table entries (each result keeps the tables
+# after it, each include or call compares the tables before it): a robot of thousands of
+# properties and calls expands as without the memo past these, never slower by much.
+MAX_WEIGHT = 1_000_000  # table entries and nodes kept over all results
+RUN_BUDGET = 2_000_000  # table entries compared in one expansion
 
 
 class Unkept(Exception):
@@ -41,10 +46,14 @@ class Kept:
     includes: list[str]
     roots: list[tuple[Any, list[Any]]]  # each file's root element and its children
     slot: tuple[Any, int] | None  # (parent, index) of xacro's shared text node
-    symbols: list[tuple[str, Any]]
+    symbols: list[tuple[str, Any]] | None  # None: the table as it was before
     unevaluated: set[str]
     macros: list[tuple[str, Any]]  # macros new or changed, in table order
     args: dict[str, Any]
+
+    @property
+    def weight(self) -> int:
+        return len(self.symbols or ()) + sum(len(c) for _r, c in self.roots) + 1
 
 
 class IncludeMemo:
@@ -54,21 +63,37 @@ class IncludeMemo:
         self.kept: OrderedDict[tuple[Any, ...], list[Kept]] = OrderedDict()
         self.replayed = 0  # counters, for tests and benchmarks
         self.expanded = 0
+        self.weight = 0
+        self.runs = 0  # expansions so far; a place remembers the last that used it
+        self.used_in: dict[tuple[Any, ...], int] = {}
 
     def candidates(self, place: tuple[Any, ...]) -> list[Kept]:
         found = self.kept.get(place)
         if found is None:
             return []
         self.kept.move_to_end(place)
+        self.used_in[place] = self.runs
         return found
 
     def put(self, place: tuple[Any, ...], kept: Kept) -> None:
+        """Keep ``kept``; when full, the least recently used place goes, unless this
+        expansion used it too (a robot larger than the store keeps what it has instead
+        of pushing out, call after call, the results it is about to need)."""
+        if place not in self.kept:
+            while len(self.kept) >= MAX_INCLUDES or self.weight + kept.weight > MAX_WEIGHT:
+                if not self.kept or self.used_in.get(next(iter(self.kept))) == self.runs:
+                    return
+                gone_place, gone = self.kept.popitem(last=False)
+                self.used_in.pop(gone_place, None)
+                self.weight -= sum(k.weight for k in gone)
         found = self.kept.setdefault(place, [])
         found.insert(0, kept)
+        self.weight += kept.weight
+        for old in found[PER_PLACE:]:
+            self.weight -= old.weight
         del found[PER_PLACE:]
         self.kept.move_to_end(place)
-        while len(self.kept) > MAX_INCLUDES:
-            self.kept.popitem(last=False)
+        self.used_in[place] = self.runs
 
 
 @dataclass
@@ -170,6 +195,8 @@ class Keeper:
         self.deps, self.overlay = recording.deps, recording.overlay
         self.active: list[Recorder] = []
         self.used: set[int] = set()  # a kept result is put in one place per expansion
+        self.budget = RUN_BUDGET
+        memo.runs += 1
         self.digests: dict[str, str | None] = {}
 
     def holds(self, kept: Kept) -> bool:

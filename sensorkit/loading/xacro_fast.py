@@ -33,6 +33,7 @@ on every robot of the corpus.
 from __future__ import annotations
 
 import contextlib
+import operator
 import os
 import time
 from collections.abc import Callable
@@ -306,14 +307,38 @@ def _macro_fp(xacro: Any, macro: Any) -> Any:
     return fp
 
 
-def _table_fp(xacro: Any, table: Any) -> Any:
-    """What a property table is compared by (a namespace in it: its own, recursively)."""
+_SCALARS = frozenset({str, int, float, bool, type(None)})
+
+
+def _table_fp(xacro: Any, table: Any, known: dict[int, tuple[Any, ...]] | None = None) -> Any:
+    """What a property table is compared by (a namespace in it: its own, recursively).
+    A table of scalars only, the usual case, by its keys and values' ``repr`` (which
+    tells their types apart), in C loops; ``known`` gives the same answer, the same
+    object, for the same table holding the very same values as when last asked."""
+    values = list(dict.values(table))
+    if set(map(type, values)) <= _SCALARS:
+        keys = list(dict.keys(table))
+        unevaluated = frozenset(table.unevaluated)
+        last = known.get(id(table)) if known is not None else None
+        if (
+            last is not None
+            and last[0] is table
+            and last[1] == keys
+            and len(last[2]) == len(values)
+            and all(map(operator.is_, last[2], values))
+            and last[3] == unevaluated
+        ):
+            return last[4]
+        scalars = (tuple(keys), tuple(map(repr, values)), unevaluated)
+        if known is not None:
+            known[id(table)] = (table, keys, values, unevaluated, scalars)
+        return scalars
     out = []
     for k, v in dict.items(table):
         if type(v) is xacro.NameSpace:
             if v.parent is not table:
                 raise Unkept
-            fp = ("ns", _table_fp(xacro, v))
+            fp: Any = ("ns", _table_fp(xacro, v))
         else:
             fp = value_fp(v)
         out.append((k, fp, k in table.unevaluated))
@@ -373,6 +398,7 @@ class _Run(Keeper):
         super().__init__(memo, rec, find, files, xacro._empty_text_node)
         self.xacro = xacro
         self.watch: dict[int, Recorder] = {}
+        self.known: dict[int, tuple[Any, ...]] = {}  # _table_fp's last answers
         self.real_include = xacro.process_include
         self.real_call = xacro.handle_macro_call
         self.real_remove = xacro.remove_previous_comments
@@ -382,18 +408,21 @@ class _Run(Keeper):
         """(where, what it starts from, the macros' fingerprints); Unkept if not known."""
         x = self.xacro
         what = tuple(sorted(node.attributes.items())) if kind == "include" else node.toxml()
-        place = (kind, node.tagName, tuple(x.filestack or ()), tuple(self.files))
+        place = (kind, what, tuple(x.filestack or ()), tuple(self.files))
         macro_fps = {k: _macro_fp(x, m) for k, m in dict.items(macros)}
         args = x.substitution_args_context.get("arg")
         if not plain(args) or set(x.substitution_args_context) != {"arg"}:
             raise Unkept
-        table = _table_fp(x, symbols)
+        table = _table_fp(x, symbols, self.known)
         start = (what, table, tuple(macro_fps.items()), repr(args), os.getcwd())
         return place, start, macro_fps
 
     def kept_or_run(self, kind: str, node: Any, macros: Any, symbols: Any, run: Any) -> Any:
         """Replay a kept result for ``node``, else ``run()`` xacro's own and keep it."""
         if not _top_tables(self.xacro, macros, symbols):
+            return run()
+        self.budget -= len(symbols) + len(macros)
+        if self.budget < 0:  # too large to compare at each call: as without the memo
             return run()
         try:
             place, start, macro_fps = self.start(kind, node, macros, symbols)
@@ -451,7 +480,8 @@ class _Run(Keeper):
         for name, macro in dict.items(macros):
             if rec.macros_before.get(name) != _macro_fp(x, macro):
                 changed[name] = macro
-        _table_fp(x, symbols)  # every value one that can be compared
+        after = _table_fp(x, symbols, self.known)  # every value one that can be compared
+        same = after is rec.start[1]  # the very same table: nothing to set on a replay
         assert rec.roots is not None
         return Kept(
             kind=kind,
@@ -462,7 +492,7 @@ class _Run(Keeper):
             includes=list(x.all_includes[rec.includes_at :]),
             roots=rec.roots,
             slot=rec.slot,
-            symbols=_snapshot(x, symbols, False),
+            symbols=None if same else _snapshot(x, symbols, False),
             unevaluated=set(symbols.unevaluated),
             macros=_snapshot(x, changed, True),
             args=dict(x.substitution_args_context["arg"]),
@@ -472,10 +502,11 @@ class _Run(Keeper):
         x = self.xacro
         kids = self.put_back(kept)
         x.all_includes.extend(kept.includes)
-        dict.clear(symbols)
-        _rebuild(x, kept.symbols, symbols, False)
-        symbols.unevaluated.clear()
-        symbols.unevaluated.update(kept.unevaluated)
+        if kept.symbols is not None:
+            dict.clear(symbols)
+            _rebuild(x, kept.symbols, symbols, False)
+            symbols.unevaluated.clear()
+            symbols.unevaluated.update(kept.unevaluated)
         _rebuild(x, kept.macros, macros, True)
         args = x.substitution_args_context["arg"]
         args.clear()
