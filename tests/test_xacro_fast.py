@@ -195,35 +195,38 @@ def test_successive_edits_in_one_process_equal_cold_runs(tmp_path: Path) -> None
         assert ours["out"] == theirs["out"], argv
 
 
-KEPT = [  # robots the language server's kept includes are checked on: args to switch, edits
+KEPT = [  # robots the kept results are checked on: args to switch, the edits in turn
     (
         "turtlebot__turtlebot4/turtlebot4_description/urdf/standard/turtlebot4.urdf.xacro",
         {"gazebo": ["ignition", "classic"]},
-        6,
+        ["top", "include", "arg", "include"],
     ),
     (
         "husarion__rosbot_ros/rosbot_description/urdf/rosbot.urdf.xacro",
         {"use_sim": ["true", "false"]},
-        6,
+        ["include", "arg", "top", "include"],
     ),
-    ("PR2__pr2_common/pr2_description/robots/pr2.urdf.xacro", {}, 3),
+    ("PR2__pr2_common/pr2_description/robots/pr2.urdf.xacro", {}, ["include"]),
 ]
 
 
 def _edit(text: str, rng: random.Random) -> str:
     """One edit as a user types it: a number changed (anywhere, a property's value too),
-    or a comment added or removed."""
+    or a comment added or removed (at the end, in a file whose root is not a robot)."""
+    if "</robot>" not in text:
+        return text + "<!-- edit -->\n" if rng.random() < 0.5 else text + " "
     return _edits(text, rng, 1)[0]
 
 
-@pytest.mark.parametrize(("rel", "switch", "steps"), KEPT, ids=[Path(k[0]).name for k in KEPT])
+@pytest.mark.parametrize(("rel", "switch", "edits"), KEPT, ids=[Path(k[0]).name for k in KEPT])
 def test_kept_includes_give_what_a_cold_expansion_gives(
-    rel: str, switch: dict[str, list[str]], steps: int
+    rel: str, switch: dict[str, list[str]], edits: list[str]
 ) -> None:
     """The language server keeps each include's and macro call's result
-    (xacro_fast.keep_includes) and replays it where nothing it read changed. Over random edits of the top file, of the
-    files it includes (as open buffers) and of the args, every expansion with the kept
-    results equals a cold one (no kept results) exactly: the XML with its line stamps,
+    (xacro_fast.keep_includes) and replays it where nothing it read changed. Over edits
+    of the top file, of the files it includes (as open buffers) and of the args, in turn
+    (what each changes drawn at random), every expansion with the kept results equals a
+    cold one (no kept results) exactly: the XML with its line stamps,
     the files and includes, and everything the expansion read. The cold in-process
     expansion is xacro's command line's output byte for byte (the tests above)."""
     top = REALWORLD / rel
@@ -235,14 +238,14 @@ def test_kept_includes_give_what_a_cold_expansion_gives(
     kinds = []
     memo = xacro_fast.keep_includes()
     try:
-        for step in range(steps):
-            kind = "open" if step == 0 else rng.choice(["top", "top", "include", "include", "arg"])
+        for step, kind in enumerate(["open", *edits]):
             if kind == "top":
                 texts[str(top)] = _edit(texts.get(str(top), top.read_text()), rng)
-            elif kind == "include" and len(files) > 1:
+            elif kind == "include":
+                assert len(files) > 1
                 name = rng.choice(files[1:])
                 texts[name] = _edit(texts.get(name, Path(name).read_text()), rng)
-            elif kind == "arg" and switch:
+            elif kind == "arg":
                 name = rng.choice(sorted(switch))
                 args[name] = rng.choice([v for v in switch[name] if v != args[name]])
             kinds.append(kind)
