@@ -21,14 +21,16 @@ from typing import Any
 from sensorkit.base.regular import MAX_READ, read_regular
 from sensorkit.loading.reads import digest
 
-MAX_KEPT = 20_000  # node texts kept at most; the store starts over past it
+# Macro bodies and blocks whose XML is kept (each holds its DOM alive: a few KiB to some
+# tens), and macros whose fingerprint is; either starts over past it.
+MAX_NODES = 2048
 
 MAX_INCLUDES = 4096  # places kept at most (the least recently used go first)
 PER_PLACE = 4  # results kept for one include in one place (one file stack)
 # What is kept and compared is bounded in table entries (each result keeps the tables
 # after it, each include or call compares the tables before it): a robot of thousands of
 # properties and calls expands as without the memo past these, never slower by much.
-MAX_WEIGHT = 1_000_000  # table entries and nodes kept over all results
+MAX_WEIGHT = 200_000  # table entries and DOM nodes kept over all results (~1 KiB a node)
 RUN_BUDGET = 2_000_000  # table entries compared in one expansion
 
 
@@ -50,10 +52,11 @@ class Kept:
     unevaluated: set[str]
     macros: list[tuple[str, Any]]  # macros new or changed, in table order
     args: dict[str, Any]
+    nodes: int = 0  # the nodes its elements hold
 
     @property
     def weight(self) -> int:
-        return len(self.symbols or ()) + sum(len(c) for _r, c in self.roots) + 1
+        return len(self.symbols or ()) + self.nodes + 1
 
 
 class IncludeMemo:
@@ -125,7 +128,7 @@ def node_fp(node: Any) -> str:
     if known is not None and known[0] is node:
         return known[1]
     text: str = node.toxml()
-    if len(_FP) >= MAX_KEPT:
+    if len(_FP) >= MAX_NODES:
         _FP.clear()
     _FP[id(node)] = (node, text)
     return text
@@ -176,6 +179,7 @@ class Recorder:
     single_seen: tuple[Any, int, Any, Any] | None = None  # (parent, index, siblings)
     roots: list[tuple[Any, list[Any]]] | None = None
     slot: tuple[Any, int] | None = None
+    nodes: int = 0
 
 
 class Keeper:
@@ -276,6 +280,7 @@ class Keeper:
                 slot.removeChild(slot.childNodes[index])
             rec.slot = (slot, index)
         rec.roots = [(c, list(c.childNodes)) for c in copies]
+        rec.nodes = sum(_count(c) for c in copies)
 
     def put_back(self, kept: Kept) -> list[Any]:
         """Add ``kept``'s reads and files to this expansion; the nodes to put in its place
@@ -351,3 +356,13 @@ def splice(node: Any, kids: list[Any]) -> None:
     parent.childNodes[at : at + 1] = kids
     node.parentNode = node.previousSibling = node.nextSibling = None
     _clear_id_cache(parent)
+
+
+def _count(node: Any) -> int:
+    """The nodes of ``node``'s tree."""
+    total, stack = 0, [node]
+    while stack:
+        n = stack.pop()
+        total += 1
+        stack.extend(n.childNodes)
+    return total

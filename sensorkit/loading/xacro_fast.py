@@ -40,6 +40,7 @@ from collections.abc import Callable
 from typing import Any
 
 from sensorkit.loading.kept_includes import (
+    MAX_NODES,
     IncludeMemo,
     Keeper,
     Kept,
@@ -301,7 +302,7 @@ def _macro_fp(xacro: Any, macro: Any) -> Any:
         raise Unkept
     body = node_fp(macro.body) if macro.body is not None else None
     fp = (tuple(macro.params), repr(macro.defaultmap), body)
-    if len(_MACRO_FP) >= MAX_KEPT:
+    if len(_MACRO_FP) >= MAX_NODES:
         _MACRO_FP.clear()
     _MACRO_FP[id(macro)] = (*parts, fp)
     return fp
@@ -496,6 +497,7 @@ class _Run(Keeper):
             unevaluated=set(symbols.unevaluated),
             macros=_snapshot(x, changed, True),
             args=dict(x.substitution_args_context["arg"]),
+            nodes=rec.nodes,
         )
 
     def replay(self, kept: Kept, node: Any, macros: Any, symbols: Any) -> None:
