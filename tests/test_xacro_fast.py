@@ -208,6 +208,115 @@ def test_successive_edits_in_one_process_equal_cold_runs(tmp_path: Path) -> None
         assert ours["out"] == theirs["out"], argv
 
 
+KEPT = [  # robots the kept results are checked on: args to switch, the edits in turn
+    (
+        "turtlebot__turtlebot4/turtlebot4_description/urdf/standard/turtlebot4.urdf.xacro",
+        {"gazebo": ["ignition", "classic"]},
+        ["top", "include", "arg", "include"],
+    ),
+    (
+        "husarion__rosbot_ros/rosbot_description/urdf/rosbot.urdf.xacro",
+        {"use_sim": ["true", "false"]},
+        ["include", "arg", "top", "include"],
+    ),
+    ("PR2__pr2_common/pr2_description/robots/pr2.urdf.xacro", {}, ["include"]),
+]
+
+
+def _edit(text: str, rng: random.Random) -> str:
+    """One edit as a user types it: a number changed (anywhere, a property's value too),
+    or a comment added or removed (at the end, in a file whose root is not a robot)."""
+    if "</robot>" not in text:
+        return text + "<!-- edit -->\n" if rng.random() < 0.5 else text + " "
+    return _edits(text, rng, 1)[0]
+
+
+@pytest.mark.parametrize(("rel", "switch", "edits"), KEPT, ids=[Path(k[0]).name for k in KEPT])
+def test_kept_includes_give_what_a_cold_expansion_gives(
+    rel: str, switch: dict[str, list[str]], edits: list[str]
+) -> None:
+    """The language server keeps each include's and macro call's result
+    (xacro_fast.keep_includes) and replays it where nothing it read changed. Over edits
+    of the top file, of the files it includes (as open buffers) and of the args, in turn
+    (what each changes drawn at random), every expansion with the kept results equals a
+    cold one (no kept results) exactly: the XML with its line stamps,
+    the files and includes, and everything the expansion read. The cold in-process
+    expansion is xacro's command line's output byte for byte (the tests above)."""
+    top = REALWORLD / rel
+    resolver = PackageResolver.from_options(corpus_package_paths())
+    rng = random.Random(rel)
+    args = {k: v[0] for k, v in switch.items()}
+    texts: dict[str, str] = {}
+    files: list[str] = []
+    kinds = []
+    memo = xacro_fast.keep_includes()
+    try:
+        for step, kind in enumerate(["open", *edits]):
+            if kind == "top":
+                texts[str(top)] = _edit(texts.get(str(top), top.read_text()), rng)
+            elif kind == "include":
+                assert len(files) > 1
+                name = rng.choice(files[1:])
+                texts[name] = _edit(texts.get(name, Path(name).read_text()), rng)
+            elif kind == "arg":
+                name = rng.choice(sorted(switch))
+                args[name] = rng.choice([v for v in switch[name] if v != args[name]])
+            kinds.append(kind)
+            overlay = {k: v.encode() for k, v in texts.items()}
+            assert memo is not None
+            xacro_fast._MEMO = memo
+            kept = _expand_in_process(top, args, resolver, overlay)
+            xacro_fast._MEMO = None
+            cold = _expand_in_process(top, args, resolver, overlay)
+            assert cold.error_kind is None, cold.message
+            assert (kept.error_kind, kept.message) == (cold.error_kind, cold.message)
+            assert kept.xml == cold.xml, (step, kinds)
+            assert (kept.files, kept.includes) == (cold.files, cold.includes)
+            assert kept.deps == cold.deps
+            files = cold.files
+        assert memo.replayed > 0 and memo.expanded > 0, (memo.replayed, memo.expanded)
+        # includes and macro calls were both kept (the test is not vacuous)
+        assert {k.kind for kept in memo.kept.values() for k in kept} == {"include", "macro"}
+    finally:
+        xacro_fast.keep_includes(False)
+
+
+@pytest.mark.parametrize(("places", "budget", "replays"), [(2, 10**6, True), (64, -1, False)])
+def test_a_store_too_small_keeps_what_it_has_and_a_spent_budget_expands_as_xacro(
+    places: int, budget: int, replays: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A robot with more includes and calls than the store holds still replays what the
+    store kept (results are not pushed out, one by one, just before they are needed); past
+    the comparing budget of one expansion, xacro expands the rest. Either way the result is
+    a cold expansion's."""
+    from sensorkit.loading import kept_includes
+
+    monkeypatch.setattr(kept_includes, "MAX_INCLUDES", places)
+    monkeypatch.setattr(kept_includes, "RUN_BUDGET", budget)
+    top = REALWORLD / KEPT[1][0]
+    resolver = PackageResolver.from_options(corpus_package_paths())
+    args = {"use_sim": "true"}
+    overlay = {str(top): top.read_bytes() + b"<!-- edited -->"}
+    cold = _expand_in_process(top, args, resolver, overlay)
+    memo = xacro_fast.keep_includes()
+    try:
+        for _ in range(2):
+            kept = _expand_in_process(top, args, resolver, overlay)
+            assert (kept.xml, kept.files, kept.deps) == (cold.xml, cold.files, cold.deps)
+        assert memo is not None and len(memo.kept) <= places
+        assert (memo.replayed > 0) is replays, (memo.replayed, memo.expanded)
+    finally:
+        xacro_fast.keep_includes(False)
+
+
+def _expand_in_process(
+    top: Path, args: dict[str, str], resolver: PackageResolver, overlay: dict[str, bytes]
+) -> ExpandOutcome:
+    return xacro_expand.expand_in_process(
+        top, dict(args), resolver.for_file(top), overlay=overlay, bounded=60.0
+    )
+
+
 LEXED = [
     "plain", "${a}", "x ${a*2} y", "$(arg n)_link", "$${kept}", "$$(kept)", "${a} ${b}$(find p)",
     "${'}'}", "", "$", "${unclosed", "$(unclosed", "a $ b",

@@ -442,7 +442,7 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
             path=path, error=f"{display_path(path)}: the document nests too deeply to read"
         )
     else:
-        report = validate_loaded(path, loaded, options)
+        report = validate_loaded(path, loaded, options, same_load=True)
     if options.untrusted is not None:
         from sensorkit.loading.packages import readable_area
 
@@ -450,17 +450,22 @@ def validate_file(path: Path, options: Options | None = None) -> FileReport:
     return report
 
 
-def validate_loaded(path: Path, loaded: Loaded, options: Options) -> FileReport:
+def validate_loaded(
+    path: Path, loaded: Loaded, options: Options, *, same_load: bool = False
+) -> FileReport:
     """``validate_file`` of ``path`` already loaded (as ``options`` says to load it): the
     same rules, filtering, suppression and order, without reading and modelling the
-    file a second time (``sensorkit render preview`` validates the robot it rendered)."""
+    file a second time (``sensorkit render preview`` validates the robot it rendered).
+    ``same_load``: ``loaded`` came from ``load_as(path, options)``, so the rules look
+    packages up with the load's resolver instead of scanning the package paths again."""
+    resolver = loaded.resolver if same_load else None
     if loaded.robot is None:
         report = FileReport(path=path, findings=list(loaded.findings))
     else:
-        report = check_robot(loaded.robot, options)
+        report = check_robot(loaded.robot, options, resolver)
         report.findings = loaded.findings + report.findings
         for other in loaded.robots[1:]:  # an SDF world's other models
-            more = check_robot(other, options)
+            more = check_robot(other, options, resolver)
             report.findings += more.findings
             report.internal_errors += more.internal_errors
             report.more_sensors += len(other.sensors)

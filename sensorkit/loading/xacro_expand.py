@@ -253,6 +253,8 @@ def expand_in_process(
         xacro_fast.bound(xacro, sa, bounded, MEMORY_LIMIT, undo)
     reads = _record_reads(xacro, sa, out, untrusted, overlay)
     xacro.parse = _loc_parser(files, saved_x["parse"], confine, reads.overlay if reads else overlay)
+    if bounded is not None and reads is not None:  # the language server's kept includes
+        xacro_fast.reuse_includes(xacro, find, files, reads, undo)
     sys.stderr = CappedText()  # what xacro prints, never read: its first MiB only
     try:
         doc = xacro.process_file(os.path.abspath(path), mappings=dict(args), verbosity=0)

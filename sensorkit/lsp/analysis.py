@@ -89,7 +89,7 @@ def analyse(top: Path, options: Options, overlay: Mapping[str, bytes]) -> Analys
         out.error = f"{top}: the document nests too deeply to read"
         return out
     try:
-        report = validate_loaded(top, loaded, options)
+        report = validate_loaded(top, loaded, options, same_load=True)
     except SensorkitError as exc:  # a bad bridge or launch file: a usage error
         out.error = str(exc)
         return out

@@ -361,12 +361,15 @@ def resolve(server: SensorkitServer, action: lsp.CodeAction) -> lsp.CodeAction:
 def warm() -> None:
     """Import xacro now, so the first document does not pay for it: expansions run in
     this process (its lexing and parsing caches stay warm from edit to edit), or in a
-    child forked from it with xacro loaded (sensorkit.loading.xacro_expand). The describe
+    child forked from it with xacro loaded (sensorkit.loading.xacro_expand); the included
+    files' results are kept from edit to edit (sensorkit.loading.xacro_fast). The describe
     layer is left to the first hover: it brings numpy, and each forked expansion costs more
     with numpy in this process (~40 ms of CPU per edit on turtlebot4, 3 paired runs)."""
     from sensorkit.loading.xacro_expand import warm as warm_xacro
+    from sensorkit.loading.xacro_fast import keep_includes
 
     warm_xacro()
+    keep_includes()  # an edit re-expands only the includes it can change
 
 
 def serve() -> None:

@@ -31,6 +31,8 @@ class Loaded:
     robot: Robot | None
     findings: list[Finding] = field(default_factory=list)
     robots: list[Robot] = field(default_factory=list)
+    # the packages as the load found them: the rules look meshes up with it (one scan)
+    resolver: PackageResolver | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if not self.robots and self.robot is not None:
@@ -60,6 +62,21 @@ def load_robot(
     ``cache``: the expansion cache to use (see ``sensorkit.loading.cache``), if any.
     """
     resolver = PackageResolver.from_options(list(package_paths), near=path)
+    loaded = _load(path, resolver, args, timeout, untrusted, overlay, cache, sdf)
+    loaded.resolver = resolver
+    return loaded
+
+
+def _load(
+    path: Path,
+    resolver: PackageResolver,
+    args: dict[str, str] | None,
+    timeout: float,
+    untrusted: Untrusted | None,
+    overlay: Mapping[str, bytes] | None,
+    cache: ExpansionCache | None,
+    sdf: bool,
+) -> Loaded:
     from sensorkit.loading.formats import is_sdf_path, is_sdf_xacro
 
     if untrusted is not None:
