@@ -581,3 +581,30 @@ def test_fix_snaps_angles_within_half_a_degree_only() -> None:
     far = repr(-HALF_PI + math.radians(0.55))
     assert exact_angles(f"{near} 0 {near}", xacro=True) == "${-pi/2} 0 ${-pi/2}"
     assert exact_angles(f"{far} 0 0", xacro=True) == f"{far} 0 0"
+
+
+# --- SK412: sdformat's lens defaults judged against the image within half a pixel -------
+
+
+def _lens_defaults_robot(fx_natural: float) -> str:
+    """A 320x240 camera writing <intrinsics> cx, cy only: fx and fy take sdformat's 277; its
+    horizontal_fov gives the image the focal length ``fx_natural``."""
+    hfov = 2 * math.atan(160 / fx_natural)
+    return robot(
+        camera=camera_sensor(
+            camera=f"<camera><horizontal_fov>{hfov!r}</horizontal_fov>"
+            "<image><width>320</width><height>240</height></image>"
+            "<lens><intrinsics><cx>160</cx><cy>120</cy></intrinsics></lens></camera>"
+        )
+    )
+
+
+def test_sk412_defaults_half_a_pixel_off_the_image_are_said(check) -> None:
+    # sdformat's left-out fx = fy = 277 (sdformat@sdf9:sdf/1.7/camera.sdf:146-158)
+    assert _sev(check(_lens_defaults_robot(277.55), target="classic"), "SK412") == [Severity.WARNING]
+    assert _sev(check(_lens_defaults_robot(276.45), target="classic"), "SK412") == [Severity.WARNING]
+
+
+def test_sk412_defaults_within_half_a_pixel_of_the_image_are_not(check) -> None:
+    assert _sev(check(_lens_defaults_robot(277.45), target="classic"), "SK412") == []
+    assert _sev(check(_lens_defaults_robot(276.55), target="classic"), "SK412") == []
