@@ -608,3 +608,22 @@ def test_sk412_defaults_half_a_pixel_off_the_image_are_said(check) -> None:
 def test_sk412_defaults_within_half_a_pixel_of_the_image_are_not(check) -> None:
     assert _sev(check(_lens_defaults_robot(277.45), target="classic"), "SK412") == []
     assert _sev(check(_lens_defaults_robot(276.55), target="classic"), "SK412") == []
+
+
+# --- SK409 on gz: K's principal point against the projection, SK411's 10 % floor --------
+
+
+@pytest.mark.parametrize(("off_px", "want"), [(64.5, Severity.ERROR), (63.5, Severity.WARNING)])
+def test_sk409_gz_k_principal_point_off_the_projection_by_10_percent(
+    check, off_px: float, want: Severity
+) -> None:
+    # gz-sensors renders with <projection> and publishes K from <intrinsics> (gazebosim/
+    # gz-sensors@gz-sensors8 (c8159af):src/CameraSensor.cc:898-914 and :729-739): K's cx
+    # 10 % of the 640 px width (64 px) off the rendered one is an error, just under a warning.
+    text = robot(camera=camera_sensor(plugin="", camera=(
+        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
+        f"<intrinsics><fx>381.3612</fx><fy>381.3612</fy><cx>{320 + off_px!r}</cx><cy>240</cy><s>0</s></intrinsics>"
+        "<projection><p_fx>381.3612</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
+        "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
+    assert _sev(check(text, target="harmonic"), "SK409") == [want]
