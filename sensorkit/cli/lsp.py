@@ -47,13 +47,14 @@ def lsp() -> None:
         )
         raise typer.Exit(2)
     if sys.stdin.isatty():
+        # The handler first: a Ctrl-C typed as soon as the words appear must end it.
+        signal.signal(signal.SIGINT, lambda _sig, _frame: os._exit(130))
         typer.echo(
             "sensorkit lsp: a language server, waiting for an editor to speak LSP on "
             "stdin/stdout (the README's Editor section says how to start it from yours); "
             "Ctrl-C ends it",
             err=True,
         )
-        signal.signal(signal.SIGINT, lambda _sig, _frame: os._exit(130))
     from sensorkit.lsp.server import serve
 
     serve()
