@@ -627,3 +627,22 @@ def test_sk409_gz_k_principal_point_off_the_projection_by_10_percent(
         "<projection><p_fx>381.3612</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
         "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
     assert _sev(check(text, target="harmonic"), "SK409") == [want]
+
+
+@pytest.mark.parametrize(("rel", "said"), [(1.1e-3, True), (0.9e-3, False)])
+def test_sk409_gz_k_focal_against_the_projection_at_one_in_a_thousand(
+    check, rel: float, said: bool
+) -> None:
+    # K's fx (from <intrinsics>) against the projection gz-sensors renders with
+    # (gz-sensors8 c8159af CameraSensor.cc:898-914, :729-739): SAME_LENS_REL apart is said as
+    # K off the image (a warning: 0.35 px at the edge); just under, nothing.
+    p_fx = 381.3612 * (1 + rel)
+    text = robot(camera=camera_sensor(plugin="", camera=(
+        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
+        "<intrinsics><fx>381.3612</fx><fy>381.3612</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics>"
+        f"<projection><p_fx>{p_fx!r}</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
+        "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
+    found = [f for f in check(text, target="harmonic").findings if f.rule == "SK409"]
+    k_off = [f for f in found if "K does not match the image" in f.message]
+    assert [f.severity for f in k_off] == ([Severity.WARNING] if said else [])
