@@ -601,3 +601,15 @@ def test_the_other_commands_never_import_rosbags() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+@pytest.mark.parametrize(("degrees", "optical"), [(0.6, False), (0.4, True)])
+def test_sk805_says_a_camera_frame_is_not_optical_past_half_a_degree(
+    degrees: float, optical: bool, run: Callable[..., list[Finding]]
+) -> None:
+    """The optical frame moved 1.1 mm (SK805 either way) and turned 0.6 or 0.4 degrees:
+    only past ANGLE_TOL does the message add that the camera's data is stamped with a frame
+    that is not optical (recording/frames.py _not_optical)."""
+    scene = _turn_tf(_move_tf(small(car_scene()), "camera_optical_frame", 0.0011), "camera_optical_frame", degrees)
+    (found,) = of(run(scene), "SK805")
+    assert ("not an optical frame" in found.message) is not optical, found.message
