@@ -610,22 +610,27 @@ def test_sk412_defaults_within_half_a_pixel_of_the_image_are_not(check) -> None:
     assert _sev(check(_lens_defaults_robot(276.55), target="classic"), "SK412") == []
 
 
-# --- SK409 on gz: K's principal point against the projection, SK411's 10 % floor --------
+# --- SK409 on gz: K (from <intrinsics>) against the <projection> gz-sensors renders with --
+# (gazebosim/gz-sensors@gz-sensors8 (c8159af):src/CameraSensor.cc:898-914 and :729-739)
+
+
+def _gz_k_and_projection(k_cx: float = 320, p_fx: float = 381.3612) -> str:
+    """A 640x480 camera whose K and projection agree but for K's cx and the projection's fx."""
+    return robot(camera=camera_sensor(plugin="", camera=(
+        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
+        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
+        f"<intrinsics><fx>381.3612</fx><fy>381.3612</fy><cx>{k_cx!r}</cx><cy>240</cy><s>0</s></intrinsics>"
+        f"<projection><p_fx>{p_fx!r}</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
+        "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
 
 
 @pytest.mark.parametrize(("off_px", "want"), [(64.5, Severity.ERROR), (63.5, Severity.WARNING)])
 def test_sk409_gz_k_principal_point_off_the_projection_by_10_percent(
     check, off_px: float, want: Severity
 ) -> None:
-    # gz-sensors renders with <projection> and publishes K from <intrinsics> (gazebosim/
-    # gz-sensors@gz-sensors8 (c8159af):src/CameraSensor.cc:898-914 and :729-739): K's cx
-    # 10 % of the 640 px width (64 px) off the rendered one is an error, just under a warning.
-    text = robot(camera=camera_sensor(plugin="", camera=(
-        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
-        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
-        f"<intrinsics><fx>381.3612</fx><fy>381.3612</fy><cx>{320 + off_px!r}</cx><cy>240</cy><s>0</s></intrinsics>"
-        "<projection><p_fx>381.3612</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
-        "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
+    # K's cx 10 % of the 640 px width (64 px, SK411's floor) off the rendered one is an
+    # error, just under a warning.
+    text = _gz_k_and_projection(k_cx=320 + off_px)
     assert _sev(check(text, target="harmonic"), "SK409") == [want]
 
 
@@ -633,16 +638,9 @@ def test_sk409_gz_k_principal_point_off_the_projection_by_10_percent(
 def test_sk409_gz_k_focal_against_the_projection_at_one_in_a_thousand(
     check, rel: float, said: bool
 ) -> None:
-    # K's fx (from <intrinsics>) against the projection gz-sensors renders with
-    # (gz-sensors8 c8159af CameraSensor.cc:898-914, :729-739): SAME_LENS_REL apart is said as
-    # K off the image (a warning: 0.35 px at the edge); just under, nothing.
-    p_fx = 381.3612 * (1 + rel)
-    text = robot(camera=camera_sensor(plugin="", camera=(
-        "<camera><horizontal_fov>1.3962634</horizontal_fov><image><width>640</width><height>480</height>"
-        "<format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip><lens>"
-        "<intrinsics><fx>381.3612</fx><fy>381.3612</fy><cx>320</cx><cy>240</cy><s>0</s></intrinsics>"
-        f"<projection><p_fx>{p_fx!r}</p_fx><p_fy>381.3612</p_fy><p_cx>320</p_cx><p_cy>240</p_cy>"
-        "<tx>0</tx><ty>0</ty></projection></lens></camera>")))  # fmt: skip
+    # SAME_LENS_REL apart is said as K off the image (a warning: 0.35 px at the edge);
+    # just under, nothing.
+    text = _gz_k_and_projection(p_fx=381.3612 * (1 + rel))
     found = [f for f in check(text, target="harmonic").findings if f.rule == "SK409"]
     k_off = [f for f in found if "K does not match the image" in f.message]
     assert [f.severity for f in k_off] == ([Severity.WARNING] if said else [])
