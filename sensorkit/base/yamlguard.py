@@ -11,14 +11,17 @@ files and robot YAMLs nest a few levels; :data:`MAX_DEPTH` is far above any of t
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING
+from collections.abc import Callable
+from typing import TYPE_CHECKING, TypeVar
 
 import yaml
 
 if TYPE_CHECKING:
     from yaml import Node
 
-__all__ = ["MAX_DEPTH", "TooDeep", "compose", "flow_depth", "safe_load"]
+__all__ = ["MAX_DEPTH", "TooDeep", "check", "compose", "flow_depth", "safe_load"]
+
+T = TypeVar("T")
 
 MAX_DEPTH = 64
 
@@ -51,24 +54,23 @@ def _refuse_deep(text: str) -> None:
         raise TooDeep(msg)
 
 
-def compose(text: str) -> Node | None:
-    """``yaml.compose`` with the safe loader, within the bounds above (raises TooDeep)."""
+def _read(load: Callable[[str], T], text: str) -> T:
     _refuse_deep(text)
     try:
-        return yaml.compose(text, Loader=yaml.SafeLoader)
+        return load(text)
     except RecursionError:
         msg = "nests too deeply for a configuration"
         raise TooDeep(msg) from None
+
+
+def compose(text: str) -> Node | None:
+    """``yaml.compose`` with the safe loader, within the bounds above (raises TooDeep)."""
+    return _read(lambda t: yaml.compose(t, Loader=yaml.SafeLoader), text)
 
 
 def safe_load(text: str) -> object:
     """``yaml.safe_load`` within the bounds above (raises TooDeep)."""
-    _refuse_deep(text)
-    try:
-        return yaml.safe_load(text)
-    except RecursionError:
-        msg = "nests too deeply for a configuration"
-        raise TooDeep(msg) from None
+    return _read(yaml.safe_load, text)
 
 
 def check(text: str) -> None:
