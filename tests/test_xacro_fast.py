@@ -350,25 +350,19 @@ def test_the_cached_lexer_gives_xacros_tokens_and_errors(text: str) -> None:
 
 def _cli_forks(jobs: list[list[str]], env: dict[str, str], cwd: Path) -> list[Any]:
     """xacro's command line on each of ``jobs``, forked from one process (FORKS)."""
-    run = subprocess.run(
-        [sys.executable, str(FORKS)],
-        input=json.dumps(jobs),
-        env=env,
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=1200,
-        check=False,
-    )
-    assert run.returncode == 0, run.stderr[-3000:]
-    return list(json.loads(run.stdout))
+    return _driver(FORKS, jobs, env, cwd, timeout=1200)
 
 
 def _run_peer(jobs: list[list[str]], env: dict[str, str], cwd: Path, timeout: int) -> list[Any]:
     """The in-process expansions of ``jobs`` by one driver process (PEER), caches warm
     across them, as JSON."""
+    return _driver(PEER, jobs, env, cwd, timeout)
+
+
+def _driver(script: Path, jobs: list[list[str]], env: dict[str, str], cwd: Path, timeout: int) -> list[Any]:
+    """The JSON answers of ``script`` run once on the JSON list ``jobs``."""
     run = subprocess.run(
-        [sys.executable, str(PEER)],
+        [sys.executable, str(script)],
         input=json.dumps(jobs),
         env=env,
         cwd=cwd,
