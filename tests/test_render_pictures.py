@@ -223,6 +223,28 @@ def test_ring_labels_do_not_cover_the_returns() -> None:
         )
 
 
+def test_the_pixels_a_label_avoids_are_those_within_two_of_a_return() -> None:
+    """_return_pixels marks every pixel within two (rows and columns) of a return's,
+    returns off the picture included when their neighbours are on it: the same as
+    marking the 25 neighbours of each return one by one."""
+    from sensorkit.render.overview import ScanView
+    from sensorkit.render.pictures import _return_pixels
+
+    rng = np.random.default_rng(7)
+    view, display = ScanView(480, 5.0, 1.0), 60
+    k = display / view.size
+    returns = rng.uniform(-5.4, 5.4, (400, 2))  # some a pixel or two off the picture
+    returns[::37] = np.nan
+    want = np.zeros((display + 1, display + 1), dtype=bool)
+    for col, row in np.rint(view.px(returns[np.isfinite(returns[:, 0])]) * k).astype(int):
+        for dc in range(-2, 3):
+            for dr in range(-2, 3):
+                if 0 <= col + dc <= display and 0 <= row + dr <= display:
+                    want[row + dr, col + dc] = True
+    assert want.any() and not want.all()
+    assert np.array_equal(_return_pixels(view, returns, k, display), want)
+
+
 def test_beams_hidden_by_the_mast_are_a_shaded_sector(
     tmp_path_factory: pytest.TempPathFactory,
 ) -> None:
