@@ -57,6 +57,14 @@ def test_png_round_trip(height: int, width: int, channels: int, seed: int) -> No
     assert np.array_equal(read_png(data), image)
 
 
+def test_png_of_a_strided_view_is_its_pixels() -> None:
+    """A view that is not one block of memory (every other column, three of four
+    channels; the preview hands in such slices) is written pixel for pixel."""
+    image = np.random.default_rng(3).integers(0, 256, (7, 10, 4), dtype=np.uint8)
+    view = image[:, ::2, :3]
+    assert np.array_equal(read_png(encode_png(view)), view)
+
+
 def test_png_chunks_carry_valid_crcs() -> None:
     data = encode_png(np.zeros((2, 3, 3), dtype=np.uint8))
     pos = 8
