@@ -368,19 +368,22 @@ def draw_side(
     sensor's forward axis in the world.
     """
     finite = finite_rows(points)
-    keep = slice(None) if finite.all() else finite  # every point: no copies
-    rel = points - origin
+    # every return once, ground hits last: drawn over the others, they stay visible
+    order = np.concatenate([np.flatnonzero(finite & ~ground), np.flatnonzero(finite & ground)])
+    x = points[:, 0].take(order) - origin[0]
+    y = points[:, 1].take(order) - origin[1]
+    z = points[:, 2].take(order)
+    on_ground = ground.take(order)
     flat = np.array([heading[0], heading[1]], dtype=np.float64)
     norm = float(np.hypot(*flat))
     flat = flat / norm if norm > 1e-9 else np.array([1.0, 0.0])
-    along = rel[:, 0] * flat[0] + rel[:, 1] * flat[1]
-    dist = np.hypot(rel[:, 0], rel[:, 1]) * np.where(along < 0, -1.0, 1.0)
-    z = points[:, 2]
+    along = x * flat[0] + y * flat[1]
+    dist = np.hypot(x, y) * np.where(along < 0, -1.0, 1.0)
     sensor_z = float(origin[2])
-    d_max = float(np.max(np.abs(dist[keep]))) * 1.05 if finite.any() else 1.0
-    d_max = max(d_max, 1.0)
-    z_lo = min(0.0, float(np.min(z[keep])) if finite.any() else 0.0) - 0.1
-    z_hi = max(sensor_z, float(np.max(z[keep])) if finite.any() else sensor_z) + 0.2
+    seen = len(order) > 0
+    d_max = max(float(np.max(np.abs(dist))) * 1.05 if seen else 1.0, 1.0)
+    z_lo = min(0.0, float(np.min(z)) if seen else 0.0) - 0.1
+    z_hi = max(sensor_z, float(np.max(z)) if seen else sensor_z) + 0.2
     left, right, top, bottom = 8.0, 8.0, 8.0, 8.0
     sx = (width - left - right) / (2 * d_max)
     sz = (height - top - bottom) / (z_hi - z_lo)
@@ -391,14 +394,11 @@ def draw_side(
     canvas.line(g[0], g[1], (150, 130, 100), width=2)
     s = view.px(np.array([0.0, 0.0]), np.array([0.0, sensor_z]))
     canvas.line(s[0], s[1], (200, 200, 200))
-    colours = row_palette(n_rows)[rows[keep]]
-    colours[ground[keep]] = GROUND_HIT
-    colours[self_hit[keep]] = SELF_HIT
-    order = np.argsort(ground[keep], kind="stable")  # ground hits last: they stay visible
-    pts = view.px(dist[keep], z[keep])
-    canvas.points(pts[order], colours[order], radius=1.0)
+    colours = row_palette(n_rows)[rows.take(order)]
+    colours[on_ground] = GROUND_HIT
+    colours[self_hit.take(order)] = SELF_HIT
+    canvas.points(view.px(dist, z), colours, radius=1.0)
     canvas.circle(s[1], 4, (0, 0, 0))
-    on_ground = finite & ground
     ahead = on_ground & (dist > 0)
     behind = on_ground & (dist < 0)
     facts: dict[str, Any] = {
@@ -406,7 +406,7 @@ def draw_side(
         "ground_hits": int(on_ground.sum()),
         "nearest_ground_ahead_m": float(dist[ahead].min()) if ahead.any() else None,
         "nearest_ground_behind_m": float(-dist[behind].max()) if behind.any() else None,
-        "lowest_return_m": float(z[keep].min()) if finite.any() else None,
+        "lowest_return_m": float(z.min()) if seen else None,
         "view": {
             "x0": view.x0,
             "pixels_per_m_horizontal": view.sx,
