@@ -17,10 +17,11 @@ stored the diagnostics (``vim.diagnostic``), the time is taken, and an edit ends
 the diagnostics of the buffer's new version (its changedtick) are in. Wall time is
 ``vim.loop.hrtime()`` from just before the change to then.
 
-Neovim debounces didChange: ``flags.debounce_text_changes`` is 150 ms when not given in
-0.7.2 (runtime/lua/vim/lsp.lua:337; its :help says nil means none), shortened by the
-time since the last flush. The edits here run with it at 0 (``--debounce``), so the
-change is sent at once; ``--default-debounce`` adds a session with the flag left out.
+Neovim debounces didChange: ``flags.debounce_text_changes`` is 150 ms when not given
+in 0.7.2 (Debian 12's /usr/share/nvim/runtime/lua/vim/lsp.lua:337; its :help says nil
+means none), shortened by the time since the last flush. The edits here run with it at
+0 (``--debounce``), so the change is sent at once; ``--default-debounce`` adds sessions
+with the flag left out. The script checks that each text Neovim sent is bench_lsp's.
 
 The server's CPU per edit is utime+stime of the server and its reaped children from
 ``/proc/PID/stat``, read before the change and after the diagnostics (the pid is
