@@ -31,11 +31,33 @@ ROBOT = "turtlebot__turtlebot4/turtlebot4_description/urdf/standard/turtlebot4.u
 TICK = os.sysconf("SC_CLK_TCK")
 
 
-def cpu_seconds(pid: int) -> float:
-    """utime + stime + cutime + cstime of ``pid``, in seconds."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+EDIT = "<!-- edit {} -->"  # the edit: this comment added at the end, then removed
+
+
+def edited(text: str, i: int) -> str:
+    """The buffer after edit ``i``: even edits add the comment line, odd ones remove it."""
+    return text if i % 2 else text + EDIT.format(i) + "\n"
+
+
+def robot_options(robot: Path, arg: list[str] | None) -> tuple[dict[str, str], dict[str, object]]:
+    """The xacro args (``NAME:=VALUE``; turtlebot4 defaults to gazebo:=ignition) and the
+    initializationOptions that send them with the corpus as package path."""
+    if arg is None:
+        arg = ["gazebo:=ignition"] if robot == REALWORLD / ROBOT else []
+    args = dict(item.split(":=", 1) for item in arg)
+    return args, {"args": args, "packagePaths": [str(REALWORLD)]}
+
+
+def stat_cpu(stat: str) -> float:
+    """utime + stime + cutime + cstime, in seconds, from the text of a /proc/PID/stat."""
+    fields = stat.rsplit(")", 1)[1].split()
     # fields[0] is the state (field 3); utime..cstime are fields 14..17
     return sum(int(x) for x in fields[11:15]) / TICK
+
+
+def cpu_seconds(pid: int) -> float:
+    """utime + stime + cutime + cstime of ``pid``, in seconds."""
+    return stat_cpu(Path(f"/proc/{pid}/stat").read_text())
 
 
 def pct(values: list[float], q: float) -> float:
@@ -68,7 +90,7 @@ def breakdown(robot: Path, args: dict[str, str], edits: int) -> None:
     loads: list[float] = []
     rules: list[float] = []
     for i in range(edits + 1):
-        body = text if i % 2 else text + f"<!-- edit {i} -->\n"
+        body = edited(text, i)
         opts = dataclasses.replace(options, overlay={str(robot): body.encode()})
         c0 = cpu_now()
         loaded = load(robot, opts)
@@ -84,6 +106,37 @@ def breakdown(robot: Path, args: dict[str, str], edits: int) -> None:
     )
 
 
+def run_client(
+    robot: Path, options: dict[str, object], edits: int, warmup: int = 0
+) -> tuple[float, int, list[float], list[float], int]:
+    """A cold server: open ``robot``, then ``warmup`` edits not counted and ``edits``
+    counted. Seconds to the first diagnostics, how many, wall and server CPU seconds per
+    counted edit, the server's exit status."""
+    client = Client(cwd=ROOT)
+    try:
+        t0 = time.perf_counter()
+        client.initialize(robot.parent, options)
+        text = robot.read_text()
+        client.open(robot, text, version=1)
+        first = client.diagnostics(robot, 1, timeout=120)
+        opened = time.perf_counter() - t0
+        wall: list[float] = []
+        cpu: list[float] = []
+        for i in range(warmup + edits):
+            version = i + 2
+            before = cpu_seconds(client.proc.pid)
+            t = time.perf_counter()
+            client.change(robot, edited(text, i), version)
+            client.diagnostics(robot, version, timeout=60)
+            if i >= warmup:
+                wall.append(time.perf_counter() - t)
+                cpu.append(cpu_seconds(client.proc.pid) - before)
+        code = client.close()
+    finally:
+        client.kill()
+    return opened, len(first), wall, cpu, code
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--edits", type=int, default=30)
@@ -97,35 +150,12 @@ def main() -> None:
     a = ap.parse_args()
     if not a.robot.is_file():
         sys.exit(f"bench_lsp: no robot at {a.robot}")
-    if a.arg is None:
-        a.arg = ["gazebo:=ignition"] if a.robot == REALWORLD / ROBOT else []
-    args = dict(item.split(":=", 1) for item in a.arg)
-    options = {"args": args, "packagePaths": [str(REALWORLD)]}
-    client = Client(cwd=ROOT)
-    try:
-        t0 = time.perf_counter()
-        client.initialize(a.robot.parent, options)
-        text = a.robot.read_text()
-        client.open(a.robot, text, version=1)
-        first = client.diagnostics(a.robot, 1, timeout=120)
-        print(
-            f"open: {time.perf_counter() - t0:.2f} s to the first diagnostics "
-            f"({len(first)} in the top file), server started cold"
-        )
-        wall: list[float] = []
-        cpu: list[float] = []
-        for i in range(a.edits):
-            version = i + 2
-            body = text if i % 2 else text + f"<!-- edit {i} -->\n"
-            before = cpu_seconds(client.proc.pid)
-            t = time.perf_counter()
-            client.change(a.robot, body, version)
-            client.diagnostics(a.robot, version, timeout=60)
-            wall.append(time.perf_counter() - t)
-            cpu.append(cpu_seconds(client.proc.pid) - before)
-        code = client.close()
-    finally:
-        client.kill()
+    args, options = robot_options(a.robot, a.arg)
+    opened, first, wall, cpu, code = run_client(a.robot, options, a.edits)
+    print(
+        f"open: {opened:.2f} s to the first diagnostics "
+        f"({first} in the top file), server started cold"
+    )
     ms = [w * 1000 for w in wall]
     cms = [c * 1000 for c in cpu]
     print(f"{a.edits} edits of {a.robot.name} (args {args}), edit -> publishDiagnostics:")

@@ -93,6 +93,21 @@ class Robot:
         ]
         return xacro, [CHECK_URDF, str(out)]
 
+    def floor_cmd(self, expand: bool) -> list[str]:
+        """``--floors``: a process that imports typer (and, with ``expand``, then runs
+        xacro's command line in-process on the robot, output to /dev/null). No typer CLI
+        that expands with xacro can cost less: the floor under cold (with ``expand``) and
+        under a warm run that only reads a stored result (without)."""
+        code = "import typer\n"
+        if expand:
+            code += (
+                "import sys, xacro\n"
+                f"sys.argv = ['xacro', {str(self.path)!r}, "
+                + "".join(f"{f'{k}:={v}'!r}, " for k, v in self.args.items())
+                + "'-o', '/dev/null']\nxacro.main()\n"
+            )
+        return [str(VENV_BIN / "python"), "-c", code]
+
     def sensorkit_cmd(self, no_cache: bool, binary: Path | None = None) -> list[str]:
         cmd = [str(binary or VENV_BIN / "sensorkit"), "validate", str(self.path)]
         for k, v in self.args.items():
@@ -227,8 +242,18 @@ def has_no_cache(env: dict[str, str]) -> bool:
 
 
 # The sides of a round: the peer, sensorkit cold (--no-cache) and warm (its cache filled by
-# the checking run), and with --baseline the same two of another sensorkit (another venv).
-SIDES = ("peer", "cold", "warm", "base", "base_warm")
+# the checking run), with --baseline the same two of another sensorkit (another venv), and
+# with --floors what typer alone costs ("typer") and typer then xacro's CLI ("typer+x").
+SIDES = ("peer", "cold", "warm", "base", "base_warm", "typer", "typer+x")
+
+
+def sides_of(base: Path | None, floors: bool) -> list[str]:
+    """The sides measured besides the peer, in the order they are reported."""
+    return (
+        ["cold", "warm"]
+        + (["base", "base_warm"] if base else [])
+        + (["typer", "typer+x"] if floors else [])
+    )
 
 
 @dataclass
@@ -245,9 +270,14 @@ class Row:
 
 
 def measure(
-    r: Robot, envs: dict[str, dict[str, str]], tmp: Path, runs: int, base: Path | None
+    r: Robot,
+    envs: dict[str, dict[str, str]],
+    tmp: Path,
+    runs: int,
+    base: Path | None,
+    floors: bool = False,
 ) -> Row:
-    sides = ["peer", "cold", "warm"] + (["base", "base_warm"] if base else [])
+    sides = ["peer", *sides_of(base, floors)]
     cpu: dict[str, list[float]] = {k: [] for k in sides}
     wall: dict[str, list[float]] = {k: [] for k in sides}
     xs, cs, loads = [], [], []
@@ -262,6 +292,11 @@ def measure(
                 xs.append(t_x)
                 cs.append(t_c)
                 cpu[side].append(t_x + t_c)
+                wall[side].append(sum(WALL))
+                continue
+            if side.startswith("typer"):  # the peer's environment: xacro finds packages
+                cmd = r.floor_cmd(expand=side == "typer+x")
+                cpu[side].append(cpu_of(cmd, dict(envs["peer"], **r.env), tmp)[0])
                 wall[side].append(sum(WALL))
                 continue
             env = envs["warm" if side.endswith("warm") else "cold"]
@@ -280,7 +315,7 @@ def measure(
     )
 
 
-def benchmark(robots: list[Robot], runs: int, base: Path | None) -> None:
+def benchmark(robots: list[Robot], runs: int, base: Path | None, floors: bool = False) -> None:
     with tempfile.TemporaryDirectory() as t:
         tmp = Path(t)
         peer_env, sk_env = environments(tmp, robots)
@@ -303,7 +338,7 @@ def benchmark(robots: list[Robot], runs: int, base: Path | None) -> None:
             if why or sk_why:
                 apart.append((r.label, why or sk_why or ""))
                 continue
-            rows.append(measure(r, envs, tmp, runs, base))
+            rows.append(measure(r, envs, tmp, runs, base, floors))
             w = rows[-1]
             print(
                 f"  {r.label}: cold {w.ratio('cold'):.2f} warm {w.ratio('warm'):.2f}"
@@ -313,7 +348,7 @@ def benchmark(robots: list[Robot], runs: int, base: Path | None) -> None:
                 flush=True,
             )
         version = version_cpu(sk_env, runs)
-    report(rows, apart, runs, base, version, time.perf_counter() - t0)
+    report(rows, apart, runs, base, version, time.perf_counter() - t0, floors)
 
 
 def version_cpu(env: dict[str, str], runs: int) -> dict[str, float]:
@@ -336,13 +371,20 @@ def report(
     base: Path | None,
     version: dict[str, float],
     seconds: float,
+    floors: bool = False,
 ) -> None:
     med = statistics.median
-    sides = ["cold", "warm"] + (["base", "base_warm"] if base else [])
+    sides = sides_of(base, floors)
     print(
         f"CPU (user + sys), median of {runs} rotated, interleaved rounds; peer = xacro > out.urdf"
         " && check_urdf; cold = validate --no-cache; warm = validate, cache filled"
         + (f"; base = {base}" if base else "")
+        + (
+            "; typer = python -c 'import typer'; typer+x = import typer, then xacro's CLI"
+            " in-process"
+            if floors
+            else ""
+        )
     )
     head = "".join(f" {k:>9}" for k in sides)
     ratios = "".join(f" {k[:7] + '/p':>9}" for k in sides)
@@ -403,6 +445,12 @@ def main() -> None:
         metavar="SENSORKIT",
         help="another sensorkit program (e.g. another checkout's .venv/bin/sensorkit) run in the same rounds",
     )
+    ap.add_argument(
+        "--floors",
+        action="store_true",
+        help="also time `import typer` alone and then xacro's CLI in-process: the least any"
+        " typer CLI pays warm (reading a stored result) and cold (expanding with xacro)",
+    )
     a = ap.parse_args()
     if not REALWORLD.is_dir():
         sys.exit(f"{REALWORLD} is absent: the real robots live beside the project")
@@ -425,7 +473,7 @@ def main() -> None:
         return
     if a.only:
         robots = [r for r in robots if any(r in pick(robots, name) for name in a.only)]
-    benchmark(robots, a.runs, a.baseline)
+    benchmark(robots, a.runs, a.baseline, a.floors)
 
 
 if __name__ == "__main__":
