@@ -31,8 +31,15 @@ OPENBLAS_NUM_THREADS=1): starting the pool costs it 0.10-0.13 s of CPU (9 pairs 
 2026-11-29), most of why its CPU time exceeds its wall time for the camera and the 2D
 lidar. Left so: it is what a script importing numpy pays.
 
+``--baseline DIR`` adds a third side to every round: the preview of another sensorkit
+source tree (a git worktree of the commit to compare, e.g. ``git worktree add --detach
+../base main``), run from that folder so that its code, not this one, is imported. Its
+ratios print beside this tree's, with the paired CPU difference: before and after in the
+same rounds.
+
 Run by hand, never from the tests:
-``PYTHONPATH=. .venv/bin/python benchmarks/bench_render.py [--runs N] [--only KIND ...]``.
+``PYTHONPATH=. .venv/bin/python benchmarks/bench_render.py [--runs N] [--only KIND ...]
+[--baseline DIR]``.
 Target (issue 37): each kind <= 1.3 (CPU time).
 """
 
@@ -207,11 +214,14 @@ for job in work:
 """
 
 
-def _run(command: list[str], env: dict[str, str]) -> tuple[float, float]:
+Side = tuple[list[str], dict[str, str], "str | None"]  # command, environment, folder
+
+
+def _run(command: list[str], env: dict[str, str], cwd: str | None = None) -> tuple[float, float]:
     """(CPU seconds of the process and its children, wall seconds) of one run."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    proc = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
+    proc = subprocess.run(command, capture_output=True, text=True, check=False, env=env, cwd=cwd)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode not in (0, 1):
@@ -224,6 +234,69 @@ def _fmt(values: list[float]) -> str:
     return ", ".join(f"{v:.2f}" for v in values)
 
 
+def _sides(folder: Path, kinds: list[str], baseline: Path | None) -> dict[str, dict[str, Side]]:
+    """Each robot's sides: ``sk`` (this sensorkit), ``base`` (the ``--baseline`` tree's)
+    and ``raw`` (the raw script), written into ``folder`` with the textures they load."""
+    from sensorkit.render.scene import default_scene
+    from sensorkit.render.textures import texture_file
+
+    textures = folder / "textures"
+    textures.mkdir()
+    # the files the preview loads: the default room's textures at their sizes (walls
+    # 512 px), in the format the preview hands pybullet
+    for key, texture in default_scene(3.0).textures.items():
+        made = texture_file(texture, textures)
+        (textures / f"{key}{made.suffix}").write_bytes(made.read_bytes())
+    raw_script = folder / "raw.py"
+    raw_script.write_text(RAW)
+    # Every side runs as installed code does: with bytecode cached (kept in a temporary
+    # folder, so the source tree stays clean, whatever PYTHONDONTWRITEBYTECODE says).
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env["PYTHONPYCACHEPREFIX"] = str(folder / "pycache")
+    sides: dict[str, dict[str, Side]] = {}
+    for kind in kinds:
+        text, work = CASES[kind]
+        robot = folder / f"{kind}.urdf"
+        robot.write_text(text)
+        sk = [sys.executable, "-m", "sensorkit", "render", "preview", str(robot), "--out"]
+        raw = [sys.executable, str(raw_script), str(robot), str(textures), made.suffix, *work]
+        sides[kind] = {"sk": ([*sk, str(folder / f"out-{kind}")], env, None)}
+        if baseline is not None:  # run from its folder: `-m` puts the working folder first
+            base_env = {**env, "PYTHONPATH": str(baseline)}
+            sides[kind]["base"] = ([*sk, str(folder / f"base-{kind}")], base_env, str(baseline))
+        sides[kind]["raw"] = (raw, env, None)
+    return sides
+
+
+def _report(times: dict[str, dict[str, list[tuple[float, float]]]]) -> None:
+    """Medians per robot and side, then each sensorkit's ratios to the raw script."""
+    print(f"{'robot':8} {'side':5} {'CPU median':>10} {'wall median':>11}   CPU per run (s)")
+    for kind, by_side in times.items():
+        for side, runs in by_side.items():
+            cpu, wall = [c for c, _ in runs], [w for _, w in runs]
+            print(
+                f"{kind:8} {side:5.5} {statistics.median(cpu):10.3f} "
+                f"{statistics.median(wall):11.3f}   {_fmt(cpu)}"
+            )
+    print(f"\n{'robot':8} {'side':5} {'CPU ratio':>9} {'paired':>7} {'wall ratio':>10}")
+    for kind, by_side in times.items():
+        raw_cpu = [c for c, _ in by_side["raw"]]
+        raw_wall = [w for _, w in by_side["raw"]]
+        for side in [s for s in by_side if s != "raw"]:
+            cpu = [c for c, _ in by_side[side]]
+            wall = [w for _, w in by_side[side]]
+            paired = statistics.median(a / b for a, b in zip(cpu, raw_cpu, strict=True))
+            print(
+                f"{kind:8} {side:5.5} {statistics.median(cpu) / statistics.median(raw_cpu):9.2f} "
+                f"{paired:7.2f} {statistics.median(wall) / statistics.median(raw_wall):10.2f}"
+            )
+        if "base" in by_side:
+            diff = statistics.median(
+                a - b for (a, _), (b, _) in zip(by_side["sk"], by_side["base"], strict=True)
+            )
+            print(f"{kind:8} sk - base, paired CPU median: {diff * 1000:+.0f} ms")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -231,74 +304,33 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=9)
     parser.add_argument("--only", nargs="*", choices=sorted(CASES), default=None)
     parser.add_argument("--mixed", action="store_true", help="add the two-camera + lidar robot")
+    parser.add_argument(
+        "--baseline",
+        type=Path,
+        default=None,
+        help="another sensorkit source tree (a git worktree of the commit to compare): its "
+        "preview runs in the same rounds, as side 'base'",
+    )
     options = parser.parse_args()
     kinds = options.only or ["camera", "scan", "velo"] + (["mixed"] if options.mixed else [])
+    baseline = options.baseline.resolve() if options.baseline is not None else None
     with tempfile.TemporaryDirectory(prefix="bench-render-") as tmp:
-        folder = Path(tmp)
-        textures = folder / "textures"
-        textures.mkdir()
-        from sensorkit.render.scene import default_scene
-        from sensorkit.render.textures import texture_file
-
-        # the files the preview loads: the default room's textures at their sizes (walls
-        # 512 px), in the format the preview hands pybullet
-        for key, texture in default_scene(3.0).textures.items():
-            made = texture_file(texture, textures)
-            (textures / f"{key}{made.suffix}").write_bytes(made.read_bytes())
-        suffix = made.suffix
-        raw_script = folder / "raw.py"
-        raw_script.write_text(RAW)
-        commands: dict[str, tuple[list[str], list[str]]] = {}
-        for kind in kinds:
-            text, work = CASES[kind]
-            robot = folder / f"{kind}.urdf"
-            robot.write_text(text)
-            sk = [sys.executable, "-m", "sensorkit", "render", "preview", str(robot)]
-            sk += ["--out", str(folder / f"out-{kind}")]
-            commands[kind] = (
-                sk,
-                [sys.executable, str(raw_script), str(robot), str(textures), suffix, *work],
-            )
-        # Both sides run as installed code does: with bytecode cached (kept in a temporary
-        # folder, so the source tree stays clean, whatever PYTHONDONTWRITEBYTECODE says).
-        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-        env["PYTHONPYCACHEPREFIX"] = str(folder / "pycache")
-        for sk, raw in commands.values():  # warm the bytecode and file caches on both sides
-            _run(sk, env)
-            _run(raw, env)
+        sides = _sides(Path(tmp), kinds, baseline)
+        for by_side in sides.values():  # warm the bytecode and file caches of every side
+            for side in by_side.values():
+                _run(*side)
         load = os.getloadavg()[0]
-        times: dict[str, dict[str, list[tuple[float, float]]]] = {
-            kind: {"sk": [], "raw": []} for kind in kinds
-        }
+        times = {kind: {name: [] for name in by_side} for kind, by_side in sides.items()}
         for k in range(options.runs):
-            for kind, (sk, raw) in commands.items():
-                order = [("sk", sk), ("raw", raw)] if k % 2 == 0 else [("raw", raw), ("sk", sk)]
-                for side, command in order:
-                    times[kind][side].append(_run(command, env))
+            for kind, by_side in sides.items():
+                names = list(by_side) if k % 2 == 0 else list(reversed(by_side))
+                for name in names:
+                    times[kind][name].append(_run(*by_side[name]))
     print(
-        f"runs: {options.runs} pairs per robot, interleaved; cores: {os.cpu_count()}; "
+        f"runs: {options.runs} rounds per robot, interleaved; cores: {os.cpu_count()}; "
         f"load average before: {load:.2f}, after: {os.getloadavg()[0]:.2f}"
     )
-    print(f"{'robot':8} {'side':5} {'CPU median':>10} {'wall median':>11}   CPU per run (s)")
-    for kind in kinds:
-        for side in ("sk", "raw"):
-            cpu = [c for c, _ in times[kind][side]]
-            wall = [w for _, w in times[kind][side]]
-            label = "sk" if side == "sk" else "raw"
-            print(
-                f"{kind:8} {label:5.5} {statistics.median(cpu):10.3f} {statistics.median(wall):11.3f}   {_fmt(cpu)}"
-            )
-    print(f"\n{'robot':8} {'CPU ratio':>9} {'paired':>7} {'wall ratio':>10}")
-    for kind in kinds:
-        sk_cpu = [c for c, _ in times[kind]["sk"]]
-        raw_cpu = [c for c, _ in times[kind]["raw"]]
-        sk_wall = [w for _, w in times[kind]["sk"]]
-        raw_wall = [w for _, w in times[kind]["raw"]]
-        paired = statistics.median(a / b for a, b in zip(sk_cpu, raw_cpu, strict=True))
-        print(
-            f"{kind:8} {statistics.median(sk_cpu) / statistics.median(raw_cpu):9.2f} {paired:7.2f} "
-            f"{statistics.median(sk_wall) / statistics.median(raw_wall):10.2f}"
-        )
+    _report(times)
 
 
 if __name__ == "__main__":
