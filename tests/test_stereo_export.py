@@ -26,6 +26,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -405,6 +406,20 @@ def test_orbslam3_stereo_writer_v1_takes_any_rigid_pair() -> None:
         orbslam3_stereo_yaml(_eye(), _eye(width=320), T_c1_c2=_T(), fps=20)
     with pytest.raises(InvalidValue, match="apart"):
         orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=np.eye(4), fps=20)
+
+
+def test_a_far_but_finite_baseline_is_measured_without_overflow() -> None:
+    # Regression (test_fuzz's export target): numpy's norm squares each coordinate, so a
+    # pair 1e200 m apart overflowed with a RuntimeWarning on stderr. The v1.0 file needs
+    # only a positive baseline; the old one writes baseline * fx, which then overflows for
+    # real and is refused in one line.
+    T = _T(x=1e200)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        text = orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=T, fps=20, version="1.0")
+        assert matrix(load_opencv(text)["Stereo.T_c1_c2"])[0, 3] == 1e200
+        with pytest.raises(InvalidValue, match="bf"):
+            orbslam3_stereo_yaml(_eye(), _eye(), T_c1_c2=_T(x=1e307), fps=20, version="old")
 
 
 @pytest.mark.parametrize(

@@ -24,6 +24,7 @@ export.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -67,8 +68,6 @@ def body_frame(
     Candidates in order: ``prefer``, the sensor's reference link, then every link of its
     tree in document order. ``None`` when no link is there.
     """
-    import numpy as np
-
     from sensorkit.model.frames_np import T_world_link_np, render_pose_np
     from sensorkit.model.transforms_np import angle_between
 
@@ -84,7 +83,7 @@ def body_frame(
         T = T_world_link_np(robot, name)
         if T is None:
             continue
-        if float(np.linalg.norm(T[:3, 3] - T_render[:3, 3])) > _POSE_TOL_M:
+        if math.hypot(*(T[:3, 3] - T_render[:3, 3])) > _POSE_TOL_M:  # no overflow when far
             continue
         if angle_between(T_render[:3, :3], T[:3, :3]) <= _POSE_TOL_RAD:
             return name

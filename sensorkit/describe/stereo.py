@@ -85,7 +85,7 @@ class StereoPair:
     def baseline(self) -> float:
         """Distance between the two optical centres (m), as ORB-SLAM3 takes it from
         ``Stereo.T_c1_c2`` (UZ-SLAMLab/ORB_SLAM3@src/Settings.cc:347)."""
-        return float(np.linalg.norm(self.T_left_right[:3, 3]))
+        return math.hypot(*self.T_left_right[:3, 3])
 
     @property
     def rectified(self) -> bool:

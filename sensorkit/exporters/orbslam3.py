@@ -56,6 +56,7 @@ and ORB-SLAM3 checks the kind of every value it reads:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
@@ -398,7 +399,7 @@ def orbslam3_stereo_yaml(
         raise InvalidValue(msg)
     T = np.asarray(T_c1_c2, dtype=np.float64)
     T_rows = _rigid("Stereo.T_c1_c2", T)
-    baseline = float(np.linalg.norm(T[:3, 3]))
+    baseline = math.hypot(*T[:3, 3])  # scaled: no overflow for a far but finite pair
     if baseline <= 0.0:
         msg = "the two cameras of a stereo pair must be apart (T_c1_c2 has no translation)"
         raise InvalidValue(msg)
