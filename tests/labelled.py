@@ -45,6 +45,7 @@ findings to label).
 
 from __future__ import annotations
 
+import functools
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -193,12 +194,21 @@ def run(robot: Robot) -> Outcome:
 
 
 def labels(corpus: Corpus) -> dict[str, dict[Key, dict[str, Any]]]:
-    """robot key (file and args) -> finding key -> label (verdict, why)."""
+    """robot key (file and args) -> finding key -> label (verdict, why). Read once while
+    the file is unchanged (its size and mtime): test_realworld asks for it three times a
+    robot, and parsing the real-world labels took ~0.4 s each time. Do not mutate it."""
     path = corpus.lists / "labels.yaml"
-    if not path.is_file():
+    try:
+        st = path.stat()
+    except FileNotFoundError:
         return {}
+    return _labels(str(path), st.st_size, st.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=8)
+def _labels(path: str, _size: int, _mtime_ns: int) -> dict[str, dict[Key, dict[str, Any]]]:
     out: dict[str, dict[Key, dict[str, Any]]] = {}
-    for entry in yaml.safe_load(path.read_text()) or []:
+    for entry in yaml.safe_load(Path(path).read_text()) or []:
         table = out.setdefault(entry["robot"], {})
         for lab in entry.get("findings") or []:
             table[(lab["rule"], lab["file"], lab.get("line"))] = lab
