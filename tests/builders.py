@@ -114,3 +114,12 @@ def gz_robot(*, camera_tags: str | None = None, lidar_tags: str | None = None, c
     )
     plugin = '<gazebo><plugin filename="gz-sim-sensors-system" name="gz::sim::systems::Sensors"/></gazebo>'
     return robot(camera=cam, lidar=lid, extra=plugin + extra)
+
+
+def bridge_entry(gz: str, ros_type: str, gz_type: str) -> str:
+    """One ros_gz_bridge YAML entry carrying gz topic ``gz`` to ROS (the ROS name without
+    its leading slash)."""
+    return (
+        f"- ros_topic_name: {gz.strip('/')}\n  gz_topic_name: {gz}\n  ros_type_name: {ros_type}\n"
+        f"  gz_type_name: {gz_type}\n  direction: GZ_TO_ROS\n"
+    )

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from builders import bridge_entry as _entry
 from builders import gz_robot
 
 from sensorkit.base.findings import Severity
@@ -83,13 +84,6 @@ def test_gz_vertical_samples_zero_stays_an_error(check: Callable) -> None:
 # TOPIC + "_image"), :237 (sibling camera_info). ros_gz_bridge pairs the boxes with
 # vision_msgs Detection2DArray / Detection3DArray (ros_gz@jazzy 739cb42:
 # ros_gz_bridge/ros_gz_bridge/mappings.py:114,116).
-
-
-def _entry(gz: str, ros_type: str, gz_type: str) -> str:
-    return (
-        f"- ros_topic_name: {gz}\n  gz_topic_name: {gz}\n  ros_type_name: {ros_type}\n"
-        f"  gz_type_name: {gz_type}\n  direction: GZ_TO_ROS\n"
-    )
 
 
 SCAN = _entry("scan", "sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")

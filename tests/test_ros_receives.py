@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from builders import bridge_entry as _entry
 from builders import camera_sensor, gz_robot, joint, lidar_sensor, link, robot
 from test_consequence_rules import _gz_two_cameras
 
@@ -31,13 +32,6 @@ from sensorkit.loading.launch_facts import LaunchFacts
 
 def _of(report: FileReport, rule: str) -> list:  # type: ignore[type-arg]
     return [f for f in report.findings if f.rule == rule]
-
-
-def _entry(gz: str, ros_type: str, gz_type: str) -> str:
-    return (
-        f"- ros_topic_name: {gz.strip('/')}\n  gz_topic_name: {gz}\n  ros_type_name: {ros_type}\n"
-        f"  gz_type_name: {gz_type}\n  direction: GZ_TO_ROS\n"
-    )
 
 
 SCAN = _entry("/scan", "sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
